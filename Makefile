@@ -1,0 +1,32 @@
+# The two commands a new user runs (see README.md): `make demo` and `make test`.
+# Each installs missing Debian packages, configures and builds.
+
+BUILD_DIR ?= build
+BUILD_TYPE ?= Release
+WERROR ?= OFF
+JOBS ?= 2
+CMAKE_FLAGS ?=
+
+.PHONY: demo test build deps test-sanitize clean
+
+deps:
+	@scripts/install-deps.sh
+
+build: deps
+	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) \
+	  -DLANG2MANIP_WERROR=$(WERROR) $(CMAKE_FLAGS)
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+demo: build
+	$(BUILD_DIR)/src/lang2manip/cli/lang2manip problems
+	$(BUILD_DIR)/src/lang2manip/cli/lang2manip show
+
+test: build
+	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+# Debug build of the tests under AddressSanitizer and UndefinedBehaviorSanitizer.
+test-sanitize:
+	$(MAKE) test BUILD_DIR=build-sanitize BUILD_TYPE=Debug CMAKE_FLAGS=-DLANG2MANIP_SANITIZE=ON
+
+clean:
+	rm -rf build build-sanitize

@@ -1,0 +1,14 @@
+# Every dependency is a Debian package (see scripts/install-deps.sh); nothing is downloaded.
+
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(urdfdom REQUIRED)
+find_package(assimp REQUIRED)
+find_package(Coin REQUIRED)
+find_package(pugixml REQUIRED)
+find_package(yaml-cpp REQUIRED)
+find_package(nlohmann_json 3.11 REQUIRED)
+find_package(CLI11 REQUIRED)
+if(LANG2MANIP_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+  include(GoogleTest)
+endif()

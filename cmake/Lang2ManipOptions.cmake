@@ -1,0 +1,43 @@
+# Compiler warnings, sanitizers and the helpers that declare modules and tests.
+
+add_library(lang2manip_warnings INTERFACE)
+target_compile_options(lang2manip_warnings INTERFACE
+  -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wold-style-cast -Wcast-align
+  -Wunused -Woverloaded-virtual -Wconversion -Wno-sign-conversion -Wnull-dereference
+  -Wdouble-promotion -Wformat=2 -Wimplicit-fallthrough
+  # GCC 12 reports false -Wrestrict positives inside std::string concatenation (GCC PR 105329).
+  $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)
+if(LANG2MANIP_WERROR)
+  target_compile_options(lang2manip_warnings INTERFACE -Werror)
+endif()
+
+if(LANG2MANIP_SANITIZE)
+  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer
+                      -fno-sanitize-recover=undefined)
+  add_link_options(-fsanitize=address,undefined)
+endif()
+
+# lang2manip_add_module(NAME SOURCES ... DEPENDS ...)
+# One module = one directory = one library named lang2manip_<NAME>; sources listed explicitly.
+function(lang2manip_add_module name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS;PRIVATE_DEPENDS" ${ARGN})
+  add_library(lang2manip_${name} ${ARG_SOURCES})
+  add_library(lang2manip::${name} ALIAS lang2manip_${name})
+  target_include_directories(lang2manip_${name} PUBLIC
+    $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/src>)
+  target_link_libraries(lang2manip_${name} PUBLIC ${ARG_DEPENDS}
+                        PRIVATE ${ARG_PRIVATE_DEPENDS} lang2manip_warnings)
+endfunction()
+
+# lang2manip_add_test(NAME SOURCES ... DEPENDS ...): one gtest binary, tests discovered by CTest.
+function(lang2manip_add_test name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+  target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} GTest::gtest_main GTest::gmock
+                        lang2manip_warnings)
+  target_compile_definitions(${name} PRIVATE
+    LANG2MANIP_SHARED_DIR="${LANG2MANIP_SHARED_DIR}"
+    LANG2MANIP_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/tests/data")
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+endfunction()

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs the Debian packages lang2manip builds with, only those that are missing.
+# Uses sudo when not root. Works on Debian 12 and Ubuntu 22.04/24.04.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev liburdfdom-dev libassimp-dev libcoin-dev libpugixml-dev libyaml-cpp-dev
+  nlohmann-json3-dev libcli11-dev
+  libgtest-dev libgmock-dev
+)
+
+missing=()
+for package in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$package")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "lang2manip: installing missing Debian packages: ${missing[*]}"
+sudo_command=()
+if [ "$(id -u)" -ne 0 ]; then
+  if ! command -v sudo >/dev/null; then
+    echo "lang2manip: need root or sudo to install: ${missing[*]}" >&2
+    exit 1
+  fi
+  sudo_command=(sudo)
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_command[@]}" apt-get update -qq
+"${sudo_command[@]}" apt-get install -y --no-install-recommends "${missing[@]}"

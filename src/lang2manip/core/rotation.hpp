@@ -1,0 +1,29 @@
+#pragma once
+/// @file Orientation conversions. lang2manip's own API uses quaternions; the readers convert the
+/// conventions of the files they read (URDF roll-pitch-yaw, Kautham axis-angle, MoveIt xyzw).
+
+#include "lang2manip/core/types.hpp"
+
+namespace lang2manip {
+
+/// URDF convention: R = Rz(yaw) * Ry(pitch) * Rx(roll).
+Quaternion quaternionFromRpy(double roll, double pitch, double yaw);
+
+/// Roll, pitch, yaw of `q` in the URDF convention (inverse of quaternionFromRpy).
+Vector3 rpyFromQuaternion(const Quaternion& q);
+
+/// Kautham's Home convention: a rotation of `angle` about `axis`. The axis is normalized; an
+/// all-zero axis means the identity whatever the angle (Kautham's UR5 demo relies on it).
+Quaternion quaternionFromKauthamAxisAngle(const Vector3& axis, double angle);
+
+/// Axis (unit, or +z for the identity) and angle in [0, pi] of `q`.
+void axisAngleFromQuaternion(const Quaternion& q, Vector3& axis, double& angle);
+
+/// A pose from a translation and a rotation.
+Pose makePose(const Vector3& translation, const Quaternion& rotation);
+
+/// Kautham's uniform-quaternion map from (X1, X2, X3) in [0,1]^3 to a rotation
+/// (X1 = X2 = X3 = 0 is the identity; with X1 = X2 = 0, X3 is a yaw of 2*pi*X3).
+Quaternion quaternionFromKauthamUnitCube(double x1, double x2, double x3);
+
+}  // namespace lang2manip

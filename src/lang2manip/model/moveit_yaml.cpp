@@ -1,0 +1,192 @@
+#include "lang2manip/model/moveit_yaml.hpp"
+
+#include <algorithm>
+#include <cctype>
+
+#include "lang2manip/core/rotation.hpp"
+#include "lang2manip/core/text_parsing.hpp"
+
+namespace lang2manip::moveit_yaml {
+namespace {
+
+int lineOf(const YAML::Mark& mark) { return mark.is_null() ? 0 : mark.line + 1; }
+
+/// YAML's own spellings of infinity and NaN (.inf, -.Inf, .NaN, ...).
+bool isYamlSpecialFloat(const std::string& text) {
+  std::string value = lowercase(text);
+  if (!value.empty() && (value.front() == '+' || value.front() == '-')) value.erase(0, 1);
+  return value == ".inf" || value == ".nan";
+}
+
+/// `keys.size()` numbers given as a list or as a map with one key per letter of `keys`.
+std::vector<double> components(const YamlValue& value, std::string_view keys) {
+  std::vector<double> result;
+  if (value.isMap()) {
+    for (char key : keys) result.push_back(value.child(std::string(1, key)).number());
+    return result;
+  }
+  result = numbers(value);
+  if (result.size() != keys.size()) {
+    std::vector<std::string> names;
+    for (char key : keys) names.emplace_back(1, key);
+    value.fail("expected " + std::to_string(keys.size()) + " numbers [" + joined(names) +
+               "], got " + std::to_string(result.size()));
+  }
+  return result;
+}
+
+Vector3 readPosition(const YamlValue& value) {
+  const std::vector<double> c = components(value, "xyz");
+  return {c[0], c[1], c[2]};
+}
+
+Quaternion readOrientation(const YamlValue& value) {
+  const std::vector<double> c = components(value, "xyzw");
+  const Quaternion q(c[3], c[0], c[1], c[2]);
+  if (q.norm() < 1e-12) value.fail("the quaternion [x, y, z, w] has zero length");
+  return q.normalized();
+}
+
+YAML::Node loadYaml(const std::filesystem::path& file, const std::string& name) {
+  try {
+    return YAML::LoadFile(file.string());
+  } catch (const YAML::BadFile&) {
+    throw InputError(SourceLocation{name, 0}, "cannot open the file");
+  } catch (const YAML::ParserException& error) {
+    throw InputError(SourceLocation{name, lineOf(error.mark)}, "malformed YAML: " + error.msg);
+  }
+}
+
+}  // namespace
+
+YamlValue::YamlValue(YAML::Node node, std::string path, const std::string& file)
+    : node_(std::move(node)), path_(std::move(path)), file_(&file) {}
+
+SourceLocation YamlValue::where() const { return {*file_, lineOf(node_.Mark())}; }
+
+void YamlValue::fail(const std::string& problem) const {
+  throw InputError(where(), path_.empty() ? problem : path_ + ": " + problem);
+}
+
+std::optional<YamlValue> YamlValue::find(const std::string& key) const {
+  if (!node_.IsMap()) fail("expected a map, got " + kindName());
+  const YAML::Node value = node_[key];
+  if (!value || value.IsNull()) return std::nullopt;
+  return YamlValue(value, path_.empty() ? key : path_ + "." + key, *file_);
+}
+
+YamlValue YamlValue::child(const std::string& key) const {
+  std::optional<YamlValue> value = find(key);
+  if (!value) fail("missing required key '" + key + "'");
+  return *value;
+}
+
+std::vector<YamlValue> YamlValue::items() const {
+  if (!node_.IsSequence()) fail("expected a list, got " + kindName());
+  std::vector<YamlValue> result;
+  for (std::size_t i = 0; i < node_.size(); ++i) {
+    result.emplace_back(node_[i], path_ + "[" + std::to_string(i) + "]", *file_);
+  }
+  return result;
+}
+
+std::string YamlValue::text(const std::string& what) const {
+  if (!node_.IsScalar()) fail("expected " + what + ", got " + kindName());
+  return node_.Scalar();
+}
+
+double YamlValue::number() const {
+  const std::string value = text("a number");
+  if (isYamlSpecialFloat(value)) fail("must be a finite number, got " + value);
+  return parseFiniteNumber(value, path_, where());
+}
+
+bool YamlValue::flag() const {
+  bool value = false;
+  if (!node_.IsScalar() || !YAML::convert<bool>::decode(node_, value)) {
+    fail("expected true or false, got " + kindName());
+  }
+  return value;
+}
+
+std::string YamlValue::kindName() const {
+  if (node_.IsMap()) return "a map";
+  if (node_.IsSequence()) return "a list";
+  if (node_.IsScalar()) return "\"" + node_.Scalar() + "\"";
+  return "nothing";
+}
+
+std::string lowercase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string result;
+  for (const std::string& name : names) result += (result.empty() ? "" : ", ") + name;
+  return result;
+}
+
+std::vector<double> numbers(const YamlValue& list) {
+  std::vector<double> result;
+  for (const YamlValue& item : list.items()) result.push_back(item.number());
+  return result;
+}
+
+std::vector<std::string> texts(const YamlValue& list, const std::string& what) {
+  std::vector<std::string> result;
+  for (const YamlValue& item : list.items()) result.push_back(item.text(what));
+  return result;
+}
+
+std::string optionalText(const YamlValue& map, const std::string& key) {
+  const std::optional<YamlValue> value = map.find(key);
+  return value ? value->text("text") : std::string();
+}
+
+void rejectNonEmpty(const YamlValue& map, const std::string& key, const std::string& problem) {
+  const std::optional<YamlValue> value = map.find(key);
+  if (value && !value->items().empty()) value->fail(problem);
+}
+
+Pose readPose(const YamlValue& value, const std::string& positionKey,
+              const std::string& orientationKey) {
+  return makePose(readPosition(value.child(positionKey)),
+                  readOrientation(value.child(orientationKey)));
+}
+
+std::optional<Pose> readBasePose(const YamlValue& robotState) {
+  const std::optional<YamlValue> state = robotState.find("multi_dof_joint_state");
+  const std::optional<YamlValue> names = state ? state->find("joint_names") : std::nullopt;
+  if (!names) return std::nullopt;
+  const std::vector<std::string> joints = texts(*names, "a joint name");
+  const YamlValue transformList = state->child("transforms");
+  const std::vector<YamlValue> transforms = transformList.items();
+  if (transforms.size() != joints.size()) {
+    transformList.fail("expected " + std::to_string(joints.size()) +
+                       " transforms (one per joint name), got " +
+                       std::to_string(transforms.size()));
+  }
+  if (joints.empty()) return std::nullopt;
+  const auto named = std::find(joints.begin(), joints.end(), "virtual_joint");
+  if (named == joints.end() && joints.size() > 1) {
+    names->fail("cannot tell which multi-DOF joint is the robot's base (none is virtual_joint)");
+  }
+  const auto index = static_cast<std::size_t>(named == joints.end() ? 0 : named - joints.begin());
+  return readPose(transforms[index], "translation", "rotation");
+}
+
+void readYamlFile(const std::filesystem::path& file,
+                  const std::function<void(const YamlValue&)>& read) {
+  const std::string name = file.string();
+  try {
+    const YamlValue root(loadYaml(file, name), "", name);
+    if (!root.isMap()) root.fail("expected a map at the top level");
+    read(root);
+  } catch (const YAML::Exception& error) {
+    throw InputError(SourceLocation{name, lineOf(error.mark)}, "YAML: " + error.msg);
+  }
+}
+
+}  // namespace lang2manip::moveit_yaml

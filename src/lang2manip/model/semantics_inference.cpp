@@ -1,0 +1,165 @@
+// inferSemantics(): arms, tool frames and grippers of a robot that comes without an SRDF.
+#include <algorithm>
+#include <array>
+#include <map>
+#include <set>
+
+#include "lang2manip/model/srdf_reader.hpp"
+
+namespace lang2manip {
+namespace {
+
+bool isMovable(const Joint& joint) {
+  return (joint.type == JointType::kRevolute || joint.type == JointType::kContinuous ||
+          joint.type == JointType::kPrismatic) &&
+         !joint.mimic;
+}
+
+class TreeWalker {
+ public:
+  explicit TreeWalker(const RobotModelData& robot) : robot_(robot) {
+    std::set<std::string> children;
+    for (const Joint& joint : robot.joints) {
+      childJoints_[joint.parentLink].push_back(&joint);
+      parentJoint_[joint.childLink] = &joint;
+      children.insert(joint.childLink);
+    }
+    for (const Link& link : robot.links) {
+      if (!children.count(link.name)) root_ = link.name;
+    }
+  }
+
+  // A finger starts at a prismatic joint, or at one of several movable joints on the same link
+  // whose subtree holds at most one more movable joint (arms hold more). Every movable joint at
+  // or below a finger's start belongs to the gripper.
+  bool startsFinger(const Joint& joint) const {
+    if (!isMovable(joint)) return false;
+    if (joint.type == JointType::kPrismatic) return true;
+    return movableChildCount(joint.parentLink) > 1 && movableDepthBelow(joint.childLink) <= 1;
+  }
+
+  bool isGripperJoint(const Joint& joint) const {
+    if (!isMovable(joint)) return false;
+    if (startsFinger(joint)) return true;
+    for (auto parent = parentJoint_.find(joint.parentLink); parent != parentJoint_.end();
+         parent = parentJoint_.find(parent->second->parentLink)) {
+      if (startsFinger(*parent->second)) return true;
+    }
+    return false;
+  }
+
+  int movableDepthBelow(const std::string& link) const {
+    const auto children = childJoints_.find(link);
+    if (children == childJoints_.end()) return 0;
+    int depth = 0;
+    for (const Joint* child : children->second) {
+      depth = std::max(depth, (isMovable(*child) ? 1 : 0) + movableDepthBelow(child->childLink));
+    }
+    return depth;
+  }
+
+  RobotSemantics infer() const {
+    RobotSemantics semantics;
+    for (const Joint* tip : armTips()) semantics.manipulators.push_back(manipulatorEndingAt(*tip));
+    if (semantics.manipulators.size() > 1) {
+      for (Manipulator& arm : semantics.manipulators) arm.name = "arm_" + arm.toolFrame;
+    }
+    return semantics;
+  }
+
+ private:
+  int movableChildCount(const std::string& link) const {
+    const auto children = childJoints_.find(link);
+    if (children == childJoints_.end()) return 0;
+    return static_cast<int>(std::count_if(children->second.begin(), children->second.end(),
+                                           [](const Joint* joint) { return isMovable(*joint); }));
+  }
+
+  bool hasArmJointBelow(const std::string& link) const {
+    const auto children = childJoints_.find(link);
+    if (children == childJoints_.end()) return false;
+    return std::any_of(children->second.begin(), children->second.end(), [&](const Joint* joint) {
+      return (isMovable(*joint) && !isGripperJoint(*joint)) || hasArmJointBelow(joint->childLink);
+    });
+  }
+
+  std::vector<const Joint*> armTips() const {
+    std::vector<const Joint*> tips;
+    for (const Joint& joint : robot_.joints) {
+      if (isMovable(joint) && !isGripperJoint(joint) && !hasArmJointBelow(joint.childLink)) {
+        tips.push_back(&joint);
+      }
+    }
+    return tips;
+  }
+
+  void collectBelow(const std::string& link, std::vector<std::string>& links) const {
+    links.push_back(link);
+    const auto children = childJoints_.find(link);
+    if (children == childJoints_.end()) return;
+    for (const Joint* joint : children->second) collectBelow(joint->childLink, links);
+  }
+
+  // Prefer a link named like a tool centre point; else the link the fingers hang from; else the
+  // end of the fixed chain below the last arm joint.
+  std::string toolFrameBelow(const std::string& link, const std::vector<std::string>& fingers) const {
+    std::vector<std::string> links;
+    collectBelow(link, links);
+    static const std::array<const char*, 6> kHints{"tcp", "tool", "grasp", "end_effector", "ee",
+                                                   "flange"};
+    for (const char* hint : kHints) {
+      for (const std::string& candidate : links) {
+        if (candidate.find(hint) != std::string::npos) return candidate;
+      }
+    }
+    if (!fingers.empty()) {
+      for (const Joint& joint : robot_.joints) {
+        if (joint.name == fingers.front()) return joint.parentLink;
+      }
+    }
+    std::string end = link;
+    while (childJoints_.count(end) && childJoints_.at(end).size() == 1) {
+      end = childJoints_.at(end).front()->childLink;
+    }
+    return end;
+  }
+
+  Manipulator manipulatorEndingAt(const Joint& tip) const {
+    Manipulator arm;
+    arm.name = "arm";
+    arm.baseLink = root_;
+    for (const Joint* joint = &tip; joint != nullptr;) {
+      if (isMovable(*joint) && !isGripperJoint(*joint)) arm.armJoints.push_back(joint->name);
+      const auto parent = parentJoint_.find(joint->parentLink);
+      joint = parent == parentJoint_.end() ? nullptr : parent->second;
+    }
+    std::reverse(arm.armJoints.begin(), arm.armJoints.end());
+    std::vector<std::string> below;
+    collectBelow(tip.childLink, below);
+    for (const Joint& joint : robot_.joints) {
+      if (isGripperJoint(joint) &&
+          std::find(below.begin(), below.end(), joint.parentLink) != below.end()) {
+        arm.gripperJoints.push_back(joint.name);
+        arm.gripperOpen.push_back(joint.limits.upper);
+        arm.gripperClosed.push_back(joint.limits.lower);
+      }
+    }
+    arm.toolFrame = toolFrameBelow(tip.childLink, arm.gripperJoints);
+    return arm;
+  }
+
+  const RobotModelData& robot_;
+  std::map<std::string, std::vector<const Joint*>> childJoints_;
+  std::map<std::string, const Joint*> parentJoint_;
+  std::string root_;
+};
+
+}  // namespace
+
+RobotSemantics inferSemantics(const RobotModelData& robot) {
+  RobotSemantics semantics = TreeWalker(robot).infer();
+  semantics.inferred = true;
+  return semantics;
+}
+
+}  // namespace lang2manip

@@ -1,0 +1,23 @@
+#pragma once
+/// @file An indexed triangle mesh, in the units of the file it came from (scale not applied).
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "lang2manip/core/types.hpp"
+
+namespace lang2manip {
+
+/// Immutable after loading; shared between every model that uses the same file.
+struct TriangleMesh {
+  std::vector<Vector3> vertices;
+  std::vector<std::array<int, 3>> triangles;
+  /// The file it was read from (absolute path), for messages.
+  std::string source;
+
+  /// Axis-aligned bounds of the vertices (empty box when there are none).
+  [[nodiscard]] AlignedBox3 bounds() const;
+};
+
+}  // namespace lang2manip

@@ -1,0 +1,286 @@
+#include "lang2manip/model/urdf_reader.hpp"
+
+#include <cstdlib>
+#include <mutex>
+#include <sstream>
+
+#include <console_bridge/console.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include "lang2manip/core/rotation.hpp"
+#include "lang2manip/core/text_parsing.hpp"
+#include "lang2manip/model/mesh_loader.hpp"
+#include "lang2manip/model/srdf_reader.hpp"
+#include "lang2manip/model/urdf_structure_check.hpp"
+#include "lang2manip/model/xml_document.hpp"
+
+namespace lang2manip {
+namespace {
+
+// Collects urdfdom's console_bridge messages instead of letting them reach the terminal.
+class CapturingOutputHandler final : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level < console_bridge::CONSOLE_BRIDGE_LOG_ERROR) return;
+    messages += (messages.empty() ? "" : "; ") + text;
+  }
+  std::string messages;
+};
+
+urdf::ModelInterfaceSharedPtr parseWithUrdfdom(const std::string& xml, const std::string& source) {
+  static std::mutex consoleMutex;
+  const std::scoped_lock lock(consoleMutex);
+  CapturingOutputHandler handler;
+  console_bridge::useOutputHandler(&handler);
+  urdf::ModelInterfaceSharedPtr model;
+  std::string failure;
+  try {
+    model = urdf::parseURDF(xml);
+  } catch (const std::exception& error) {
+    failure = error.what();
+  }
+  console_bridge::restorePreviousOutputHandler();
+  // urdfdom logs an error and drops the rest of a link when one element fails: treat any error
+  // as fatal rather than load a robot with missing geometry.
+  if (!model || !failure.empty() || !handler.messages.empty()) {
+    const std::string reason = !failure.empty() ? failure : handler.messages;
+    throw InputError(SourceLocation{source, 0},
+                     "urdfdom rejected the URDF: " + (reason.empty() ? "unknown reason" : reason));
+  }
+  return model;
+}
+
+// urdfdom rejects a visual whose <material> has no name, which Kautham's models use; name them
+// here (the colour is kept) so urdfdom reads the URDF the way Kautham does.
+std::string textForUrdfdom(const XmlDocument& document) {
+  const pugi::xpath_node_set unnamed = document.root().select_nodes("//visual/material[not(@name)]");
+  if (unnamed.empty()) return document.text();
+  pugi::xml_document copy;
+  for (const pugi::xml_node& child : document.root().parent().children()) copy.append_copy(child);
+  int counter = 0;
+  for (const pugi::xpath_node& node : copy.select_nodes("//visual/material[not(@name)]")) {
+    node.node().append_attribute("name") = ("lang2manip_unnamed_material_" + std::to_string(counter++)).c_str();
+  }
+  std::ostringstream text;
+  copy.save(text);
+  return text.str();
+}
+
+Pose poseFromUrdf(const urdf::Pose& pose, double scale) {
+  const Quaternion rotation(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z);
+  return makePose(scale * Vector3(pose.position.x, pose.position.y, pose.position.z), rotation);
+}
+
+struct ConversionContext {
+  const urdf::ModelInterface& urdf;
+  std::filesystem::path directory;
+  const UrdfReadOptions& options;
+  std::vector<std::filesystem::path> packagePaths;
+  std::string source;
+};
+
+Geometry geometryFromUrdf(const urdf::Geometry& geometry, const ConversionContext& context,
+                          const std::string& linkName) {
+  const double s = context.options.scale;
+  switch (geometry.type) {
+    case urdf::Geometry::BOX: {
+      const auto& box = dynamic_cast<const urdf::Box&>(geometry);
+      return Box{s * Vector3(box.dim.x, box.dim.y, box.dim.z)};
+    }
+    case urdf::Geometry::SPHERE:
+      return Sphere{s * dynamic_cast<const urdf::Sphere&>(geometry).radius};
+    case urdf::Geometry::CYLINDER: {
+      const auto& cylinder = dynamic_cast<const urdf::Cylinder&>(geometry);
+      return Cylinder{s * cylinder.radius, s * cylinder.length};
+    }
+    case urdf::Geometry::MESH:
+      break;
+  }
+  const auto& mesh = dynamic_cast<const urdf::Mesh&>(geometry);
+  MeshGeometry result;
+  result.reference = mesh.filename;
+  result.scale = s * Vector3(mesh.scale.x, mesh.scale.y, mesh.scale.z);
+  if (context.options.loadMeshes) {
+    const SourceLocation where{context.source + " (link \"" + linkName + "\")", 0};
+    const std::filesystem::path file =
+        resolveMeshReference(mesh.filename, context.directory, context.packagePaths, where);
+    result.mesh = MeshCache::global().get(file.string());
+  }
+  return result;
+}
+
+std::optional<Material> materialFromUrdf(const urdf::Visual& visual,
+                                         const urdf::ModelInterface& urdf) {
+  urdf::MaterialSharedPtr material = visual.material;
+  if (!material && !visual.material_name.empty()) material = urdf.getMaterial(visual.material_name);
+  if (!material) return std::nullopt;
+  Material result;
+  result.name = material->name;
+  result.rgba = Vector4(material->color.r, material->color.g, material->color.b, material->color.a);
+  result.texture = material->texture_filename;
+  return result;
+}
+
+Link linkFromUrdf(const urdf::Link& urdfLink, const ConversionContext& context) {
+  Link link;
+  link.name = urdfLink.name;
+  for (const urdf::VisualSharedPtr& visual : urdfLink.visual_array) {
+    if (!visual || !visual->geometry) continue;
+    link.visuals.push_back(Shape{geometryFromUrdf(*visual->geometry, context, link.name),
+                                 poseFromUrdf(visual->origin, context.options.scale),
+                                 materialFromUrdf(*visual, context.urdf), visual->name});
+  }
+  for (const urdf::CollisionSharedPtr& collision : urdfLink.collision_array) {
+    if (!collision || !collision->geometry) continue;
+    link.collisions.push_back(Shape{geometryFromUrdf(*collision->geometry, context, link.name),
+                                    poseFromUrdf(collision->origin, context.options.scale),
+                                    std::nullopt, collision->name});
+  }
+  return link;
+}
+
+JointType jointTypeFromUrdf(int type) {
+  switch (type) {
+    case urdf::Joint::REVOLUTE: return JointType::kRevolute;
+    case urdf::Joint::CONTINUOUS: return JointType::kContinuous;
+    case urdf::Joint::PRISMATIC: return JointType::kPrismatic;
+    case urdf::Joint::FLOATING: return JointType::kFloating;
+    case urdf::Joint::PLANAR: return JointType::kPlanar;
+    default: return JointType::kFixed;
+  }
+}
+
+Joint jointFromUrdf(const urdf::Joint& urdfJoint, double scale, bool ignoreMimic) {
+  Joint joint;
+  joint.name = urdfJoint.name;
+  joint.type = jointTypeFromUrdf(urdfJoint.type);
+  joint.parentLink = urdfJoint.parent_link_name;
+  joint.childLink = urdfJoint.child_link_name;
+  joint.origin = poseFromUrdf(urdfJoint.parent_to_joint_origin_transform, scale);
+  joint.axis = Vector3(urdfJoint.axis.x, urdfJoint.axis.y, urdfJoint.axis.z);
+  if (joint.type == JointType::kFixed && joint.axis.norm() == 0.0) joint.axis = Vector3::UnitX();
+  const double limitScale = joint.type == JointType::kPrismatic ? scale : 1.0;
+  if (urdfJoint.limits) {
+    joint.limits = JointLimits{limitScale * urdfJoint.limits->lower,
+                               limitScale * urdfJoint.limits->upper, urdfJoint.limits->velocity,
+                               urdfJoint.limits->effort, false};
+  }
+  if (urdfJoint.safety && (joint.type == JointType::kRevolute ||
+                           joint.type == JointType::kPrismatic)) {
+    joint.limits.lower = limitScale * urdfJoint.safety->soft_lower_limit;
+    joint.limits.upper = limitScale * urdfJoint.safety->soft_upper_limit;
+    joint.limits.soft = true;
+  }
+  if (urdfJoint.mimic && !ignoreMimic) {
+    joint.mimic = JointMimic{urdfJoint.mimic->joint_name, urdfJoint.mimic->multiplier,
+                             limitScale * urdfJoint.mimic->offset};
+  }
+  return joint;
+}
+
+std::vector<std::filesystem::path> packageSearchPaths(const UrdfReadOptions& options) {
+  std::vector<std::filesystem::path> paths = options.packagePaths;
+  if (const char* rosPath = std::getenv("ROS_PACKAGE_PATH")) {
+    std::stringstream entries(rosPath);
+    std::string entry;
+    while (std::getline(entries, entry, ':')) {
+      if (!entry.empty()) paths.emplace_back(entry);
+    }
+  }
+  return paths;
+}
+
+RobotSemantics semanticsFor(const RobotModelData& data, const std::filesystem::path& urdfPath,
+                            const UrdfReadOptions& options) {
+  if (!options.srdf.empty()) return readSrdfFile(options.srdf, data);
+  if (!urdfPath.empty()) {
+    std::filesystem::path sibling = urdfPath;
+    sibling.replace_extension(".srdf");
+    std::error_code error;
+    if (std::filesystem::is_regular_file(sibling, error)) return readSrdfFile(sibling, data);
+  }
+  return inferSemantics(data);
+}
+
+RobotModelPtr readUrdf(const XmlDocument& document, const std::filesystem::path& urdfPath,
+                       const std::filesystem::path& directory, const UrdfReadOptions& options) {
+  requireFinite(options.scale, "URDF scale", SourceLocation{document.sourceName(), 0});
+  if (options.scale <= 0.0) {
+    throw InputError(SourceLocation{document.sourceName(), 0}, "URDF scale must be positive");
+  }
+  checkUrdfStructure(document);
+  const urdf::ModelInterfaceSharedPtr urdf = parseWithUrdfdom(textForUrdfdom(document), document.sourceName());
+  const ConversionContext context{*urdf, directory, options, packageSearchPaths(options),
+                                  document.sourceName()};
+  RobotModelData data;
+  data.name = urdf->getName();
+  data.source = document.sourceName();
+  // Links in file order (urdfdom keeps a map; the file order is what users recognise).
+  for (const pugi::xml_node& node : document.root().children("link")) {
+    data.links.push_back(linkFromUrdf(*urdf->getLink(node.attribute("name").value()), context));
+  }
+  for (const pugi::xml_node& node : document.root().children("joint")) {
+    data.joints.push_back(jointFromUrdf(*urdf->joints_.at(node.attribute("name").value()),
+                                        options.scale, options.ignoreMimic));
+  }
+  data.semantics = semanticsFor(data, urdfPath, options);
+  return std::make_shared<const RobotModel>(std::move(data));
+}
+
+}  // namespace
+
+std::filesystem::path resolveMeshReference(const std::string& reference,
+                                           const std::filesystem::path& urdfDirectory,
+                                           const std::vector<std::filesystem::path>& packagePaths,
+                                           const SourceLocation& where) {
+  std::vector<std::filesystem::path> candidates;
+  const std::string packagePrefix = "package://";
+  const std::string filePrefix = "file://";
+  if (reference.rfind(packagePrefix, 0) == 0) {
+    const std::string rest = reference.substr(packagePrefix.size());
+    const std::size_t slash = rest.find('/');
+    if (slash == std::string::npos || slash == 0) {
+      throw InputError(where, "mesh reference \"" + reference + "\" names no package");
+    }
+    const std::string package = rest.substr(0, slash);
+    const std::string relative = rest.substr(slash + 1);
+    for (const std::filesystem::path& directory : packagePaths) {
+      candidates.push_back(directory / package / relative);
+    }
+    for (std::filesystem::path ancestor = urdfDirectory; !ancestor.empty();
+         ancestor = ancestor.parent_path()) {
+      if (ancestor.filename() == package) candidates.push_back(ancestor / relative);
+      if (ancestor == ancestor.parent_path()) break;
+    }
+  } else if (reference.rfind(filePrefix, 0) == 0) {
+    candidates.emplace_back(reference.substr(filePrefix.size()));
+  } else if (std::filesystem::path(reference).is_absolute()) {
+    candidates.emplace_back(reference);
+  } else {
+    candidates.push_back(urdfDirectory / reference);
+  }
+  std::error_code error;
+  for (const std::filesystem::path& candidate : candidates) {
+    if (std::filesystem::is_regular_file(candidate, error)) return candidate.lexically_normal();
+  }
+  std::string tried;
+  for (const std::filesystem::path& candidate : candidates) {
+    tried += (tried.empty() ? "" : ", ") + candidate.lexically_normal().string();
+  }
+  throw InputError(where, "mesh \"" + reference + "\" resolves nowhere (tried: " +
+                              (tried.empty() ? "no package search path given" : tried) + ")");
+}
+
+RobotModelPtr readUrdfFile(const std::filesystem::path& path, const UrdfReadOptions& options) {
+  const XmlDocument document = XmlDocument::loadFile(path, "URDF file");
+  return readUrdf(document, path, path.parent_path(), options);
+}
+
+RobotModelPtr readUrdfString(const std::string& xml, const std::string& sourceName,
+                             const std::filesystem::path& baseDirectory,
+                             const UrdfReadOptions& options) {
+  const XmlDocument document = XmlDocument::loadString(xml, sourceName, "URDF");
+  return readUrdf(document, {}, baseDirectory, options);
+}
+
+}  // namespace lang2manip

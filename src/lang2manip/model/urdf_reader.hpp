@@ -1,0 +1,49 @@
+#pragma once
+/// @file Reads URDF (through urdfdom) into a RobotModel, with meshes, materials and the SRDF.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/model/robot_model.hpp"
+
+namespace lang2manip {
+
+struct UrdfReadOptions {
+  /// Directories searched for "package://NAME/..." references: DIR/NAME/... for each DIR.
+  /// ROS_PACKAGE_PATH entries are appended at read time.
+  std::vector<std::filesystem::path> packagePaths;
+  /// Multiplies geometry, joint-origin translations and prismatic limits (Kautham's scale).
+  double scale = 1.0;
+  /// SRDF file to read; when empty, "<urdf without extension>.srdf" is used if it exists, and
+  /// otherwise the semantics are inferred from the tree.
+  std::filesystem::path srdf;
+  /// <mimic> tags are ignored, so every movable joint is its own variable (Kautham couples joints
+  /// through its control files instead; the Kautham reader uses this when a control drives a
+  /// joint the URDF marks as a mimic).
+  bool ignoreMimic = false;
+  /// Load mesh files (off: geometry references are kept but meshes are not read).
+  bool loadMeshes = true;
+};
+
+/// Reads a URDF file. Throws InputError naming the file (and the line where known) for a missing
+/// or unreadable file, malformed XML or URDF, a cycle or several roots, non-finite numbers, or a
+/// mesh reference that resolves nowhere / cannot be loaded.
+RobotModelPtr readUrdfFile(const std::filesystem::path& path, const UrdfReadOptions& options = {});
+
+/// Reads URDF text; `sourceName` names it in messages and `baseDirectory` resolves relative mesh
+/// paths.
+RobotModelPtr readUrdfString(const std::string& xml, const std::string& sourceName,
+                             const std::filesystem::path& baseDirectory,
+                             const UrdfReadOptions& options = {});
+
+/// Resolves a mesh reference from a URDF in `urdfDirectory`: "package://p/x" through the
+/// package paths, "file://x", absolute paths, and paths relative to the URDF. Throws InputError
+/// listing the places tried when the file exists in none.
+std::filesystem::path resolveMeshReference(const std::string& reference,
+                                           const std::filesystem::path& urdfDirectory,
+                                           const std::vector<std::filesystem::path>& packagePaths,
+                                           const SourceLocation& where);
+
+}  // namespace lang2manip

@@ -1,0 +1,177 @@
+#include "lang2manip/model/urdf_structure_check.hpp"
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "lang2manip/core/text_parsing.hpp"
+
+namespace lang2manip {
+namespace {
+
+// Attributes that hold numbers, per element name.
+const std::map<std::string, std::vector<const char*>>& numericAttributes() {
+  static const std::map<std::string, std::vector<const char*>> attributes{
+      {"origin", {"xyz", "rpy"}},
+      {"axis", {"xyz"}},
+      {"limit", {"lower", "upper", "effort", "velocity"}},
+      {"safety_controller", {"soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity"}},
+      {"mimic", {"multiplier", "offset"}},
+      {"box", {"size"}},
+      {"cylinder", {"radius", "length"}},
+      {"sphere", {"radius"}},
+      {"mesh", {"scale"}},
+      {"color", {"rgba"}},
+      {"mass", {"value"}},
+      {"inertia", {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}},
+      {"dynamics", {"damping", "friction"}},
+  };
+  return attributes;
+}
+
+void checkNumbers(const XmlDocument& urdf, const pugi::xml_node& element) {
+  const auto found = numericAttributes().find(element.name());
+  if (found != numericAttributes().end()) {
+    for (const char* name : found->second) {
+      const pugi::xml_attribute attribute = element.attribute(name);
+      if (!attribute) continue;
+      parseNumberList(attribute.value(),
+                      std::string("<") + element.name() + "> attribute " + name,
+                      urdf.where(element));
+    }
+  }
+  for (const pugi::xml_node& child : element.children()) {
+    if (child.type() == pugi::node_element) checkNumbers(urdf, child);
+  }
+}
+
+void checkGeometry(const XmlDocument& urdf, const pugi::xml_node& element) {
+  const pugi::xml_node geometry = element.child("geometry");
+  if (!geometry) {
+    throw InputError(urdf.where(element), std::string("<") + element.name() +
+                                              "> has no <geometry>");
+  }
+  pugi::xml_node shape = geometry.first_child();
+  while (shape && shape.type() != pugi::node_element) shape = shape.next_sibling();
+  if (!shape) {
+    throw InputError(urdf.where(geometry), "<geometry> has no shape element");
+  }
+  const std::string kind = shape.name();
+  if (kind == "box") {
+    parseVector3(urdf.requiredAttribute(shape, "size"), "<box> size", urdf.where(shape));
+  } else if (kind == "sphere") {
+    urdf.requiredNumberAttribute(shape, "radius");
+  } else if (kind == "cylinder") {
+    urdf.requiredNumberAttribute(shape, "radius");
+    urdf.requiredNumberAttribute(shape, "length");
+  } else if (kind == "mesh") {
+    urdf.requiredAttribute(shape, "filename");
+  } else {
+    throw InputError(urdf.where(shape), "unknown geometry <" + kind +
+                                            ">: a URDF geometry is a box, sphere, cylinder or mesh");
+  }
+}
+
+struct JointLinks {
+  std::string name;
+  std::string parent;
+  std::string child;
+  int line = 0;
+};
+
+std::vector<JointLinks> readJointLinks(const XmlDocument& urdf,
+                                       const std::map<std::string, int>& links) {
+  std::vector<JointLinks> joints;
+  std::set<std::string> names;
+  for (const pugi::xml_node& joint : urdf.root().children("joint")) {
+    JointLinks entry{urdf.requiredAttribute(joint, "name"), "", "", urdf.lineOf(joint)};
+    if (!names.insert(entry.name).second) {
+      throw InputError(urdf.where(joint), "joint \"" + entry.name + "\" is defined twice");
+    }
+    urdf.requiredAttribute(joint, "type");
+    const pugi::xml_node parent = joint.child("parent");
+    const pugi::xml_node child = joint.child("child");
+    if (!parent || !child) {
+      throw InputError(urdf.where(joint),
+                       "joint \"" + entry.name + "\" needs both <parent> and <child>");
+    }
+    entry.parent = urdf.requiredAttribute(parent, "link");
+    entry.child = urdf.requiredAttribute(child, "link");
+    for (const pugi::xml_node& end : {parent, child}) {
+      const std::string link = end.attribute("link").value();
+      if (!links.count(link)) {
+        throw InputError(urdf.where(end), "joint \"" + entry.name + "\" refers to link \"" + link +
+                                              "\", which is not defined");
+      }
+    }
+    joints.push_back(entry);
+  }
+  return joints;
+}
+
+void checkTree(const XmlDocument& urdf, const std::map<std::string, int>& links) {
+  const std::vector<JointLinks> joints = readJointLinks(urdf, links);
+  std::map<std::string, const JointLinks*> parentJoint;
+  for (const JointLinks& joint : joints) {
+    const auto [existing, inserted] = parentJoint.emplace(joint.child, &joint);
+    if (!inserted) {
+      throw InputError(SourceLocation{urdf.sourceName(), joint.line},
+                       "link \"" + joint.child + "\" has two parent joints (\"" +
+                           existing->second->name + "\" and \"" + joint.name + "\")");
+    }
+  }
+  std::vector<std::string> roots;
+  for (const auto& [name, line] : links) {
+    if (!parentJoint.count(name)) roots.push_back(name);
+  }
+  if (roots.size() > 1) {
+    std::string list;
+    for (const std::string& root : roots) list += (list.empty() ? "" : ", ") + root;
+    throw InputError(SourceLocation{urdf.sourceName(), links.at(roots[1])},
+                     "the URDF has " + std::to_string(roots.size()) + " root links (" + list +
+                         "); every link but one needs a parent joint");
+  }
+  for (const JointLinks& joint : joints) {
+    std::set<std::string> seen{joint.child};
+    std::string link = joint.parent;
+    while (parentJoint.count(link)) {
+      if (!seen.insert(link).second) {
+        throw InputError(SourceLocation{urdf.sourceName(), joint.line},
+                         "joint \"" + joint.name + "\" closes a cycle through link \"" + link +
+                             "\"; a URDF must be a tree");
+      }
+      link = parentJoint.at(link)->parent;
+    }
+  }
+  if (roots.empty()) {
+    throw InputError(SourceLocation{urdf.sourceName(), urdf.lineOf(urdf.root())},
+                     "the URDF has no root link: its joints form a cycle");
+  }
+}
+
+}  // namespace
+
+void checkUrdfStructure(const XmlDocument& urdf) {
+  const pugi::xml_node robot = urdf.root();
+  if (std::string(robot.name()) != "robot") {
+    throw InputError(urdf.where(robot), std::string("the root element is <") + robot.name() +
+                                            ">, not <robot>: not a URDF");
+  }
+  urdf.requiredAttribute(robot, "name");
+  checkNumbers(urdf, robot);
+  std::map<std::string, int> links;
+  for (const pugi::xml_node& link : robot.children("link")) {
+    const std::string name = urdf.requiredAttribute(link, "name");
+    if (!links.emplace(name, urdf.lineOf(link)).second) {
+      throw InputError(urdf.where(link), "link \"" + name + "\" is defined twice");
+    }
+    for (const char* kind : {"visual", "collision"}) {
+      for (const pugi::xml_node& element : link.children(kind)) checkGeometry(urdf, element);
+    }
+  }
+  if (links.empty()) throw InputError(urdf.where(robot), "the URDF defines no <link>");
+  checkTree(urdf, links);
+}
+
+}  // namespace lang2manip

@@ -1,0 +1,95 @@
+#include "lang2manip/model/xml_document.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include "lang2manip/core/text_parsing.hpp"
+
+namespace lang2manip {
+
+std::string readTextFile(const std::filesystem::path& path, const std::string& what) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) {
+    throw InputError(SourceLocation{path.string(), 0}, what + " does not exist");
+  }
+  if (std::filesystem::is_directory(path, error)) {
+    throw InputError(SourceLocation{path.string(), 0}, what + " is a directory, not a file");
+  }
+  std::ifstream stream(path, std::ios::binary);
+  std::ostringstream contents;
+  if (!stream || !(contents << stream.rdbuf())) {
+    if (stream && std::filesystem::file_size(path, error) == 0) return {};
+    throw InputError(SourceLocation{path.string(), 0}, what + " cannot be read");
+  }
+  return contents.str();
+}
+
+XmlDocument XmlDocument::loadFile(const std::filesystem::path& path, const std::string& what) {
+  XmlDocument document;
+  document.sourceName_ = path.string();
+  document.text_ = readTextFile(path, what);
+  document.parse(what);
+  return document;
+}
+
+XmlDocument XmlDocument::loadString(const std::string& text, const std::string& sourceName,
+                                    const std::string& what) {
+  XmlDocument document;
+  document.sourceName_ = sourceName;
+  document.text_ = text;
+  document.parse(what);
+  return document;
+}
+
+void XmlDocument::parse(const std::string& what) {
+  lineStarts_.push_back(0);
+  for (std::size_t i = 0; i < text_.size(); ++i) {
+    if (text_[i] == '\n') lineStarts_.push_back(i + 1);
+  }
+  document_ = std::make_shared<pugi::xml_document>();
+  const pugi::xml_parse_result result =
+      document_->load_buffer(text_.data(), text_.size(), pugi::parse_default | pugi::parse_comments);
+  if (!result) {
+    const auto offset = static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, result.offset));
+    const auto line = static_cast<int>(
+        std::upper_bound(lineStarts_.begin(), lineStarts_.end(), offset) - lineStarts_.begin());
+    throw InputError(SourceLocation{sourceName_, line},
+                     "malformed XML in " + what + ": " + result.description());
+  }
+  if (!document_->document_element()) {
+    throw InputError(SourceLocation{sourceName_, 0}, what + " has no XML root element");
+  }
+}
+
+int XmlDocument::lineOf(const pugi::xml_node& node) const {
+  const std::ptrdiff_t offset = node.offset_debug();
+  if (offset < 0) return 0;
+  return static_cast<int>(std::upper_bound(lineStarts_.begin(), lineStarts_.end(),
+                                           static_cast<std::size_t>(offset)) -
+                          lineStarts_.begin());
+}
+
+std::string XmlDocument::requiredAttribute(const pugi::xml_node& node, const char* name) const {
+  const pugi::xml_attribute attribute = node.attribute(name);
+  if (!attribute) {
+    throw InputError(where(node), std::string("<") + node.name() + "> needs attribute \"" + name +
+                                      "\"");
+  }
+  return attribute.value();
+}
+
+double XmlDocument::numberAttribute(const pugi::xml_node& node, const char* name,
+                                    double fallback) const {
+  const pugi::xml_attribute attribute = node.attribute(name);
+  if (!attribute) return fallback;
+  return parseFiniteNumber(attribute.value(),
+                           std::string("<") + node.name() + "> attribute " + name, where(node));
+}
+
+double XmlDocument::requiredNumberAttribute(const pugi::xml_node& node, const char* name) const {
+  requiredAttribute(node, name);
+  return numberAttribute(node, name, 0.0);
+}
+
+}  // namespace lang2manip

@@ -1,0 +1,119 @@
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <sys/wait.h>
+
+#include "test_paths.hpp"
+
+namespace lang2manip {
+namespace {
+
+using ::testing::HasSubstr;
+
+struct RunResult {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr
+  std::string stdoutOnly;
+};
+
+// Runs the real lang2manip binary.
+RunResult run(const std::string& arguments, bool mergeStderr = true) {
+  const std::string command = std::string(LANG2MANIP_CLI_PATH) + " " + arguments + (mergeStderr ? " 2>&1" : " 2>/dev/null");
+  RunResult result;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), static_cast<int>(buffer.size()), pipe) != nullptr) result.output += buffer.data();
+  const int status = ::pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.stdoutOnly = result.output;
+  return result;
+}
+
+TEST(Cli, ProblemsListsTheBuiltInProblemsWithTheDefaultFirst) {
+  const RunResult result = run("problems");
+  EXPECT_EQ(result.exitCode, 0);
+  EXPECT_THAT(result.output, ::testing::StartsWith("panda_desk (default)"));
+  for (const char* name : {"ur5_desk", "iiwa14_desk", "yumi_desk", "tx90_desk"}) {
+    EXPECT_THAT(result.output, HasSubstr(name));
+  }
+  const nlohmann::json list = nlohmann::json::parse(run("problems --json", false).output);
+  EXPECT_EQ(list[0]["name"], "panda_desk");
+  EXPECT_TRUE(list[0]["default"].get<bool>());
+}
+
+TEST(Cli, ShowDefaultsToThePaperScene) {
+  const RunResult result = run("show");
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("robot panda"));
+  EXPECT_THAT(result.output, HasSubstr("panda_joint1 revolute [-2.8973, 2.8973]"));
+  EXPECT_THAT(result.output, HasSubstr("marker"));
+  EXPECT_THAT(result.output, HasSubstr("holder"));
+  EXPECT_THAT(result.output, HasSubstr("query 1"));
+}
+
+TEST(Cli, ShowJsonHasRobotsObjectsAndQueries) {
+  const RunResult result = run("show panda_desk --json", false);
+  ASSERT_EQ(result.exitCode, 0);
+  const nlohmann::json report = nlohmann::json::parse(result.output);
+  EXPECT_EQ(report["robots"][0]["dofs"].get<int>(), 8);
+  EXPECT_EQ(report["robots"][0]["joints"][0]["name"], "panda_joint1");
+  EXPECT_FALSE(report["objects"].empty());
+  ASSERT_FALSE(report["queries"].empty());
+  EXPECT_EQ(report["queries"][0]["robots"][0]["start"].size(), 8U);
+  EXPECT_TRUE(report["queries"][0]["collision_free"].is_null());
+}
+
+TEST(Cli, ShowEveryBuiltInProblem) {
+  for (const char* name : {"ur5_desk", "iiwa14_desk", "yumi_desk", "tx90_desk"}) {
+    const RunResult result = run(std::string("show ") + name);
+    EXPECT_EQ(result.exitCode, 0) << name << ": " << result.output;
+  }
+}
+
+TEST(Cli, ShowsAMotionBenchMakerScene) {
+  LANG2MANIP_REQUIRE_SHARED_DATA(shared);
+  const RunResult result = run("show " + (shared / "mbm/panda/box_panda/scene0001.yaml").string());
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("moveit"));
+  EXPECT_THAT(result.output, HasSubstr("side_back"));
+}
+
+TEST(Cli, ErrorsExitNonZeroWithAMessage) {
+  RunResult result = run("show no_such_problem");
+  EXPECT_NE(result.exitCode, 0);
+  EXPECT_THAT(result.output, HasSubstr("lang2manip: error: \"no_such_problem\" is neither a problem file nor a built-in problem"));
+  result = run("show /tmp/nope.xml");
+  EXPECT_NE(result.exitCode, 0);
+  EXPECT_THAT(result.output, HasSubstr("/tmp/nope.xml: problem file does not exist"));
+  result = run("frobnicate");
+  EXPECT_NE(result.exitCode, 0);
+  result = run("");
+  EXPECT_NE(result.exitCode, 0);
+  EXPECT_THAT(result.output, HasSubstr("subcommand"));
+  result = run("show --robot");
+  EXPECT_NE(result.exitCode, 0);
+}
+
+TEST(Cli, RejectsAFileThatIsNotAProblem) {
+  const test::TempDirectory directory;
+  const std::string file = (directory.path() / "notes.txt").string();
+  std::FILE* handle = std::fopen(file.c_str(), "w");
+  std::fputs("hello", handle);
+  std::fclose(handle);
+  const RunResult result = run("show " + file);
+  EXPECT_NE(result.exitCode, 0);
+  EXPECT_THAT(result.output, HasSubstr("not a problem file"));
+}
+
+TEST(Cli, HelpAndVersionSucceed) {
+  EXPECT_EQ(run("--help").exitCode, 0);
+  EXPECT_THAT(run("--version").output, HasSubstr("lang2manip 0.1.0"));
+}
+
+}  // namespace
+}  // namespace lang2manip

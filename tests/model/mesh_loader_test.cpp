@@ -1,0 +1,546 @@
+#include "lang2manip/model/mesh_loader.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <numbers>
+#include <string>
+#include <string_view>
+#include <thread>
+#include <vector>
+
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/core/log.hpp"
+#include "lang2manip/model/geometry.hpp"
+#include "test_paths.hpp"
+
+namespace lang2manip {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+constexpr double kHalfPi = std::numbers::pi / 2;
+
+fs::path meshFile(const std::string& name) { return test::testDataDirectory() / "meshes" / name; }
+
+TriangleMesh loadTestMesh(const std::string& name) { return loadTriangleMesh(meshFile(name).string()); }
+
+void expectBounds(const AlignedBox3& box, const Vector3& min, const Vector3& max,
+                  double tolerance = 1e-6) {
+  ASSERT_FALSE(box.isEmpty());
+  EXPECT_TRUE((box.min() - min).cwiseAbs().maxCoeff() <= tolerance)
+      << "min " << box.min().transpose() << " expected " << min.transpose();
+  EXPECT_TRUE((box.max() - max).cwiseAbs().maxCoeff() <= tolerance)
+      << "max " << box.max().transpose() << " expected " << max.transpose();
+}
+
+/// The message of the InputError that loading `path` throws ("" and a failure when none).
+std::string loadError(const std::string& path) {
+  try {
+    loadTriangleMesh(path);
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  ADD_FAILURE() << "no InputError for " << path;
+  return {};
+}
+
+void expectValidIndices(const TriangleMesh& mesh) {
+  const int count = static_cast<int>(mesh.vertices.size());
+  for (const auto& triangle : mesh.triangles) {
+    for (int index : triangle) {
+      ASSERT_GE(index, 0);
+      ASSERT_LT(index, count);
+    }
+  }
+}
+
+// ------------------------------------------------------------------------------ formats
+
+TEST(MeshLoader, AsciiStl) {
+  const TriangleMesh mesh = loadTestMesh("box_ascii.stl");
+  EXPECT_EQ(mesh.triangles.size(), 12u);
+  EXPECT_EQ(mesh.vertices.size(), 8u);
+  expectValidIndices(mesh);
+  expectBounds(mesh.bounds(), Vector3(0, 0, 0), Vector3(1, 2, 3));
+  EXPECT_TRUE(fs::path(mesh.source).is_absolute());
+  EXPECT_THAT(mesh.source, HasSubstr("box_ascii.stl"));
+}
+
+TEST(MeshLoader, BinaryStl) {
+  const TriangleMesh mesh = loadTestMesh("tetrahedron_binary.stl");
+  EXPECT_EQ(mesh.triangles.size(), 4u);
+  EXPECT_EQ(mesh.vertices.size(), 4u);
+  expectValidIndices(mesh);
+  expectBounds(mesh.bounds(), Vector3(0, 0, 0), Vector3(1, 1, 1));
+}
+
+TEST(MeshLoader, ObjQuadsAreTriangulated) {
+  const TriangleMesh mesh = loadTestMesh("cube_quads.obj");
+  EXPECT_EQ(mesh.triangles.size(), 12u);
+  EXPECT_EQ(mesh.vertices.size(), 8u);
+  expectValidIndices(mesh);
+  expectBounds(mesh.bounds(), Vector3::Constant(-0.5), Vector3::Constant(0.5));
+}
+
+TEST(MeshLoader, ColladaUnitAndNodeTransformsAppliedUpAxisIgnored) {
+  // Millimetres, a translation of 2000 mm along z and a 90 degree turn about z; the Z_UP
+  // up axis is not turned into assimp's Y up.
+  const TriangleMesh mesh = loadTestMesh("tetrahedron_mm.dae");
+  EXPECT_EQ(mesh.triangles.size(), 4u);
+  EXPECT_EQ(mesh.vertices.size(), 4u);
+  expectValidIndices(mesh);
+  expectBounds(mesh.bounds(), Vector3(-1, 0, 2), Vector3(0, 1, 3));
+}
+
+TEST(MeshLoader, InventorTransformsAndPrimitives) {
+  const TriangleMesh mesh = loadTestMesh("scene.iv");
+  expectValidIndices(mesh);
+  // 12 for the cube, 2 for the quad, and the tessellated sphere and cylinder.
+  EXPECT_GT(mesh.triangles.size(), 12u + 2u + 40u);
+  // Extremes on every side come from the quad (x, y), the quad's plane (z min) and the cube
+  // (z max), all exact.
+  expectBounds(mesh.bounds(), Vector3(-2, -2, -10), Vector3(12, 12, 6), 1e-5);
+}
+
+TEST(MeshLoader, InventorPrimitivesAreTessellatedWhereTheyArePlaced) {
+  const TriangleMesh mesh = loadTestMesh("scene.iv");
+  // Vertices of each part, told apart by where they lie.
+  AlignedBox3 cube, sphere, cylinder;
+  for (const Vector3& v : mesh.vertices) {
+    if (v.z() < -9) continue;  // the quad
+    if (v.x() > 8) sphere.extend(v);
+    else if (v.y() > 8) cylinder.extend(v);
+    else cube.extend(v);
+  }
+  expectBounds(cube, Vector3(-1, 1, 0), Vector3(3, 3, 6), 1e-5);
+  // Tessellated: vertices lie on the surface, so the bounds are within the exact ones.
+  expectBounds(sphere, Vector3(9, -1, -1), Vector3(11, 1, 1), 0.05);
+  expectBounds(cylinder, Vector3(-1, 9, -2), Vector3(1, 11, 2), 0.05);
+}
+
+TEST(MeshLoader, Vrml2TransformsApplied) {
+  const TriangleMesh mesh = loadTestMesh("box_v2.wrl");
+  EXPECT_EQ(mesh.triangles.size(), 13u);  // 12 for the box, 1 for the face set
+  expectValidIndices(mesh);
+  expectBounds(mesh.bounds(), Vector3(-1, -0.5, 8.5), Vector3(1, 2, 11.5), 1e-5);
+}
+
+TEST(MeshLoader, Vrml1TransformsApplied) {
+  const TriangleMesh mesh = loadTestMesh("cube_v1.wrl");
+  EXPECT_EQ(mesh.triangles.size(), 12u);
+  expectBounds(mesh.bounds(), Vector3(4, -1, -1), Vector3(6, 1, 1), 1e-5);
+}
+
+TEST(MeshLoader, Ply) {
+  const TriangleMesh mesh = loadTestMesh("tetrahedron.ply");
+  EXPECT_EQ(mesh.triangles.size(), 4u);
+  expectBounds(mesh.bounds(), Vector3(0, 0, 0), Vector3(1, 1, 1));
+}
+
+TEST(MeshLoader, NormalsAndTextureIndicesOutOfRangeAreIgnored) {
+  const TriangleMesh mesh = loadTestMesh("bad_normal_index_v2.wrl");
+  EXPECT_EQ(mesh.triangles.size(), 1u);
+  expectBounds(mesh.bounds(), Vector3(0, 0, 0), Vector3(1, 1, 0));
+}
+
+TEST(MeshLoader, MissingTextureImageIsNotNeededButWarnedAbout) {
+  std::vector<std::string> warnings;
+  setLogSink([&warnings](LogLevel, std::string_view message) { warnings.emplace_back(message); });
+  const TriangleMesh mesh = loadTestMesh("missing_texture.iv");
+  setLogSink([](LogLevel level, std::string_view message) {
+    std::cerr << "lang2manip " << logLevelName(level) << ": " << message << '\n';
+  });
+  EXPECT_EQ(mesh.triangles.size(), 12u);
+  ASSERT_FALSE(warnings.empty());
+  EXPECT_THAT(warnings.back(), HasSubstr("missing_texture.iv: "));
+  EXPECT_THAT(warnings.back(), HasSubstr("no_such_image.png"));
+}
+
+TEST(MeshLoader, ExtensionIsCaseInsensitive) {
+  const test::TempDirectory directory;
+  const fs::path copy = directory.path() / "BOX.STL";
+  fs::copy_file(meshFile("box_ascii.stl"), copy);
+  EXPECT_EQ(loadTriangleMesh(copy.string()).triangles.size(), 12u);
+}
+
+TEST(MeshLoader, SupportedExtensionsAreLowerCaseWithDot) {
+  const auto& extensions = supportedMeshExtensions();
+  for (const char* expected : {".stl", ".dae", ".obj", ".iv", ".wrl"}) {
+    EXPECT_NE(std::find(extensions.begin(), extensions.end(), expected), extensions.end())
+        << expected;
+  }
+}
+
+// ------------------------------------------------------------------------------ bad input
+
+TEST(MeshLoaderErrors, MissingFile) {
+  const std::string path = meshFile("no_such_mesh.stl").string();
+  const std::string message = loadError(path);
+  EXPECT_THAT(message, HasSubstr(path));
+  EXPECT_THAT(message, HasSubstr("not found"));
+}
+
+TEST(MeshLoaderErrors, EmptyPath) { EXPECT_THAT(loadError(""), HasSubstr("mesh path is empty")); }
+
+TEST(MeshLoaderErrors, DirectoryIsNotAMesh) {
+  const test::TempDirectory directory;
+  const fs::path path = directory.path() / "folder.stl";
+  fs::create_directory(path);
+  EXPECT_THAT(loadError(path.string()), HasSubstr("not a regular file"));
+}
+
+TEST(MeshLoaderErrors, UnreadableFile) {
+  const test::TempDirectory directory;
+  const fs::path path = directory.path() / "locked.stl";
+  fs::copy_file(meshFile("box_ascii.stl"), path);
+  fs::permissions(path, fs::perms::none);
+  if (std::ifstream(path).is_open()) GTEST_SKIP() << "running with permission to read any file";
+  const std::string message = loadError(path.string());
+  EXPECT_THAT(message, HasSubstr("locked.stl"));
+  EXPECT_THAT(message, HasSubstr("cannot be opened"));
+}
+
+TEST(MeshLoaderErrors, UnsupportedExtensionListsSupported) {
+  const std::string message = loadError(meshFile("mesh.xyz").string());
+  EXPECT_THAT(message, HasSubstr("mesh.xyz"));
+  EXPECT_THAT(message, HasSubstr("unsupported mesh format \".xyz\""));
+  EXPECT_THAT(message, HasSubstr(".stl, .dae, .obj"));
+  EXPECT_THAT(message, HasSubstr(".iv, .wrl"));
+  EXPECT_THAT(loadError(meshFile("no_extension").string()), HasSubstr("unsupported mesh format"));
+}
+
+TEST(MeshLoaderErrors, EmptyStl) {
+  const std::string message = loadError(meshFile("empty.stl").string());
+  EXPECT_THAT(message, HasSubstr("empty.stl"));
+  EXPECT_THAT(message, HasSubstr("cannot read mesh"));
+}
+
+TEST(MeshLoaderErrors, EmptyInventor) {
+  const std::string message = loadError(meshFile("empty.iv").string());
+  EXPECT_THAT(message, HasSubstr("empty.iv"));
+}
+
+TEST(MeshLoaderErrors, GarbageStl) {
+  const std::string message = loadError(meshFile("garbage.stl").string());
+  EXPECT_THAT(message, HasSubstr("garbage.stl"));
+  EXPECT_THAT(message, HasSubstr("cannot read mesh"));
+}
+
+TEST(MeshLoaderErrors, TruncatedBinaryStl) {
+  const std::string message = loadError(meshFile("truncated_binary.stl").string());
+  EXPECT_THAT(message, HasSubstr("truncated_binary.stl"));
+  EXPECT_THAT(message, HasSubstr("cannot read mesh"));
+}
+
+TEST(MeshLoaderErrors, MalformedCollada) {
+  const std::string message = loadError(meshFile("garbage.dae").string());
+  EXPECT_THAT(message, HasSubstr("garbage.dae"));
+  EXPECT_THAT(message, HasSubstr("cannot read mesh"));
+}
+
+TEST(MeshLoaderErrors, GarbageInventor) {
+  const std::string message = loadError(meshFile("garbage.iv").string());
+  EXPECT_THAT(message, HasSubstr("garbage.iv"));
+  EXPECT_THAT(message, HasSubstr("malformed Inventor/VRML file"));
+}
+
+TEST(MeshLoaderErrors, ObjWithVerticesOnly) {
+  const std::string message = loadError(meshFile("vertices_only.obj").string());
+  EXPECT_THAT(message, HasSubstr("vertices_only.obj"));
+  EXPECT_THAT(message, HasSubstr("no triangles"));
+}
+
+TEST(MeshLoaderErrors, ObjWithLinesOnly) {
+  const std::string message = loadError(meshFile("lines_only.obj").string());
+  EXPECT_THAT(message, HasSubstr("lines_only.obj"));
+  EXPECT_THAT(message, HasSubstr("no triangles"));
+}
+
+TEST(MeshLoaderErrors, NonFiniteVertex) {
+  const std::string message = loadError(meshFile("nonfinite.stl").string());
+  EXPECT_THAT(message, HasSubstr("nonfinite.stl"));
+  EXPECT_THAT(message, HasSubstr("non-finite"));
+}
+
+TEST(MeshLoaderErrors, InventorSyntaxErrorGivesLine) {
+  const std::string path = meshFile("syntax_error.iv").string();
+  const std::string message = loadError(path);
+  EXPECT_THAT(message, HasSubstr(path + ":6: malformed Inventor/VRML file"));
+  EXPECT_THAT(message, HasSubstr("\"height\""));  // Coin names the field it could not read
+  EXPECT_THAT(message, Not(HasSubstr("Occurred at")));  // Coin's own location is not repeated
+  EXPECT_THAT(message, Not(HasSubstr("\n")));
+}
+
+TEST(MeshLoaderErrors, InventorMissingIncludedFile) {
+  const std::string message = loadError(meshFile("missing_include.iv").string());
+  EXPECT_THAT(message, HasSubstr("missing_include.iv:5: malformed Inventor/VRML file"));
+  EXPECT_THAT(message, HasSubstr("no_such_part.iv"));
+}
+
+TEST(MeshLoaderErrors, ErrorCarriesLocation) {
+  const std::string path = meshFile("syntax_error.iv").string();
+  try {
+    loadTriangleMesh(path);
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.where().file, path);
+    EXPECT_EQ(error.where().line, 6);
+  }
+}
+
+TEST(MeshLoaderErrors, InventorIndexOutOfRange) {
+  const std::string message = loadError(meshFile("index_out_of_range.iv").string());
+  EXPECT_THAT(message, HasSubstr("index_out_of_range.iv: IndexedFaceSet coordIndex 7 is out of range"));
+}
+
+TEST(MeshLoaderErrors, InventorFaceSetWithTooFewPoints) {
+  const std::string message = loadError(meshFile("too_few_points.iv").string());
+  EXPECT_THAT(message, HasSubstr("too_few_points.iv: FaceSet needs coordinates 0 to 6 but has 3"));
+}
+
+TEST(MeshLoaderErrors, VrmlIndexOutOfRange) {
+  const std::string message = loadError(meshFile("index_out_of_range_v2.wrl").string());
+  EXPECT_THAT(message, HasSubstr("VRMLIndexedFaceSet coordIndex 99 is out of range"));
+}
+
+TEST(MeshLoaderErrors, InventorWithLinesOnly) {
+  EXPECT_THAT(loadError(meshFile("lines_only.iv").string()), HasSubstr("no triangles"));
+}
+
+std::string repeated(const std::string& text, int times) {
+  std::string all;
+  for (int i = 0; i < times; ++i) all += text;
+  return all;
+}
+
+std::string fileText(const fs::path& path) {
+  std::ifstream stream(path);
+  return {std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
+}
+
+TEST(MeshLoaderErrors, DeepNestingIsRefusedBeforeParsing) {
+  // Coin and assimp recurse per level and overflow the stack some 10,000 levels down.
+  const test::TempDirectory directory;
+  const int levels = 20000;
+  const fs::path inventor = directory.path() / "deep.iv";
+  std::ofstream(inventor) << "#Inventor V2.1 ascii\n"
+                          << repeated("Separator {\n", levels) << "Cube {}\n"
+                          << repeated("}\n", levels);
+  EXPECT_THAT(loadError(inventor.string()), HasSubstr("nesting deeper than 1000 levels"));
+
+  std::string collada = fileText(meshFile("tetrahedron_mm.dae"));
+  collada.insert(collada.find("</visual_scene>"), repeated("</node>", levels));
+  collada.insert(collada.find("<node id=\"lifted\""), repeated("<node>", levels));
+  const fs::path dae = directory.path() / "deep.dae";
+  std::ofstream(dae) << collada;
+  EXPECT_THAT(loadError(dae.string()), HasSubstr("nesting deeper than 1000 levels"));
+}
+
+TEST(MeshLoader, ModerateNestingLoads) {
+  const test::TempDirectory directory;
+  const fs::path inventor = directory.path() / "nested.iv";
+  std::ofstream(inventor) << "#Inventor V2.1 ascii\n"
+                          << repeated("Separator { Translation { translation 1 0 0 }\n", 900)
+                          << "Cube {}\n" << repeated("}\n", 900);
+  const TriangleMesh mesh = loadTriangleMesh(inventor.string());
+  expectBounds(mesh.bounds(), Vector3(899, -1, -1), Vector3(901, 1, 1), 1e-3);
+}
+
+// ------------------------------------------------------------------------------ cache
+
+TEST(MeshCache, SameFileThroughDifferentSpellingsIsLoadedOnce) {
+  MeshCache cache;
+  const fs::path directory = test::testDataDirectory() / "meshes";
+  const auto first = cache.get((directory / "box_ascii.stl").string());
+  const auto second = cache.get((directory / "." / "box_ascii.stl").string());
+  const auto third = cache.get((directory / ".." / "meshes" / "box_ascii.stl").string());
+  EXPECT_EQ(first.get(), second.get());
+  EXPECT_EQ(first.get(), third.get());
+  EXPECT_EQ(cache.size(), 1u);
+  const auto other = cache.get((directory / "cube_quads.obj").string());
+  EXPECT_NE(other.get(), first.get());
+  EXPECT_EQ(cache.size(), 2u);
+}
+
+TEST(MeshCache, FailuresThrowAndAreNotCached) {
+  MeshCache cache;
+  EXPECT_THROW(cache.get(meshFile("garbage.stl").string()), InputError);
+  EXPECT_THROW(cache.get(meshFile("no_such_mesh.stl").string()), InputError);
+  EXPECT_EQ(cache.size(), 0u);
+}
+
+TEST(MeshCache, ConcurrentRequestsShareOneMesh) {
+  MeshCache cache;
+  const std::vector<std::string> files = {"scene.iv", "box_v2.wrl", "tetrahedron_mm.dae",
+                                          "box_ascii.stl"};
+  std::vector<std::vector<const TriangleMesh*>> seen(4);
+  std::vector<std::thread> threads;
+  for (std::size_t t = 0; t < seen.size(); ++t) {
+    threads.emplace_back([&, t] {
+      for (const std::string& name : files) seen[t].push_back(cache.get(meshFile(name).string()).get());
+    });
+  }
+  for (std::thread& thread : threads) thread.join();
+  for (std::size_t t = 1; t < seen.size(); ++t) EXPECT_EQ(seen[t], seen[0]);
+  EXPECT_EQ(cache.size(), files.size());
+}
+
+TEST(MeshCache, GlobalIsOneInstance) { EXPECT_EQ(&MeshCache::global(), &MeshCache::global()); }
+
+// ------------------------------------------------------------------------------ geometry
+
+Shape shapeAt(Geometry geometry, const Pose& origin) {
+  Shape shape;
+  shape.geometry = std::move(geometry);
+  shape.origin = origin;
+  return shape;
+}
+
+Pose poseOf(const Vector3& translation, const Eigen::AngleAxisd& rotation) {
+  Pose pose = Pose::Identity();
+  pose.translate(translation);
+  pose.rotate(rotation);
+  return pose;
+}
+
+TEST(Geometry, BoxTurnedAboutZ) {
+  const Pose origin = poseOf(Vector3(1, 2, 3), Eigen::AngleAxisd(kHalfPi, Vector3::UnitZ()));
+  const AlignedBox3 box = shapeBounds(shapeAt(Box{Vector3(2, 4, 6)}, origin));
+  expectBounds(box, Vector3(-1, 1, 0), Vector3(3, 3, 6), 1e-12);
+}
+
+TEST(Geometry, BoxTurned45DegreesMatchesItsCorners) {
+  const Pose origin = poseOf(Vector3(0, 0, 1), Eigen::AngleAxisd(kHalfPi / 2, Vector3::UnitX()));
+  const AlignedBox3 box = shapeBounds(shapeAt(Box{Vector3(1, 2, 2)}, origin));
+  const double reach = std::sqrt(2.0);  // half diagonal of the 2 x 2 face
+  expectBounds(box, Vector3(-0.5, -reach, 1 - reach), Vector3(0.5, reach, 1 + reach), 1e-12);
+}
+
+TEST(Geometry, SphereIgnoresRotation) {
+  const Pose origin = poseOf(Vector3(1, 0, 0), Eigen::AngleAxisd(0.3, Vector3::UnitY()));
+  expectBounds(shapeBounds(shapeAt(Sphere{0.5}, origin)), Vector3(0.5, -0.5, -0.5),
+               Vector3(1.5, 0.5, 0.5), 1e-12);
+}
+
+TEST(Geometry, CylinderUprightAndLyingDown) {
+  const Cylinder cylinder{0.5, 4.0};
+  expectBounds(shapeBounds(shapeAt(cylinder, Pose::Identity())), Vector3(-0.5, -0.5, -2),
+               Vector3(0.5, 0.5, 2), 1e-12);
+  const Pose lying = poseOf(Vector3(0, 0, 1), Eigen::AngleAxisd(kHalfPi, Vector3::UnitY()));
+  expectBounds(shapeBounds(shapeAt(cylinder, lying)), Vector3(-2, -0.5, 0.5),
+               Vector3(2, 0.5, 1.5), 1e-12);
+}
+
+TEST(Geometry, CylinderTiltedMatchesSampledRim) {
+  const Cylinder cylinder{0.3, 1.0};
+  const Pose origin =
+      poseOf(Vector3(0.1, 0.2, 0.3), Eigen::AngleAxisd(0.7, Vector3(1, 2, 3).normalized()));
+  AlignedBox3 sampled;
+  for (int i = 0; i < 3600; ++i) {
+    const double angle = 2 * std::numbers::pi * i / 3600;
+    for (double z : {-0.5, 0.5}) {
+      sampled.extend(origin * Vector3(0.3 * std::cos(angle), 0.3 * std::sin(angle), z));
+    }
+  }
+  expectBounds(shapeBounds(shapeAt(cylinder, origin)), sampled.min(), sampled.max(), 1e-6);
+}
+
+TEST(Geometry, ScaledMeshUsesItsVertices) {
+  MeshGeometry geometry;
+  geometry.mesh = std::make_shared<const TriangleMesh>(loadTestMesh("tetrahedron_binary.stl"));
+  geometry.scale = Vector3(2, 3, 4);
+  const Pose origin = poseOf(Vector3(10, 0, 0), Eigen::AngleAxisd(kHalfPi, Vector3::UnitZ()));
+  // Scaled vertices (0,0,0) (2,0,0) (0,3,0) (0,0,4), turned: (0,0,0) (0,2,0) (-3,0,0) (0,0,4).
+  expectBounds(shapeBounds(shapeAt(geometry, origin)), Vector3(7, 0, 0), Vector3(10, 2, 4), 1e-12);
+}
+
+TEST(Geometry, MeshWithoutDataHasEmptyBounds) {
+  EXPECT_TRUE(shapeBounds(shapeAt(MeshGeometry{}, Pose::Identity())).isEmpty());
+}
+
+TEST(Geometry, KindNames) {
+  EXPECT_EQ(geometryKindName(Box{}), "box");
+  EXPECT_EQ(geometryKindName(Sphere{}), "sphere");
+  EXPECT_EQ(geometryKindName(Cylinder{}), "cylinder");
+  EXPECT_EQ(geometryKindName(MeshGeometry{}), "mesh");
+}
+
+TEST(Geometry, ScaledShapeMultipliesLengthsAndOrigin) {
+  const Pose origin = poseOf(Vector3(1, 2, 3), Eigen::AngleAxisd(0.5, Vector3::UnitX()));
+  const Shape box = scaledShape(shapeAt(Box{Vector3(1, 2, 3)}, origin), 0.001);
+  EXPECT_TRUE(std::get<Box>(box.geometry).size.isApprox(Vector3(0.001, 0.002, 0.003)));
+  EXPECT_TRUE(box.origin.translation().isApprox(Vector3(0.001, 0.002, 0.003)));
+  EXPECT_TRUE(box.origin.linear().isApprox(origin.linear()));
+
+  const Shape sphere = scaledShape(shapeAt(Sphere{2.0}, origin), 2.0);
+  EXPECT_DOUBLE_EQ(std::get<Sphere>(sphere.geometry).radius, 4.0);
+
+  const Shape cylinder = scaledShape(shapeAt(Cylinder{1.0, 5.0}, origin), 3.0);
+  EXPECT_DOUBLE_EQ(std::get<Cylinder>(cylinder.geometry).radius, 3.0);
+  EXPECT_DOUBLE_EQ(std::get<Cylinder>(cylinder.geometry).length, 15.0);
+
+  MeshGeometry geometry;
+  geometry.scale = Vector3(1, 2, 3);
+  geometry.reference = "meshes/a.stl";
+  const Shape mesh = scaledShape(shapeAt(geometry, origin), 10.0);
+  EXPECT_TRUE(std::get<MeshGeometry>(mesh.geometry).scale.isApprox(Vector3(10, 20, 30)));
+  EXPECT_EQ(std::get<MeshGeometry>(mesh.geometry).reference, "meshes/a.stl");
+}
+
+TEST(Geometry, ScaledShapeRejectsBadFactor) {
+  const Shape box = shapeAt(Box{Vector3(1, 1, 1)}, Pose::Identity());
+  for (double factor : {0.0, -1.0, std::nan("")}) {
+    try {
+      scaledShape(box, factor);
+      ADD_FAILURE() << "no error for " << factor;
+    } catch (const InputError& error) {
+      EXPECT_THAT(std::string(error.what()), HasSubstr("scale factor must be positive"));
+    }
+  }
+}
+
+TEST(Geometry, BoundsOfScaledShapeAreScaled) {
+  const Pose origin = poseOf(Vector3(1, 2, 3), Eigen::AngleAxisd(0.4, Vector3::UnitY()));
+  const Shape cylinder = shapeAt(Cylinder{0.5, 2.0}, origin);
+  const AlignedBox3 before = shapeBounds(cylinder);
+  const AlignedBox3 after = shapeBounds(scaledShape(cylinder, 2.5));
+  expectBounds(after, 2.5 * before.min(), 2.5 * before.max(), 1e-12);
+}
+
+// ------------------------------------------------------------------------------ shared data
+
+TEST(MeshSharedData, EveryKauthamMeshLoads) {
+  LANG2MANIP_REQUIRE_SHARED_DATA(shared);
+  const fs::path models = shared / "kautham" / "models";
+  if (!fs::is_directory(models)) GTEST_SKIP() << models << " is absent: skipped";
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::recursive_directory_iterator(models)) {
+    const std::string extension = entry.path().extension().string();
+    if (extension == ".stl" || extension == ".dae" || extension == ".iv" || extension == ".wrl") {
+      files.push_back(entry.path());
+    }
+  }
+  EXPECT_GE(files.size(), 70u);
+  for (const fs::path& file : files) {
+    SCOPED_TRACE(file.string());
+    TriangleMesh mesh;
+    ASSERT_NO_THROW(mesh = loadTriangleMesh(file.string()));
+    EXPECT_GT(mesh.triangles.size(), 0u);
+    expectValidIndices(mesh);
+    const AlignedBox3 box = mesh.bounds();
+    EXPECT_FALSE(box.isEmpty());
+    EXPECT_TRUE(box.min().allFinite() && box.max().allFinite());
+  }
+}
+
+}  // namespace
+}  // namespace lang2manip

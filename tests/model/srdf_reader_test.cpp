@@ -1,0 +1,133 @@
+#include "lang2manip/model/srdf_reader.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "model_test_support.hpp"
+
+namespace lang2manip {
+namespace {
+
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+using test::errorMessage;
+
+Joint joint(const std::string& name, JointType type, const std::string& parent,
+            const std::string& child, double lower = -1.0, double upper = 1.0) {
+  Joint result;
+  result.name = name;
+  result.type = type;
+  result.parentLink = parent;
+  result.childLink = child;
+  result.limits = {lower, upper, 1.0, 1.0, false};
+  return result;
+}
+
+// base -j1-> l1 -j2-> l2 -fixed-> hand -fixed-> tcp ; hand -finger-> left ; hand -mimic-> right
+RobotModelData gripperArm() {
+  RobotModelData data;
+  data.name = "g";
+  for (const char* name : {"base", "l1", "l2", "hand", "tcp", "left", "right"}) {
+    data.links.push_back({name, {}, {}});
+  }
+  data.joints = {joint("j1", JointType::kRevolute, "base", "l1"),
+                 joint("j2", JointType::kRevolute, "l1", "l2"),
+                 joint("hand_joint", JointType::kFixed, "l2", "hand"),
+                 joint("tcp_joint", JointType::kFixed, "hand", "tcp"),
+                 joint("finger", JointType::kPrismatic, "hand", "left", 0.0, 0.04),
+                 joint("finger_mimic", JointType::kPrismatic, "hand", "right", 0.0, 0.04)};
+  data.joints.back().mimic = JointMimic{"finger", 1.0, 0.0};
+  return data;
+}
+
+const char* kSrdf = R"(<?xml version="1.0"?>
+<robot name="g">
+  <group name="arm"><chain base_link="base" tip_link="tcp"/></group>
+  <group name="hand"><joint name="finger"/><joint name="finger_mimic"/></group>
+  <end_effector name="gripper" parent_link="hand" group="hand" parent_group="arm"/>
+  <group_state name="home" group="arm"><joint name="j1" value="0.1"/><joint name="j2" value="-0.2"/></group_state>
+  <group_state name="open" group="hand"><joint name="finger" value="0.035"/></group_state>
+  <group_state name="close" group="hand"><joint name="finger" value="0.001"/></group_state>
+  <disable_collisions link1="base" link2="l1" reason="Adjacent"/>
+</robot>)";
+
+TEST(SrdfReader, ReadsGroupsStatesPairsAndResolvesTheManipulator) {
+  const RobotSemantics semantics = readSrdfString(kSrdf, "g.srdf", gripperArm());
+  EXPECT_FALSE(semantics.inferred);
+  ASSERT_EQ(semantics.groups.size(), 2U);
+  EXPECT_EQ(semantics.groups[0].chains[0], (std::pair<std::string, std::string>{"base", "tcp"}));
+  ASSERT_EQ(semantics.disabledCollisions.size(), 1U);
+  EXPECT_EQ(semantics.disabledCollisions[0].reason, "Adjacent");
+  ASSERT_EQ(semantics.manipulators.size(), 1U);
+  const Manipulator& arm = semantics.manipulators[0];
+  EXPECT_THAT(arm.armJoints, ElementsAre("j1", "j2"));
+  EXPECT_EQ(arm.toolFrame, "tcp");
+  EXPECT_THAT(arm.gripperJoints, ElementsAre("finger"));
+  EXPECT_THAT(arm.gripperOpen, ElementsAre(0.035));
+  EXPECT_THAT(arm.gripperClosed, ElementsAre(0.001));
+}
+
+TEST(SrdfReader, InfersArmToolFrameAndGripperWithoutSrdf) {
+  const RobotSemantics semantics = inferSemantics(gripperArm());
+  EXPECT_TRUE(semantics.inferred);
+  ASSERT_EQ(semantics.manipulators.size(), 1U);
+  const Manipulator& arm = semantics.manipulators[0];
+  EXPECT_THAT(arm.armJoints, ElementsAre("j1", "j2"));
+  EXPECT_EQ(arm.toolFrame, "tcp");
+  EXPECT_THAT(arm.gripperJoints, ElementsAre("finger"));
+  EXPECT_THAT(arm.gripperOpen, ElementsAre(0.04));
+  EXPECT_THAT(arm.gripperClosed, ElementsAre(0.0));
+}
+
+TEST(SrdfReader, InfersTwoArmsOnATwoArmRobot) {
+  RobotModelData data;
+  data.name = "dual";
+  for (const char* name : {"body", "r1", "r2", "r3", "l1", "l2", "l3"}) data.links.push_back({name, {}, {}});
+  data.joints = {joint("r_j1", JointType::kRevolute, "body", "r1"),
+                 joint("r_j2", JointType::kRevolute, "r1", "r2"),
+                 joint("r_j3", JointType::kRevolute, "r2", "r3"),
+                 joint("l_j1", JointType::kRevolute, "body", "l1"),
+                 joint("l_j2", JointType::kRevolute, "l1", "l2"),
+                 joint("l_j3", JointType::kRevolute, "l2", "l3")};
+  const RobotSemantics semantics = inferSemantics(data);
+  ASSERT_EQ(semantics.manipulators.size(), 2U);
+  EXPECT_THAT(semantics.manipulators[0].armJoints, ElementsAre("r_j1", "r_j2", "r_j3"));
+  EXPECT_THAT(semantics.manipulators[1].armJoints, ElementsAre("l_j1", "l_j2", "l_j3"));
+  EXPECT_EQ(semantics.manipulators[0].name, "arm_r3");
+}
+
+struct BadSrdf {
+  const char* name;
+  const char* xml;
+  const char* expected;
+};
+
+class SrdfReaderBadInput : public ::testing::TestWithParam<BadSrdf> {};
+
+TEST_P(SrdfReaderBadInput, ReportsFileLineAndProblem) {
+  EXPECT_THAT(errorMessage([] { readSrdfString(GetParam().xml, "bad.srdf", gripperArm()); }),
+              HasSubstr(GetParam().expected));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, SrdfReaderBadInput,
+    ::testing::Values(
+        BadSrdf{"Malformed", "<robot name=\"g\">\n<group name=\"a\">\n</robot>", "bad.srdf:3: malformed XML"},
+        BadSrdf{"NotSrdf", "<robots/>", "not an SRDF"},
+        BadSrdf{"UnknownLink", "<robot name=\"g\">\n<group name=\"a\"><chain base_link=\"base\" tip_link=\"wrist\"/></group></robot>",
+                "bad.srdf:2: <chain> names link \"wrist\", which the robot \"g\" does not have"},
+        BadSrdf{"UnknownJoint", "<robot name=\"g\">\n<group name=\"a\"><joint name=\"j7\"/></group></robot>",
+                "bad.srdf:2: <joint> names joint \"j7\""},
+        BadSrdf{"ChainUpsideDown", "<robot name=\"g\">\n<group name=\"a\"><chain base_link=\"tcp\" tip_link=\"base\"/></group></robot>",
+                "link \"base\" is not below link \"tcp\""},
+        BadSrdf{"UnknownGroup", "<robot name=\"g\">\n<group_state name=\"home\" group=\"legs\"/></robot>",
+                "bad.srdf:2: <group_state> refers to unknown group \"legs\""},
+        BadSrdf{"NanValue", "<robot name=\"g\"><group name=\"a\"><joint name=\"j1\"/></group>\n"
+                            "<group_state name=\"h\" group=\"a\"><joint name=\"j1\" value=\"nan\"/></group_state></robot>",
+                "must be a finite number"},
+        BadSrdf{"MissingAttribute", "<robot name=\"g\">\n<disable_collisions link1=\"base\"/></robot>",
+                "bad.srdf:2: <disable_collisions> needs attribute \"link2\""}),
+    [](const auto& testInfo) { return std::string(testInfo.param.name); });
+
+}  // namespace
+}  // namespace lang2manip
