@@ -3,7 +3,7 @@
 add_library(lang2manip_warnings INTERFACE)
 target_compile_options(lang2manip_warnings INTERFACE
   -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wold-style-cast -Wcast-align
-  -Wunused -Woverloaded-virtual -Wconversion -Wno-sign-conversion -Wnull-dereference
+  -Wunused -Woverloaded-virtual -Wconversion -Wno-sign-conversion
   -Wdouble-promotion -Wformat=2 -Wimplicit-fallthrough
   # GCC 12 reports false -Wrestrict positives inside std::string concatenation (GCC PR 105329).
   $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)

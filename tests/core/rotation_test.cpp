@@ -27,14 +27,18 @@ TEST(Rotation, RpyRoundTripsAtGimbalLock) {
               quaternionFromRpy(rpy[0], rpy[1], rpy[2]).coeffs().isApprox(-q.coeffs(), 1e-9));
 }
 
-TEST(Rotation, KauthamAxisAngleNormalizesAndTreatsZeroAxisAsIdentity) {
+TEST(Rotation, KauthamAxisAngleFollowsKauthamAndTreatsZeroAxisAsIdentity) {
   EXPECT_TRUE(quaternionFromKauthamAxisAngle(Vector3::Zero(), 1.0).isApprox(Quaternion::Identity()));
-  const Quaternion q = quaternionFromKauthamAxisAngle(Vector3(0, 0, -2), kPi / 2);
-  EXPECT_TRUE((q * Vector3::UnitX()).isApprox(Vector3(0, -1, 0), 1e-12));
+  const Quaternion unit = quaternionFromKauthamAxisAngle(Vector3(0, 0, -1), kPi / 2);
+  EXPECT_TRUE((unit * Vector3::UnitX()).isApprox(Vector3(0, -1, 0), 1e-12));
+  // Non-unit axis (0,0,2), TH = pi/2: q = (cos(pi/4), 0, 0, 2 sin(pi/4)) normalized
+  // = (1, 0, 0, 2)/sqrt(5): a rotation of 2*atan(2) about z, not pi/2.
+  const Quaternion scaled = quaternionFromKauthamAxisAngle(Vector3(0, 0, 2), kPi / 2);
+  EXPECT_NEAR(Eigen::AngleAxisd(scaled).angle(), 2.0 * std::atan(2.0), 1e-12);
 }
 
 TEST(Rotation, AxisAngleRoundTrip) {
-  const Quaternion q = quaternionFromKauthamAxisAngle(Vector3(1, 2, 3), 2.5);
+  const Quaternion q = quaternionFromKauthamAxisAngle(Vector3(1, 2, 3).normalized(), 2.5);
   Vector3 axis;
   double angle = 0.0;
   axisAngleFromQuaternion(q, axis, angle);

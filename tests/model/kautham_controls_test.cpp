@@ -13,11 +13,11 @@
 namespace lang2manip {
 namespace {
 
+using test::errorMessage;
 using ::testing::AllOf;
 using ::testing::DoubleNear;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
-using test::errorMessage;
 
 constexpr double kTolerance = 1e-12;
 
@@ -71,7 +71,8 @@ TEST(KauthamControls, ReadsOffsetsControlsAndCouplingsInFileOrder) {
 
 TEST(KauthamControls, DofNamesAreSplitAtTheLastSlash) {
   const ControlSet set = readControlString(
-      "<ControlSet><Control name=\"c\"><DOF name=\"ns/robot/link_1\" value=\"1\"/></Control></ControlSet>", "x.cntr");
+      "<ControlSet><Control name=\"c\"><DOF name=\"ns/robot/link_1\" value=\"1\"/></Control></ControlSet>",
+      "x.cntr");
   EXPECT_EQ(set.dofs[0].entity, "ns/robot");
   EXPECT_EQ(set.dofs[0].dof, "link_1");
 }
@@ -84,8 +85,8 @@ TEST(KauthamControls, DofValuesFollowTheFormula) {
   //   X3:    0.5 (offset only)
   //   wrist: 0.5 + 1*(0.9-0.5) + 0.5*(0.1-0.5)     = 0.5 + 0.4 - 0.2 = 0.7
   EXPECT_THAT(set.dofValues({0.9, 0.7, 0.1}, "c"),
-              ElementsAre(DoubleNear(0.1, kTolerance), DoubleNear(0.5, kTolerance), DoubleNear(0.5, kTolerance),
-                          DoubleNear(0.7, kTolerance)));
+              ElementsAre(DoubleNear(0.1, kTolerance), DoubleNear(0.5, kTolerance),
+                          DoubleNear(0.5, kTolerance), DoubleNear(0.7, kTolerance)));
   // All controls at 0.5: the offsets.
   EXPECT_THAT(set.dofValues({0.5, 0.5, 0.5}, "c"), ElementsAre(0.2, 0.7, 0.5, 0.5));
 }
@@ -95,8 +96,7 @@ TEST(KauthamControls, DofValuesAreClampedToTheUnitInterval) {
   // c = (1, 0, 1)
   //   left:  0.2 + 0.5*(-0.5) + 0.5*0.5 = 0.2       right: 0.7 + 0.5*(-2)*(-0.5) = 1.2 -> 1
   //   wrist: 0.5 + 0.5 + 0.5*0.5 = 1.25 -> 1
-  EXPECT_THAT(set.dofValues({1.0, 0.0, 1.0}, "c"),
-              ElementsAre(DoubleNear(0.2, kTolerance), 1.0, 0.5, 1.0));
+  EXPECT_THAT(set.dofValues({1.0, 0.0, 1.0}, "c"), ElementsAre(DoubleNear(0.2, kTolerance), 1.0, 0.5, 1.0));
   // c = (0, 1, 0)
   //   left:  0.2 + 0.25 - 0.25 = 0.2                right: 0.7 - 0.5 = 0.2
   //   wrist: 0.5 - 0.5 - 0.25 = -0.25 -> 0
@@ -106,11 +106,18 @@ TEST(KauthamControls, DofValuesAreClampedToTheUnitInterval) {
 
 TEST(KauthamControls, DofValuesRejectWrongSizeAndValuesOutsideTheUnitInterval) {
   const ControlSet set = readControlString(kGripper, "gripper.cntr");
-  EXPECT_THAT(errorMessage([&] { (void)set.dofValues({0.5, 0.5}, "the goal"); }),
+  EXPECT_THAT(errorMessage([&] {
+                (void)set.dofValues({0.5, 0.5}, "the goal");
+              }),
               AllOf(HasSubstr("the goal has 2 control values"), HasSubstr("gripper.cntr has 3")));
-  EXPECT_THAT(errorMessage([&] { (void)set.dofValues({0.5, 1.5, 0.5}, "the goal"); }),
-              AllOf(HasSubstr("the goal"), HasSubstr("1.5"), HasSubstr("\"grip\""), HasSubstr("outside [0, 1]")));
-  EXPECT_THAT(errorMessage([&] { (void)set.dofValues({-0.25, 0.5, 0.5}, "init"); }),
+  EXPECT_THAT(
+      errorMessage([&] {
+        (void)set.dofValues({0.5, 1.5, 0.5}, "the goal");
+      }),
+      AllOf(HasSubstr("the goal"), HasSubstr("1.5"), HasSubstr("\"grip\""), HasSubstr("outside [0, 1]")));
+  EXPECT_THAT(errorMessage([&] {
+                (void)set.dofValues({-0.25, 0.5, 0.5}, "init");
+              }),
               HasSubstr("control \"wrist\" is outside [0, 1]"));
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THAT(errorMessage([&] { (void)set.dofValues({0.5, 0.5, nan}, "init"); }), HasSubstr("\"both\""));
@@ -132,7 +139,8 @@ TEST(KauthamControls, WriteThenReadGivesTheSameControlSet) {
     EXPECT_EQ(copy.controls[j].eigValue, original.controls[j].eigValue);
     EXPECT_EQ(copy.controls[j].coefficients, original.controls[j].coefficients);
   }
-  for (const std::vector<double>& c : {std::vector<double>{0.9, 0.7, 0.1}, std::vector<double>{0.0, 1.0, 0.3}}) {
+  for (const std::vector<double>& c :
+       {std::vector<double>{0.9, 0.7, 0.1}, std::vector<double>{0.0, 1.0, 0.3}}) {
     EXPECT_EQ(copy.dofValues(c, "c"), original.dofValues(c, "c"));
   }
 }
@@ -176,17 +184,23 @@ TEST(KauthamControls, MalformedTextNamesTheFileAndLine) {
 }
 
 TEST(KauthamControls, BadDofsAndControlsNameTheLine) {
-  EXPECT_THAT(controlError("<ControlSet>\n<Control name=\"a\">\n<DOF name=\"link\" value=\"1\"/></Control></ControlSet>"),
-              AllOf(HasSubstr("bad.cntr:3"), HasSubstr("\"link\" is not of the form")));
+  EXPECT_THAT(
+      controlError(
+          "<ControlSet>\n<Control name=\"a\">\n<DOF name=\"link\" value=\"1\"/></Control></ControlSet>"),
+      AllOf(HasSubstr("bad.cntr:3"), HasSubstr("\"link\" is not of the form")));
   EXPECT_THAT(controlError("<ControlSet>\n<Offset><DOF name=\"arm/\" value=\"1\"/></Offset></ControlSet>"),
               AllOf(HasSubstr("bad.cntr:2"), HasSubstr("\"arm/\"")));
   EXPECT_THAT(controlError("<ControlSet>\n<Offset><DOF name=\"/link\" value=\"1\"/></Offset></ControlSet>"),
               AllOf(HasSubstr("bad.cntr:2"), HasSubstr("\"/link\"")));
-  EXPECT_THAT(controlError("<ControlSet>\n\n<Control name=\"a\"><DOF name=\"a/b\" value=\"inf\"/></Control></ControlSet>"),
-              AllOf(HasSubstr("bad.cntr:3"), HasSubstr("inf")));
-  EXPECT_THAT(controlError("<ControlSet>\n<Control name=\"a\" eigValue=\"nan\"><DOF name=\"a/b\" value=\"1\"/></Control>"
-                           "</ControlSet>"),
-              AllOf(HasSubstr("bad.cntr:2"), HasSubstr("eigValue")));
+  EXPECT_THAT(
+      controlError(
+          "<ControlSet>\n\n<Control name=\"a\"><DOF name=\"a/b\" value=\"inf\"/></Control></ControlSet>"),
+      AllOf(HasSubstr("bad.cntr:3"), HasSubstr("inf")));
+  EXPECT_THAT(
+      controlError(
+          "<ControlSet>\n<Control name=\"a\" eigValue=\"nan\"><DOF name=\"a/b\" value=\"1\"/></Control>"
+          "</ControlSet>"),
+      AllOf(HasSubstr("bad.cntr:2"), HasSubstr("eigValue")));
   EXPECT_THAT(controlError("<ControlSet>\n<Offset><DOF name=\"a/b\" value=\"x\"/></Offset></ControlSet>"),
               AllOf(HasSubstr("bad.cntr:2"), HasSubstr("value")));
   EXPECT_THAT(controlError("<ControlSet>\n<Control name=\"empty\"/></ControlSet>"),

@@ -9,26 +9,20 @@
 namespace lang2manip {
 namespace {
 
-using ::testing::AllOf;
-using ::testing::HasSubstr;
+using test::controlSet;
 using test::fileLine;
 using test::lineOf;
+using test::plannerWithQueries;
+using ::testing::AllOf;
+using ::testing::HasSubstr;
 
 const char* const kArmRobot = "  <Robot robot=\"robots/arm.urdf\"/>\n";
 const char* const kArmControls = "  <Controls robot=\"controls/arm.cntr\"/>\n";
 
-std::string controlSet(const std::string& body) {
-  return "<?xml version=\"1.0\"?>\n<ControlSet>\n" + body + "</ControlSet>\n";
-}
-
 std::string twoArmControls() {
-  return controlSet("  <Control name=\"a\"><DOF name=\"arm/upper\" value=\"1\"/></Control>\n"
-                    "  <Control name=\"b\"><DOF name=\"arm/fore\" value=\"1\"/></Control>\n");
-}
-
-std::string planner(const std::string& queries) {
-  return "  <Planner><Parameters><Name>omplRRT</Name></Parameters>\n    <Queries>\n" + queries +
-         "    </Queries>\n  </Planner>\n";
+  return controlSet(
+      "  <Control name=\"a\"><DOF name=\"arm/upper\" value=\"1\"/></Control>\n"
+      "  <Control name=\"b\"><DOF name=\"arm/fore\" value=\"1\"/></Control>\n");
 }
 
 class KauthamBadInputTest : public test::KauthamDirectoryTest {
@@ -41,7 +35,7 @@ class KauthamBadInputTest : public test::KauthamDirectoryTest {
 
   /// Writes a problem with the arm, its two controls and `queries`; returns the problem text.
   std::string writeQueries(const std::string& queries) const {
-    return writeProblem(std::string(kArmRobot) + kArmControls + planner(queries));
+    return writeProblem(std::string(kArmRobot) + kArmControls + plannerWithQueries(queries));
   }
   /// Writes `cntr` as controls/arm.cntr under a problem using it.
   void writeArmControls(const std::string& cntr, const std::string& robotInner = "") const {
@@ -55,7 +49,8 @@ TEST_F(KauthamBadInputTest, MissingProblemFile) {
 }
 
 TEST_F(KauthamBadInputTest, MalformedXmlNamesTheLine) {
-  const std::string text = test::problemXml(std::string(kArmRobot) + "  <Obstacle obstacle=\"x\">\n  <Oops>\n");
+  const std::string text =
+      test::problemXml(std::string(kArmRobot) + "  <Obstacle obstacle=\"x\">\n  <Oops>\n");
   test::writeText(problemFile(), text);
   // pugixml notices the unclosed <Oops> at </Problem>.
   EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "</Problem>"))),
@@ -69,16 +64,15 @@ TEST_F(KauthamBadInputTest, RootThatIsNotProblem) {
 
 TEST_F(KauthamBadInputTest, ProblemWithoutRobot) {
   writeProblem("  <Obstacle obstacle=\"obstacles/crate.urdf\"/>\n");
-  EXPECT_THAT(readError(), AllOf(HasSubstr(problemFile().string()), HasSubstr("no <Robot>")));
+  EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), 2)), HasSubstr("no <Robot>")));
 }
 
 TEST_F(KauthamBadInputTest, ModelReferenceThatResolvesNowhereListsThePathsTried) {
   const std::string text = writeProblem("  <Robot robot=\"robots/none.urdf\"/>\n");
-  EXPECT_THAT(readError(),
-              AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "none.urdf"))),
-                    HasSubstr("\"robots/none.urdf\" resolves nowhere"),
-                    HasSubstr((sceneDirectory() / "robots" / "none.urdf").string()),
-                    HasSubstr((root() / "models" / "robots" / "none.urdf").string())));
+  EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "none.urdf"))),
+                                 HasSubstr("\"robots/none.urdf\" resolves nowhere"),
+                                 HasSubstr((sceneDirectory() / "robots" / "none.urdf").string()),
+                                 HasSubstr((root() / "models" / "robots" / "none.urdf").string())));
 }
 
 TEST_F(KauthamBadInputTest, ControlFileThatIsNotCntr) {
@@ -88,96 +82,112 @@ TEST_F(KauthamBadInputTest, ControlFileThatIsNotCntr) {
 }
 
 TEST_F(KauthamBadInputTest, MissingControlFile) {
-  const std::string text = writeProblem(std::string(kArmRobot) + "  <Controls robot=\"controls/none.cntr\"/>\n");
+  const std::string text =
+      writeProblem(std::string(kArmRobot) + "  <Controls robot=\"controls/none.cntr\"/>\n");
   EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "<Controls"))),
                                  HasSubstr("\"controls/none.cntr\" resolves nowhere")));
 }
 
 TEST_F(KauthamBadInputTest, MalformedControlFileNamesItsLine) {
   writeArmControls("<?xml version=\"1.0\"?>\n<ControlSet>\n  <Control name=\"a\">\n</ControlSet>\n");
-  EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(controlFile("arm.cntr"), 4)), HasSubstr("malformed XML")));
+  EXPECT_THAT(readError(),
+              AllOf(HasSubstr(fileLine(controlFile("arm.cntr"), 4)), HasSubstr("malformed XML")));
 }
 
 TEST_F(KauthamBadInputTest, DofNameWithoutSlash) {
-  const std::string cntr = controlSet("  <Control name=\"a\">\n    <DOF name=\"upper\" value=\"1\"/>\n  </Control>\n");
+  const std::string cntr =
+      controlSet("  <Control name=\"a\">\n    <DOF name=\"upper\" value=\"1\"/>\n  </Control>\n");
   writeArmControls(cntr);
   EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(controlFile("arm.cntr"), lineOf(cntr, "\"upper\""))),
                                  HasSubstr("\"upper\" is not of the form")));
 }
 
 TEST_F(KauthamBadInputTest, UnknownDofNameListsTheValidDofs) {
-  const std::string cntr = controlSet("  <Control name=\"a\">\n    <DOF name=\"arm/shoulder\" value=\"1\"/>\n  </Control>\n");
+  const std::string cntr =
+      controlSet("  <Control name=\"a\">\n    <DOF name=\"arm/shoulder\" value=\"1\"/>\n  </Control>\n");
   writeArmControls(cntr);
-  EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(controlFile("arm.cntr"), lineOf(cntr, "arm/shoulder"))),
-                                 HasSubstr("unknown DOF \"arm/shoulder\""),
-                                 HasSubstr("X, Y, Z, X1, X2, X3, upper, fore, wheel, slider"),
-                                 HasSubstr("child link")));
+  EXPECT_THAT(readError(),
+              AllOf(HasSubstr(fileLine(controlFile("arm.cntr"), lineOf(cntr, "arm/shoulder"))),
+                    HasSubstr("unknown DOF \"arm/shoulder\""),
+                    HasSubstr("X, Y, Z, X1, X2, X3, upper, fore, wheel, slider"), HasSubstr("child link")));
 }
 
 TEST_F(KauthamBadInputTest, UnknownRobotInADofName) {
-  const std::string cntr = controlSet("  <Control name=\"a\">\n    <DOF name=\"bot/upper\" value=\"1\"/>\n  </Control>\n");
+  const std::string cntr =
+      controlSet("  <Control name=\"a\">\n    <DOF name=\"bot/upper\" value=\"1\"/>\n  </Control>\n");
   writeArmControls(cntr);
   EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(controlFile("arm.cntr"), lineOf(cntr, "bot/upper"))),
                                  HasSubstr("no robot named \"bot\""), HasSubstr("robots: arm")));
 }
 
 TEST_F(KauthamBadInputTest, BaseDofWithoutLimits) {
-  const std::string cntr = controlSet("  <Control name=\"x\">\n    <DOF name=\"arm/Y\" value=\"1\"/>\n  </Control>\n");
+  const std::string cntr =
+      controlSet("  <Control name=\"x\">\n    <DOF name=\"arm/Y\" value=\"1\"/>\n  </Control>\n");
   writeArmControls(cntr, "    <Limits name=\"X\" min=\"0\" max=\"1\"/>\n");
   EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(controlFile("arm.cntr"), lineOf(cntr, "arm/Y"))),
                                  HasSubstr("no <Limits name=\"Y\">")));
 }
 
 TEST_F(KauthamBadInputTest, WrongNumberOfInitValues) {
-  const std::string text = writeQueries("      <Query>\n        <Init>0.1 0.2 0.3</Init>\n"
-                                        "        <Goal>0.1 0.2</Goal>\n      </Query>\n");
+  const std::string text = writeQueries(
+      "      <Query>\n        <Init>0.1 0.2 0.3</Init>\n"
+      "        <Goal>0.1 0.2</Goal>\n      </Query>\n");
   EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "<Init>"))),
                                  HasSubstr("<Init> has 3 values; the control set has 2 controls")));
 }
 
 TEST_F(KauthamBadInputTest, ControlValueOutsideTheUnitInterval) {
-  const std::string text = writeQueries("      <Query>\n        <Init>0.1 0.2</Init>\n"
-                                        "        <Goal>0.1 1.5</Goal>\n      </Query>\n");
-  EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "<Goal>"))),
-                                 HasSubstr("outside [0, 1]")));
+  const std::string text = writeQueries(
+      "      <Query>\n        <Init>0.1 0.2</Init>\n"
+      "        <Goal>0.1 1.5</Goal>\n      </Query>\n");
+  EXPECT_THAT(readError(),
+              AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "<Goal>"))), HasSubstr("outside [0, 1]")));
 }
 
 TEST_F(KauthamBadInputTest, NonFiniteNumberInInit) {
-  const std::string text = writeQueries("      <Query>\n        <Init>0.1 nan</Init>\n"
-                                        "        <Goal>0.1 0.2</Goal>\n      </Query>\n");
-  EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "<Init>"))), HasSubstr("nan")));
+  const std::string text = writeQueries(
+      "      <Query>\n        <Init>0.1 nan</Init>\n"
+      "        <Goal>0.1 0.2</Goal>\n      </Query>\n");
+  EXPECT_THAT(readError(),
+              AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "<Init>"))), HasSubstr("nan")));
 }
 
 TEST_F(KauthamBadInputTest, NonFiniteNumberInHome) {
-  const std::string text = writeProblem("  <Robot robot=\"robots/arm.urdf\">\n    <Home X=\"0\" TH=\"inf\"/>\n  </Robot>\n");
+  const std::string text =
+      writeProblem("  <Robot robot=\"robots/arm.urdf\">\n    <Home X=\"0\" TH=\"inf\"/>\n  </Robot>\n");
   EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "<Home"))), HasSubstr("TH"),
                                  HasSubstr("inf")));
 }
 
 TEST_F(KauthamBadInputTest, UnknownRobotControlNameListsTheControls) {
-  const std::string text = writeQueries("      <Query>\n        <RobotControl name=\"a\" init=\"0.1\" goal=\"0.2\"/>\n"
-                                        "        <RobotControl name=\"c\" init=\"0.1\" goal=\"0.2\"/>\n      </Query>\n");
-  EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "name=\"c\""))),
-                                 HasSubstr("unknown robot control \"c\""), HasSubstr("the controls are: a, b")));
+  const std::string text = writeQueries(
+      "      <Query>\n        <RobotControl name=\"a\" init=\"0.1\" goal=\"0.2\"/>\n"
+      "        <RobotControl name=\"c\" init=\"0.1\" goal=\"0.2\"/>\n      </Query>\n");
+  EXPECT_THAT(readError(),
+              AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "name=\"c\""))),
+                    HasSubstr("unknown robot control \"c\""), HasSubstr("the controls are: a, b")));
 }
 
 TEST_F(KauthamBadInputTest, MissingRobotControl) {
-  const std::string text = writeQueries("      <Query>\n        <RobotControl name=\"b\" init=\"0.1\" goal=\"0.2\"/>\n"
-                                        "      </Query>\n");
+  const std::string text = writeQueries(
+      "      <Query>\n        <RobotControl name=\"b\" init=\"0.1\" goal=\"0.2\"/>\n"
+      "      </Query>\n");
   EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "<Query>"))),
                                  HasSubstr("no <RobotControl> for control \"a\"")));
 }
 
 TEST_F(KauthamBadInputTest, TwoObstaclesWithTheSameName) {
-  const std::string text = writeProblem(std::string(kArmRobot) + "  <Obstacle obstacle=\"obstacles/crate.urdf\"/>\n" +
-                                        "  <Obstacle obstacle=\"obstacles/crate.urdf\" scale=\"2\"/>\n");
+  const std::string text =
+      writeProblem(std::string(kArmRobot) + "  <Obstacle obstacle=\"obstacles/crate.urdf\"/>\n" +
+                   "  <Obstacle obstacle=\"obstacles/crate.urdf\" scale=\"2\"/>\n");
   EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "scale=\"2\""))),
                                  HasSubstr("\"crate_model\""), HasSubstr("<KauthamName>")));
 }
 
 TEST_F(KauthamBadInputTest, InitialAttachedObstacleNamingAnUnknownLink) {
-  const std::string text = writeProblem(std::string(kArmRobot) + "  <Obstacle obstacle=\"obstacles/crate.urdf\"/>\n" +
-                                        "  <InitialAttachedObstacle robot=\"arm\" link=\"hand\" obstacle=\"crate_model\"/>\n");
+  const std::string text =
+      writeProblem(std::string(kArmRobot) + "  <Obstacle obstacle=\"obstacles/crate.urdf\"/>\n" +
+                   "  <InitialAttachedObstacle robot=\"arm\" link=\"hand\" obstacle=\"crate_model\"/>\n");
   EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "<InitialAttachedObstacle"))),
                                  HasSubstr("<InitialAttachedObstacle>"), HasSubstr("\"hand\"")));
 }
@@ -192,18 +202,21 @@ TEST_F(KauthamBadInputTest, BadRoleInLang2ManipObject) {
 }
 
 TEST_F(KauthamBadInputTest, LimitsWithMinGreaterThanMax) {
-  const std::string text =
-      writeProblem("  <Robot robot=\"robots/arm.urdf\">\n    <Limits name=\"X\" min=\"2\" max=\"1\"/>\n  </Robot>\n");
-  EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "<Limits"))),
-                                 HasSubstr("min > max")));
+  const std::string text = writeProblem(
+      "  <Robot robot=\"robots/arm.urdf\">\n    <Limits name=\"X\" min=\"2\" max=\"1\"/>\n  </Robot>\n");
+  EXPECT_THAT(readError(),
+              AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "<Limits"))), HasSubstr("min > max")));
 }
 
 TEST_F(KauthamBadInputTest, RobotControlsOutOfRangeAtMappingTime) {
   writeQueries("");
   const KauthamProblem problem = read();
-  EXPECT_THAT(test::errorMessage([&] { (void)robotStatesFromControls(problem, {0.5}, "my values"); }),
-              AllOf(HasSubstr("my values has 1 control values"), HasSubstr(controlFile("arm.cntr").string())));
-  EXPECT_THAT(test::errorMessage([&] { (void)robotStatesFromControls(problem, {0.5, -0.1}, "my values"); }),
+  EXPECT_THAT(
+      test::errorMessage([&] { (void)robotStatesFromControls(problem, {0.5}, "my values"); }),
+      AllOf(HasSubstr("my values has 1 control values"), HasSubstr(controlFile("arm.cntr").string())));
+  EXPECT_THAT(test::errorMessage([&] {
+                (void)robotStatesFromControls(problem, {0.5, -0.1}, "my values");
+              }),
               AllOf(HasSubstr("my values"), HasSubstr("control \"b\""), HasSubstr("outside [0, 1]")));
 }
 

@@ -12,6 +12,8 @@
 namespace lang2manip {
 namespace {
 
+using test::controlSet;
+using test::simpleControl;
 using ::testing::ElementsAre;
 
 constexpr double kTolerance = 1e-9;
@@ -20,16 +22,8 @@ const char* const kArmRobot = "  <Robot robot=\"robots/arm.urdf\"/>\n";
 
 std::string obstacleXml(const std::string& name, const std::string& reference, const std::string& inner = "",
                         const std::string& scale = "1.0") {
-  return "  <Obstacle obstacle=\"" + reference + "\" scale=\"" + scale + "\">\n    <KauthamName name=\"" + name +
-         "\"/>\n" + inner + "  </Obstacle>\n";
-}
-
-std::string controlSet(const std::string& body) {
-  return "<?xml version=\"1.0\"?>\n<ControlSet>\n" + body + "</ControlSet>\n";
-}
-
-std::string simpleControl(const std::string& name, const std::string& dof) {
-  return "  <Control name=\"" + name + "\"><DOF name=\"" + dof + "\" value=\"1.0\"/></Control>\n";
+  return "  <Obstacle obstacle=\"" + reference + "\" scale=\"" + scale + "\">\n    <KauthamName name=\"" +
+         name + "\"/>\n" + inner + "  </Obstacle>\n";
 }
 
 std::string queryPlanner(const std::string& query) {
@@ -53,16 +47,18 @@ class KauthamSceneTest : public test::KauthamDirectoryTest {
 
 TEST_F(KauthamSceneTest, ObstacleControlsMoveObstaclesAndUncontrolledObstaclesStayAtHome) {
   writeControls("arm.cntr", controlSet(simpleControl("u", "arm/upper")));
-  writeControls("crates.cntr", controlSet("  <Offset><DOF name=\"crate/X3\" value=\"0.25\"/></Offset>\n" +
-                                          simpleControl("crate/x", "crate/X") +
-                                          simpleControl("crate/y", "crate/Y")));
-  writeProblem(std::string(kArmRobot) +
-               obstacleXml("crate", "obstacles/crate.urdf",
-                           "    <Limits name=\"X\" min=\"0\" max=\"2\"/><Limits name=\"Y\" min=\"-1\" max=\"1\"/>\n"
-                           "    <Home Z=\"0.5\"/>\n") +
-               obstacleXml("still", "obstacles/crate.urdf", "    <Home X=\"3\"/>\n") +
-               "  <Controls robot=\"controls/arm.cntr\" obstacle=\"controls/crates.cntr\"/>\n" +
-               queryPlanner("<InitObs>0.25 0.75</InitObs><Init>0.5</Init><Goal>0.5</Goal>"));
+  writeControls("crates.cntr",
+                controlSet("  <Offset><DOF name=\"crate/X1\" value=\"0\"/><DOF name=\"crate/X2\" value=\"0\"/>"
+                           "<DOF name=\"crate/X3\" value=\"0.25\"/></Offset>\n" +
+                           simpleControl("crate/x", "crate/X") + simpleControl("crate/y", "crate/Y")));
+  writeProblem(
+      std::string(kArmRobot) +
+      obstacleXml("crate", "obstacles/crate.urdf",
+                  "    <Limits name=\"X\" min=\"0\" max=\"2\"/><Limits name=\"Y\" min=\"-1\" max=\"1\"/>\n"
+                  "    <Home Z=\"0.5\"/>\n") +
+      obstacleXml("still", "obstacles/crate.urdf", "    <Home X=\"3\"/>\n") +
+      "  <Controls robot=\"controls/arm.cntr\" obstacle=\"controls/crates.cntr\"/>\n" +
+      queryPlanner("<InitObs>0.25 0.75</InitObs><Init>0.5</Init><Goal>0.5</Goal>"));
   const KauthamProblem problem = read();
   // x = 0 + 0.25*2 = 0.5, y = -1 + 0.75*2 = 0.5, no Z limits -> 0; yaw 2 pi * 0.25 = pi/2.
   // X_WO = T(0, 0, 0.5) * T(0.5, 0.5, 0) * Rz(pi/2).
@@ -82,9 +78,10 @@ TEST_F(KauthamSceneTest, ObstacleControlsMoveObstaclesAndUncontrolledObstaclesSt
 
 TEST_F(KauthamSceneTest, ObstacleControlFileWithOnlyOffsetsPlacesTheObstacle) {
   writeControls("crates.cntr", controlSet("  <Offset><DOF name=\"crate/X\" value=\"0.75\"/></Offset>\n"));
-  writeProblem(std::string(kArmRobot) +
-               obstacleXml("crate", "obstacles/crate.urdf", "    <Limits name=\"X\" min=\"0\" max=\"2\"/>\n") +
-               "  <Controls robot=\"\" obstacle=\"controls/crates.cntr\"/>\n");
+  writeProblem(
+      std::string(kArmRobot) +
+      obstacleXml("crate", "obstacles/crate.urdf", "    <Limits name=\"X\" min=\"0\" max=\"2\"/>\n") +
+      "  <Controls robot=\"\" obstacle=\"controls/crates.cntr\"/>\n");
   // x = 0 + 0.75*2 = 1.5
   EXPECT_TRUE(read().scene.object("crate").pose.translation().isApprox(Vector3(1.5, 0, 0), kTolerance));
 }
@@ -93,7 +90,8 @@ TEST_F(KauthamSceneTest, InitialAttachedObstacleKeepsItsPoseRelativeToTheLinkAtI
   writeControls("arm.cntr", controlSet(simpleControl("u", "arm/upper")));
   writeProblem(std::string(kArmRobot) +
                obstacleXml("crate", "obstacles/crate.urdf", "    <Home X=\"0.5\" Z=\"0.1\"/>\n") +
-               "  <Controls robot=\"controls/arm.cntr\"/>\n" + queryPlanner("<Init>0.75</Init><Goal>0.5</Goal>") +
+               "  <Controls robot=\"controls/arm.cntr\"/>\n" +
+               queryPlanner("<Init>0.75</Init><Goal>0.5</Goal>") +
                "  <InitialAttachedObstacle robot=\"arm\" link=\"upper\" obstacle=\"crate\"/>\n");
   const KauthamProblem problem = read();
   ASSERT_EQ(problem.initialAttachments.size(), 1U);
@@ -105,7 +103,8 @@ TEST_F(KauthamSceneTest, InitialAttachedObstacleKeepsItsPoseRelativeToTheLinkAtI
   // X_LO = X_WL^-1 * X_WO = Rz(-0.5) * T(0.5, 0, 0) = (0.5 cos 0.5, -0.5 sin 0.5, 0), Rz(-0.5).
   const Pose& X_LO = attachment->linkToObject;
   EXPECT_TRUE(X_LO.translation().isApprox(Vector3(0.5 * std::cos(0.5), -0.5 * std::sin(0.5), 0), kTolerance));
-  EXPECT_TRUE((X_LO.linear() * Vector3::UnitX()).isApprox(Vector3(std::cos(0.5), -std::sin(0.5), 0), kTolerance));
+  EXPECT_TRUE(
+      (X_LO.linear() * Vector3::UnitX()).isApprox(Vector3(std::cos(0.5), -std::sin(0.5), 0), kTolerance));
   EXPECT_TRUE(problem.initialAttachments[0].linkToObject.isApprox(X_LO, kTolerance));
 }
 
@@ -144,11 +143,12 @@ TEST_F(KauthamSceneTest, WithoutTheElementAWideFlatObstacleIsASupportAndOthersHa
 }
 
 TEST_F(KauthamSceneTest, ObstacleNameDefaultsToTheUrdfNameAndEntitiesRecordHowTheyWereWritten) {
-  writeProblem("  <Robot robot=\"robots/arm.urdf\"><InvKinematic name=\"UR5\"/></Robot>\n"
-               "  <Obstacle obstacle=\"obstacles/table.urdf\">\n"
-               "    <Home X=\"1\" Y=\"2\" Z=\"3\" WX=\"1\" WY=\"0\" WZ=\"0\" TH=\"3.141592653589793\"/>\n"
-               "    <Limits name=\"Z\" min=\"0\" max=\"1\"/>\n"
-               "  </Obstacle>\n");
+  writeProblem(
+      "  <Robot robot=\"robots/arm.urdf\"><InvKinematic name=\"UR5\"/></Robot>\n"
+      "  <Obstacle obstacle=\"obstacles/table.urdf\">\n"
+      "    <Home X=\"1\" Y=\"2\" Z=\"3\" WX=\"1\" WY=\"0\" WZ=\"0\" TH=\"3.141592653589793\"/>\n"
+      "    <Limits name=\"Z\" min=\"0\" max=\"1\"/>\n"
+      "  </Obstacle>\n");
   const KauthamProblem problem = read();
   EXPECT_EQ(problem.robots[0].inverseKinematics, "UR5");
   EXPECT_TRUE(problem.robots[0].isRobot);

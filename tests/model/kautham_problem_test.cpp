@@ -2,17 +2,22 @@
 // formula. Every expected joint value is computed by hand from kautham-format.md:
 //   p_d = clamp(sum_j eigValue_j * k_dj * (c_j - 0.5) + offset_d, 0, 1)  (offset 0.5 by default)
 //   q_d = lower + p_d * (upper - lower)  (continuous joints: lower = -2 pi, upper = 2 pi)
+#include "lang2manip/model/kautham_problem.hpp"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <numbers>
 
 #include "kautham_test_support.hpp"
-#include "lang2manip/model/kautham_problem.hpp"
 
 namespace lang2manip {
 namespace {
 
+using test::controlSet;
+using test::oldQuery;
+using test::plannerWithQueries;
+using test::simpleControl;
 using ::testing::ElementsAre;
 using ::testing::ElementsAreArray;
 
@@ -22,25 +27,6 @@ constexpr double kTolerance = 1e-9;
 std::string robotXml(const std::string& inner = "", const std::string& reference = "robots/arm.urdf",
                      const std::string& scale = "1.0") {
   return "  <Robot robot=\"" + reference + "\" scale=\"" + scale + "\">\n" + inner + "  </Robot>\n";
-}
-
-std::string controlSet(const std::string& body) {
-  return "<?xml version=\"1.0\"?>\n<ControlSet>\n" + body + "</ControlSet>\n";
-}
-
-/// A control named `name` moving one DOF with coefficient 1.
-std::string simpleControl(const std::string& name, const std::string& dof) {
-  return "  <Control name=\"" + name + "\" eigValue=\"1.0\"><DOF name=\"" + dof +
-         "\" value=\"1.0\"/></Control>\n";
-}
-
-std::string planner(const std::string& queries) {
-  return "  <Planner><Parameters><Name>omplRRT</Name></Parameters>\n    <Queries>\n" + queries +
-         "    </Queries>\n  </Planner>\n";
-}
-
-std::string oldQuery(const std::string& init, const std::string& goal) {
-  return "      <Query><Init>" + init + "</Init><Goal>" + goal + "</Goal></Query>\n";
 }
 
 /// Configuration of robot `robot` for control values `controls`.
@@ -67,9 +53,9 @@ class KauthamProblemTest : public test::KauthamDirectoryTest {
 TEST_F(KauthamProblemTest, OldQueryFormKeepsSeveralInitGoalPairsAndQueriesInOrder) {
   writeControls("arm.cntr", controlSet(simpleControl("a", "arm/upper") + simpleControl("b", "arm/fore")));
   writeProblem(robotXml() + "  <Controls robot=\"controls/arm.cntr\"/>\n" +
-               planner("      <Query><Init>0.1 0.2</Init><Goal>0.3 0.4</Goal>\n"
-                       "             <Init>0.5 0.6</Init><Goal>0.7 0.8</Goal></Query>\n" +
-                       oldQuery("1 0", "0 1")));
+               plannerWithQueries("      <Query><Init>0.1 0.2</Init><Goal>0.3 0.4</Goal>\n"
+                                  "             <Init>0.5 0.6</Init><Goal>0.7 0.8</Goal></Query>\n" +
+                                  oldQuery("1 0", "0 1")));
   const KauthamProblem problem = read();
   ASSERT_EQ(problem.queries.size(), 3U);
   EXPECT_THAT(problem.queries[0].init, ElementsAre(0.1, 0.2));
@@ -83,23 +69,23 @@ TEST_F(KauthamProblemTest, OldQueryFormKeepsSeveralInitGoalPairsAndQueriesInOrde
 }
 
 TEST_F(KauthamProblemTest, NewQueryFormIsReorderedToTheControlFileOrder) {
-  writeControls("arm.cntr", controlSet(simpleControl("first", "arm/upper") +
-                                       simpleControl("second", "arm/fore") +
-                                       simpleControl("third", "arm/slider")));
-  writeControls("crates.cntr", controlSet(simpleControl("crate/x", "crate/X") +
-                                          simpleControl("crate/y", "crate/Y")));
+  writeControls("arm.cntr",
+                controlSet(simpleControl("first", "arm/upper") + simpleControl("second", "arm/fore") +
+                           simpleControl("third", "arm/slider")));
+  writeControls("crates.cntr",
+                controlSet(simpleControl("crate/x", "crate/X") + simpleControl("crate/y", "crate/Y")));
   const std::string crate =
       "  <Obstacle obstacle=\"obstacles/crate.urdf\"><KauthamName name=\"crate\"/>\n"
       "    <Limits name=\"X\" min=\"0\" max=\"1\"/><Limits name=\"Y\" min=\"0\" max=\"1\"/>\n"
       "  </Obstacle>\n";
   writeProblem(robotXml() + crate +
                "  <Controls robot=\"controls/arm.cntr\" obstacle=\"controls/crates.cntr\"/>\n" +
-               planner("      <Query>\n"
-                       "        <ObstacleControl name=\"crate/y\" default=\"0.9\"/>\n"
-                       "        <RobotControl name=\"third\" init=\"0.3\" goal=\"0.33\"/>\n"
-                       "        <RobotControl name=\"first\" init=\"0.1\" goal=\"0.11\"/>\n"
-                       "        <RobotControl name=\"second\" init=\"0.2\" goal=\"0.22\"/>\n"
-                       "      </Query>\n"));
+               plannerWithQueries("      <Query>\n"
+                                  "        <ObstacleControl name=\"crate/y\" default=\"0.9\"/>\n"
+                                  "        <RobotControl name=\"third\" init=\"0.3\" goal=\"0.33\"/>\n"
+                                  "        <RobotControl name=\"first\" init=\"0.1\" goal=\"0.11\"/>\n"
+                                  "        <RobotControl name=\"second\" init=\"0.2\" goal=\"0.22\"/>\n"
+                                  "      </Query>\n"));
   const KauthamProblem problem = read();
   ASSERT_EQ(problem.queries.size(), 1U);
   EXPECT_THAT(problem.queries[0].init, ElementsAre(0.1, 0.2, 0.3));
@@ -110,16 +96,17 @@ TEST_F(KauthamProblemTest, NewQueryFormIsReorderedToTheControlFileOrder) {
 
 TEST_F(KauthamProblemTest, OldQueryFormReadsInitObsAndObstacleSamplesDefaultToHalf) {
   writeControls("arm.cntr", controlSet(simpleControl("a", "arm/upper")));
-  writeControls("crates.cntr", controlSet(simpleControl("crate/x", "crate/X") +
-                                          simpleControl("crate/y", "crate/Y")));
+  writeControls("crates.cntr",
+                controlSet(simpleControl("crate/x", "crate/X") + simpleControl("crate/y", "crate/Y")));
   const std::string crate =
       "  <Obstacle obstacle=\"obstacles/crate.urdf\"><KauthamName name=\"crate\"/>\n"
       "    <Limits name=\"X\" min=\"0\" max=\"1\"/><Limits name=\"Y\" min=\"0\" max=\"1\"/>\n"
       "  </Obstacle>\n";
   writeProblem(robotXml() + crate +
                "  <Controls robot=\"controls/arm.cntr\" obstacle=\"controls/crates.cntr\"/>\n" +
-               planner("      <Query><InitObs>0.25 0.75</InitObs><Init>0.1</Init><Goal>0.2</Goal></Query>\n" +
-                       oldQuery("0.3", "0.4")));
+               plannerWithQueries(
+                   "      <Query><InitObs>0.25 0.75</InitObs><Init>0.1</Init><Goal>0.2</Goal></Query>\n" +
+                   oldQuery("0.3", "0.4")));
   const KauthamProblem problem = read();
   ASSERT_EQ(problem.queries.size(), 2U);
   EXPECT_THAT(problem.queries[0].obstacles, ElementsAre(0.25, 0.75));
@@ -141,7 +128,7 @@ TEST_F(KauthamProblemTest, CoupledControlsWithOffsetsEigValuesAndNegativeCoeffic
   </Control>
 )"));
   writeProblem(robotXml() + "  <Controls robot=\"controls/arm.cntr\"/>\n" +
-               planner(oldQuery("0.9 0.3", "0.1 1.0")));
+               plannerWithQueries(oldQuery("0.9 0.3", "0.1 1.0")));
   const KauthamProblem problem = read();
   const VectorX init = configurationFor(problem, problem.queries[0].init);
   // upper:  p = 0.3 + 0.8*1*(0.9-0.5) = 0.62                          q = -1 + 0.62*2 = 0.24
@@ -166,7 +153,7 @@ TEST_F(KauthamProblemTest, OffsetWithoutControlPlacesTheJoint) {
   writeControls("arm.cntr", controlSet("  <Offset><DOF name=\"arm/fore\" value=\"0.1\"/></Offset>\n" +
                                        simpleControl("a", "arm/upper")));
   writeProblem(robotXml() + "  <Controls robot=\"controls/arm.cntr\"/>\n" +
-               planner(oldQuery("0.5", "0.5")));
+               plannerWithQueries(oldQuery("0.5", "0.5")));
   const KauthamProblem problem = read();
   // fore: p = 0.1 -> q = -2 + 0.1*5 = -1.5
   EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.5}), "elbow"), -1.5, kTolerance);
@@ -175,7 +162,7 @@ TEST_F(KauthamProblemTest, OffsetWithoutControlPlacesTheJoint) {
 TEST_F(KauthamProblemTest, ContinuousJointsMapOverPlusMinusTwoPi) {
   writeControls("arm.cntr", controlSet(simpleControl("spin", "arm/wheel")));
   writeProblem(robotXml() + "  <Controls robot=\"controls/arm.cntr\"/>\n" +
-               planner(oldQuery("0.9", "0.1")));
+               plannerWithQueries(oldQuery("0.9", "0.1")));
   const KauthamProblem problem = read();
   // q = -2 pi + 0.9 * 4 pi = 1.6 pi (beyond the model's own +-pi range).
   EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.9}), "spin"), 1.6 * kPi, kTolerance);
@@ -183,20 +170,33 @@ TEST_F(KauthamProblemTest, ContinuousJointsMapOverPlusMinusTwoPi) {
   EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.1}), "spin"), -1.6 * kPi, kTolerance);
 }
 
+TEST_F(KauthamProblemTest, SafetyControllerSoftLimitsReplaceTheUrdfLimits) {
+  // test::twoJointUrdf(): elbow (child "tip") has <limit> [-2, 2] and soft limits [-1.9, 1.8].
+  writeModel("robots/soft.urdf", test::twoJointUrdf());
+  writeControls("soft.cntr", controlSet(simpleControl("e", "arm/tip")));
+  writeProblem(robotXml("", "robots/soft.urdf") + "  <Controls robot=\"controls/soft.cntr\"/>\n" +
+               plannerWithQueries(oldQuery("0.25", "1")));
+  const KauthamProblem problem = read();
+  // q = -1.9 + 0.25 * (1.8 + 1.9) = -0.975; goal: 1.8.
+  EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.25}), "elbow"), -0.975, kTolerance);
+  EXPECT_NEAR(jointValue(problem, configurationFor(problem, {1.0}), "elbow"), 1.8, kTolerance);
+}
+
 TEST_F(KauthamProblemTest, ScaleMultipliesPrismaticLimitsButNotRevoluteOnes) {
   writeControls("arm.cntr", controlSet(simpleControl("s", "arm/slider") + simpleControl("u", "arm/upper")));
   writeProblem(robotXml("", "robots/arm.urdf", "2.0") + "  <Controls robot=\"controls/arm.cntr\"/>\n" +
-               planner(oldQuery("1 1", "0 0")));
+               plannerWithQueries(oldQuery("1 1", "0 0")));
   const KauthamProblem problem = read();
   const VectorX q = configurationFor(problem, {1.0, 0.75});
-  EXPECT_NEAR(jointValue(problem, q, "slide"), 0.8, kTolerance);      // 0 + 1*(2*0.4)
-  EXPECT_NEAR(jointValue(problem, q, "shoulder"), 0.5, kTolerance);   // -1 + 0.75*2
+  EXPECT_NEAR(jointValue(problem, q, "slide"), 0.8, kTolerance);     // 0 + 1*(2*0.4)
+  EXPECT_NEAR(jointValue(problem, q, "shoulder"), 0.5, kTolerance);  // -1 + 0.75*2
   EXPECT_DOUBLE_EQ(problem.robots[0].scale, 2.0);
 }
 
 TEST_F(KauthamProblemTest, HomeIsATranslationAndAnAxisAngleRotation) {
-  writeProblem(robotXml("    <Home X=\"1\" Y=\"2\" Z=\"3\" WX=\"0\" WY=\"0\" WZ=\"1\" "
-                        "TH=\"1.5707963267948966\"/>\n"));
+  writeProblem(
+      robotXml("    <Home X=\"1\" Y=\"2\" Z=\"3\" WX=\"0\" WY=\"0\" WZ=\"1\" "
+               "TH=\"1.5707963267948966\"/>\n"));
   const KauthamProblem problem = read();
   const Pose& X_WB = problem.scene.robots()[0].basePose;
   EXPECT_TRUE(X_WB.translation().isApprox(Vector3(1, 2, 3), kTolerance));
@@ -206,7 +206,8 @@ TEST_F(KauthamProblemTest, HomeIsATranslationAndAnAxisAngleRotation) {
 }
 
 TEST_F(KauthamProblemTest, AllZeroHomeAxisIsTheIdentityWhateverTheAngle) {
-  writeProblem(robotXml("    <Home TH=\"1.0\" WZ=\"0.0\" WY=\"0.0\" WX=\"0.0\" Z=\"0.01\" Y=\"0.0\" X=\"0.0\"/>\n"));
+  writeProblem(
+      robotXml("    <Home TH=\"1.0\" WZ=\"0.0\" WY=\"0.0\" WX=\"0.0\" Z=\"0.01\" Y=\"0.0\" X=\"0.0\"/>\n"));
   const Pose X_WB = read().scene.robots()[0].basePose;
   EXPECT_TRUE(X_WB.linear().isApprox(Matrix3::Identity(), kTolerance));
   EXPECT_TRUE(X_WB.translation().isApprox(Vector3(0, 0, 0.01), kTolerance));
@@ -223,7 +224,7 @@ TEST_F(KauthamProblemTest, HomeAxisIsNotNormalisedBeforeBuildingTheQuaternion) {
 TEST_F(KauthamProblemTest, KauthamNameRenamesTheRobotAndItsDofs) {
   writeControls("arm.cntr", controlSet(simpleControl("a", "lefty/upper")));
   writeProblem(robotXml("    <KauthamName name=\"lefty\"/>\n") +
-               "  <Controls robot=\"controls/arm.cntr\"/>\n" + planner(oldQuery("0.75", "0.25")));
+               "  <Controls robot=\"controls/arm.cntr\"/>\n" + plannerWithQueries(oldQuery("0.75", "0.25")));
   const KauthamProblem problem = read();
   EXPECT_EQ(problem.scene.robots()[0].name, "lefty");
   EXPECT_EQ(problem.robots[0].name, "lefty");
@@ -234,12 +235,15 @@ TEST_F(KauthamProblemTest, KauthamNameRenamesTheRobotAndItsDofs) {
 }
 
 TEST_F(KauthamProblemTest, BaseXYZControlsTranslateInTheHomeFrame) {
-  writeControls("arm.cntr", controlSet(simpleControl("x", "arm/X") + simpleControl("y", "arm/Y")));
+  writeControls("arm.cntr", controlSet("  <Offset><DOF name=\"arm/X1\" value=\"0\"/><DOF name=\"arm/X2\" value=\"0\"/>"
+                                       "<DOF name=\"arm/X3\" value=\"0\"/></Offset>\n" +
+                                       simpleControl("x", "arm/X") + simpleControl("y", "arm/Y")));
   writeProblem(robotXml("    <Limits name=\"X\" min=\"-1\" max=\"1\"/>\n"
                         "    <Limits name=\"Y\" min=\"0\" max=\"2\"/>\n"
                         "    <Limits name=\"Z\" min=\"0.5\" max=\"0.5\"/>\n"
                         "    <Home X=\"1\" Y=\"2\" Z=\"3\" WZ=\"1\" TH=\"1.5707963267948966\"/>\n") +
-               "  <Controls robot=\"controls/arm.cntr\"/>\n" + planner(oldQuery("0.75 0.25", "0 1")));
+               "  <Controls robot=\"controls/arm.cntr\"/>\n" +
+               plannerWithQueries(oldQuery("0.75 0.25", "0 1")));
   const KauthamProblem problem = read();
   // x = -1 + 0.75*2 = 0.5, y = 0 + 0.25*2 = 0.5, z = 0.5 (min = max).
   // X_WB = Home * T(x, y, z): (1,2,3) + Rz(pi/2) (0.5, 0.5, 0.5) = (1 - 0.5, 2 + 0.5, 3 + 0.5).
@@ -252,6 +256,18 @@ TEST_F(KauthamProblemTest, BaseXYZControlsTranslateInTheHomeFrame) {
   EXPECT_THAT(problem.robots[0].limits.x, ::testing::Optional(std::pair{-1.0, 1.0}));
 }
 
+TEST_F(KauthamProblemTest, UnnamedRotationDofsOfAMovingBaseTakeKauthamsDefaultOffset) {
+  writeControls("arm.cntr", controlSet(simpleControl("x", "arm/X")));
+  writeProblem(robotXml("    <Limits name=\"X\" min=\"0\" max=\"2\"/>\n") +
+               "  <Controls robot=\"controls/arm.cntr\"/>\n" + plannerWithQueries(oldQuery("0.5", "0.5")));
+  const Pose X_WB = read().scene.robots()[0].basePose;
+  // X1 = X2 = X3 = 0.5: qx = sqrt(.5) sin(pi) = 0, qy = sqrt(.5) cos(pi) = -sqrt(.5),
+  // qz = sqrt(.5) sin(pi/2) = sqrt(.5), qw = sqrt(.5) cos(pi/2) = 0: a half turn about (0,-1,1)/sqrt(2).
+  const Quaternion expected(0.0, 0.0, -std::sqrt(0.5), std::sqrt(0.5));
+  EXPECT_TRUE(X_WB.linear().isApprox(expected.toRotationMatrix(), kTolerance));
+  EXPECT_TRUE(X_WB.translation().isApprox(Vector3(1, 0, 0), kTolerance));
+}
+
 TEST_F(KauthamProblemTest, X3IsAYawOfTwoPiX3AfterTheTranslation) {
   writeControls("arm.cntr", controlSet(R"(  <Offset>
     <DOF name="arm/X1" value="0"/><DOF name="arm/X2" value="0"/><DOF name="arm/X3" value="0.25"/>
@@ -259,7 +275,7 @@ TEST_F(KauthamProblemTest, X3IsAYawOfTwoPiX3AfterTheTranslation) {
 )" + simpleControl("x", "arm/X")));
   writeProblem(robotXml("    <Limits name=\"X\" min=\"0\" max=\"2\"/>\n"
                         "    <Home X=\"1\" WZ=\"1\" TH=\"1.5707963267948966\"/>\n") +
-               "  <Controls robot=\"controls/arm.cntr\"/>\n" + planner(oldQuery("0.25", "0.25")));
+               "  <Controls robot=\"controls/arm.cntr\"/>\n" + plannerWithQueries(oldQuery("0.25", "0.25")));
   const Pose X_WB = read().scene.robots()[0].basePose;
   // x = 0 + 0.25*2 = 0.5: (1,0,0) + Rz(pi/2) (0.5, 0, 0) = (1, 0.5, 0); yaw pi/2 + 2 pi*0.25 = pi.
   EXPECT_TRUE(X_WB.translation().isApprox(Vector3(1, 0.5, 0), kTolerance));
@@ -269,10 +285,12 @@ TEST_F(KauthamProblemTest, X3IsAYawOfTwoPiX3AfterTheTranslation) {
 
 TEST_F(KauthamProblemTest, X1X2X3UseTheUniformQuaternionMap) {
   // X1 = 1, X2 = 0.25: qx = sin(pi/2) = 1, qy = cos(pi/2) = 0, qz = qw = 0: a half turn about x.
-  writeControls("arm.cntr", controlSet(R"(  <Offset><DOF name="arm/X1" value="1"/><DOF name="arm/X2" value="0.25"/>
+  writeControls("arm.cntr",
+                controlSet(R"(  <Offset><DOF name="arm/X1" value="1"/><DOF name="arm/X2" value="0.25"/>
     <DOF name="arm/X3" value="0"/></Offset>
 )" + simpleControl("u", "arm/upper")));
-  writeProblem(robotXml() + "  <Controls robot=\"controls/arm.cntr\"/>\n" + planner(oldQuery("0.5", "0.5")));
+  writeProblem(robotXml() + "  <Controls robot=\"controls/arm.cntr\"/>\n" +
+               plannerWithQueries(oldQuery("0.5", "0.5")));
   const Pose X_WB = read().scene.robots()[0].basePose;
   EXPECT_TRUE((X_WB.linear() * Vector3::UnitX()).isApprox(Vector3::UnitX(), kTolerance));
   EXPECT_TRUE((X_WB.linear() * Vector3::UnitY()).isApprox(-Vector3::UnitY(), kTolerance));
@@ -282,9 +300,11 @@ TEST_F(KauthamProblemTest, X1X2X3UseTheUniformQuaternionMap) {
 
 TEST_F(KauthamProblemTest, ControlledX3YawsFromItsOffset) {
   // X1 = X2 = 0, X3: p = 0.5 + (0.625 - 0.5) = 0.625 -> yaw 2 pi * 0.625 = 1.25 pi.
-  writeControls("arm.cntr", controlSet(R"(  <Offset><DOF name="arm/X1" value="0"/><DOF name="arm/X2" value="0"/></Offset>
+  writeControls("arm.cntr",
+                controlSet(R"(  <Offset><DOF name="arm/X1" value="0"/><DOF name="arm/X2" value="0"/></Offset>
 )" + simpleControl("yaw", "arm/X3")));
-  writeProblem(robotXml() + "  <Controls robot=\"controls/arm.cntr\"/>\n" + planner(oldQuery("0.625", "0.5")));
+  writeProblem(robotXml() + "  <Controls robot=\"controls/arm.cntr\"/>\n" +
+               plannerWithQueries(oldQuery("0.625", "0.5")));
   const Pose X_WB = read().scene.robots()[0].basePose;
   const double half = std::sqrt(0.5);
   EXPECT_TRUE((X_WB.linear() * Vector3::UnitX()).isApprox(Vector3(-half, -half, 0), kTolerance));
@@ -294,7 +314,7 @@ TEST_F(KauthamProblemTest, RobotWhoseControlsMoveNoBaseDofStaysAtHomeDespiteLimi
   // Kautham moves a base only when the control file names one of its X..X3 DOFs.
   writeControls("arm.cntr", controlSet(simpleControl("u", "arm/upper")));
   writeProblem(robotXml("    <Limits name=\"X\" min=\"0\" max=\"2\"/>\n    <Home X=\"1\"/>\n") +
-               "  <Controls robot=\"controls/arm.cntr\"/>\n" + planner(oldQuery("0.5", "0.5")));
+               "  <Controls robot=\"controls/arm.cntr\"/>\n" + plannerWithQueries(oldQuery("0.5", "0.5")));
   const Pose X_WB = read().scene.robots()[0].basePose;
   EXPECT_TRUE(X_WB.translation().isApprox(Vector3(1, 0, 0), kTolerance));
 }
@@ -302,7 +322,8 @@ TEST_F(KauthamProblemTest, RobotWhoseControlsMoveNoBaseDofStaysAtHomeDespiteLimi
 TEST_F(KauthamProblemTest, EmptyRobotControlsGiveOneControlPerJointAndPerMovableBaseAxis) {
   writeProblem(robotXml("    <Limits name=\"X\" min=\"0\" max=\"2\"/>\n"
                         "    <Limits name=\"Z\" min=\"1\" max=\"1\"/>\n") +
-               "  <Controls robot=\"\"/>\n" + planner(oldQuery("0.25 0.75 0.5 0.5 1", "0.5 0.5 0.5 0.5 0.5")));
+               "  <Controls robot=\"\"/>\n" +
+               plannerWithQueries(oldQuery("0.25 0.75 0.5 0.5 1", "0.5 0.5 0.5 0.5 0.5")));
   const KauthamProblem problem = read();
   // Z has min = max: no control for it.
   EXPECT_THAT(problem.robotControls.controlNames(),
@@ -329,7 +350,7 @@ TEST_F(KauthamProblemTest, MissingControlsAndQueriesPlaceTheRobotAtTheMiddleOfIt
 TEST_F(KauthamProblemTest, SceneHoldsTheRobotsAtTheFirstQueryInit) {
   writeControls("arm.cntr", controlSet(simpleControl("a", "arm/upper") + simpleControl("b", "arm/fore")));
   writeProblem(robotXml() + "  <Controls robot=\"controls/arm.cntr\"/>\n" +
-               planner(oldQuery("0.25 1", "0 0") + oldQuery("1 1", "0 0")));
+               plannerWithQueries(oldQuery("0.25 1", "0 0") + oldQuery("1 1", "0 0")));
   const KauthamProblem problem = read();
   const VectorX& q = problem.scene.robots()[0].configuration;
   EXPECT_NEAR(jointValue(problem, q, "shoulder"), -0.5, kTolerance);  // -1 + 0.25*2
@@ -343,7 +364,7 @@ TEST_F(KauthamProblemTest, MimicTagsAreIgnoredSoEachCoupledFingerFollowsTheFormu
   </Control>
 )"));
   writeProblem(robotXml("", "robots/hand.urdf") + "  <Controls robot=\"controls/hand.cntr\"/>\n" +
-               planner(oldQuery("0.75", "0.25")));
+               plannerWithQueries(oldQuery("0.75", "0.25")));
   const KauthamProblem problem = read();
   EXPECT_EQ(problem.scene.robots()[0].model->variableCount(), 2);
   const VectorX q = configurationFor(problem, {0.75});
@@ -359,7 +380,8 @@ TEST_F(KauthamProblemTest, SeveralRobotsAreMappedIndependently) {
   writeProblem(robotXml("    <KauthamName name=\"left\"/>\n    <Home X=\"-1\"/>\n") +
                robotXml("    <KauthamName name=\"right\"/>\n    <Home X=\"1\"/>\n"
                         "    <Limits name=\"X\" min=\"0\" max=\"1\"/>\n") +
-               "  <Controls robot=\"controls/arms.cntr\"/>\n" + planner(oldQuery("1 0 0.5", "0 1 1")));
+               "  <Controls robot=\"controls/arms.cntr\"/>\n" +
+               plannerWithQueries(oldQuery("1 0 0.5", "0 1 1")));
   const KauthamProblem problem = read();
   ASSERT_EQ(problem.scene.robots().size(), 2U);
   EXPECT_EQ(problem.scene.robots()[1].name, "right");
@@ -379,7 +401,8 @@ TEST_F(KauthamProblemTest, ModelDirectoriesFromTheOptionsAreTriedLast) {
   options.modelDirectories = {root() / "elsewhere"};
   const KauthamProblem problem = read(options);
   EXPECT_EQ(problem.scene.robots()[0].name, "other");
-  EXPECT_EQ(problem.robots[0].resolvedPath, (root() / "elsewhere" / "robots" / "other.urdf").lexically_normal());
+  EXPECT_EQ(problem.robots[0].resolvedPath,
+            (root() / "elsewhere" / "robots" / "other.urdf").lexically_normal());
 }
 
 TEST_F(KauthamProblemTest, PlannerBlockIsKeptVerbatimInFileOrder) {

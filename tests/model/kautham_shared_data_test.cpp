@@ -93,7 +93,8 @@ void expectTranslation(const Pose& pose, const Vector3& expected) {
 
 /// Expects the rotation of `pose` to be a yaw of `angle`.
 void expectYaw(const Pose& pose, double angle) {
-  EXPECT_TRUE(pose.linear().isApprox(Eigen::AngleAxisd(angle, Vector3::UnitZ()).toRotationMatrix(), kTolerance))
+  EXPECT_TRUE(
+      pose.linear().isApprox(Eigen::AngleAxisd(angle, Vector3::UnitZ()).toRotationMatrix(), kTolerance))
       << pose.linear();
 }
 
@@ -166,7 +167,8 @@ TEST(KauthamSharedData, Ur5ConstrainedOrientationReordersNamedControls) {
   // red_wall: Home TH=1.57 about y at (0.2, 0.4, 0).
   const Pose& wall = problem.scene.object("red_wall").pose;
   expectTranslation(wall, Vector3(0.2, 0.4, 0));
-  EXPECT_TRUE((wall.linear() * Vector3::UnitZ()).isApprox(Vector3(std::sin(1.57), 0, std::cos(1.57)), kTolerance));
+  EXPECT_TRUE(
+      (wall.linear() * Vector3::UnitZ()).isApprox(Vector3(std::sin(1.57), 0, std::cos(1.57)), kTolerance));
 }
 
 TEST(KauthamSharedData, CubeMazeMovesTheFreeFlyingCubeInTheHomeFrame) {
@@ -190,12 +192,10 @@ struct Tx90Joint {
   double lower;
   double upper;
 };
-constexpr Tx90Joint kTx90[] = {{"joint_1", -3.141592653589793, 3.141592653589793},
-                               {"joint_2", -2.2689280275926285, 2.5743606466916362},
-                               {"joint_3", -2.530727415391778, 2.530727415391778},
-                               {"joint_4", -4.71238898038469, 4.71238898038469},
-                               {"joint_5", -2.007128639793479, 2.443460952792061},
-                               {"joint_6", -4.71238898038469, 4.71238898038469}};
+constexpr Tx90Joint kTx90[] = {
+    {"joint_1", -3.141592653589793, 3.141592653589793}, {"joint_2", -2.2689280275926285, 2.5743606466916362},
+    {"joint_3", -2.530727415391778, 2.530727415391778}, {"joint_4", -4.71238898038469, 4.71238898038469},
+    {"joint_5", -2.007128639793479, 2.443460952792061}, {"joint_6", -4.71238898038469, 4.71238898038469}};
 
 /// Arm joints for control values `c` (offsets 0.5, coefficient 1).
 void expectTx90Arm(const KauthamProblem& problem, const VectorX& q, const std::vector<double>& c) {
@@ -206,10 +206,13 @@ void expectTx90Arm(const KauthamProblem& problem, const VectorX& q, const std::v
 
 TEST(KauthamSharedData, Tx90TwoCanMapsItsQuery) {
   LANG2MANIP_REQUIRE_SHARED_DATA(shared);
-  const KauthamProblem problem = loadProblem(shared, "OMPL_geo_demos/TX90_IOC/OMPL_RRTConnect_TX90_TwoCan.xml");
+  const KauthamProblem problem =
+      loadProblem(shared, "OMPL_geo_demos/TX90_IOC/OMPL_RRTConnect_TX90_TwoCan.xml");
   const KauthamQuery& query = problem.queries.at(0);
-  expectTx90Arm(problem, statesFor(problem, query.init).configurations[0], {0.373, 0.359, 0.969, 0.332, 0.6, 0.837});
-  expectTx90Arm(problem, statesFor(problem, query.goal).configurations[0], {0.29, 0.575, 0.842, 0.492, 0.304, 0.665});
+  expectTx90Arm(problem, statesFor(problem, query.init).configurations[0],
+                {0.373, 0.359, 0.969, 0.332, 0.6, 0.837});
+  expectTx90Arm(problem, statesFor(problem, query.goal).configurations[0],
+                {0.29, 0.575, 0.842, 0.492, 0.304, 0.665});
   // Home: TH = 3.1415926536 about z at (-0.2005, 0.2301, 0).
   const Pose& base = problem.scene.robots()[0].basePose;
   expectTranslation(base, Vector3(-0.2005, 0.2301, 0));
@@ -234,7 +237,8 @@ TEST(KauthamSharedData, Tx90GripperCouplesSixFingerJointsWithOffsets) {
   const double fingerLower = -2.96705911111;
   const double fingerSpan = 2 * 2.96705911111;
   for (const std::string side : {"right", "left"}) {
-    // driver: offset 0.505, k 0.853: p = 0.505 + 0.853*(0 - 0.5) = 0.0785; goal 0.505 + 0.853*(-0.301) = 0.248247
+    // driver: offset 0.505, k 0.853: p = 0.505 + 0.853*(0 - 0.5) = 0.0785; goal 0.505 + 0.853*(-0.301) =
+    // 0.248247
     expectJoint(problem, init, "gripper_" + side + "_driver_joint", 0.0785 * driverSpan);
     expectJoint(problem, goal, "gripper_" + side + "_driver_joint", 0.248247 * driverSpan);
     // follower: offset 0.418, k -0.099: p = 0.418 + 0.0495 = 0.4675; goal 0.418 + 0.029799 = 0.447799
@@ -263,7 +267,8 @@ TEST(KauthamSharedData, Ur3eGripperCouplesMirroredFingers) {
   expectJoint(problem, init, "l_tip", -0.523599 + 0.8 * span);
   expectJoint(problem, init, "r_out", -0.610865 + 0.2 * span);
   expectJoint(problem, init, "r_tip", -0.610865 + 0.2 * span);
-  const VectorX goal = statesFor(problem, query.goal).configurations[0];  // 0.548 0.342 0.326 0.375 0.625 0.55 0.89
+  const VectorX goal =
+      statesFor(problem, query.goal).configurations[0];  // 0.548 0.342 0.326 0.375 0.625 0.55 0.89
   expectJoint(problem, goal, "shoulder_pan_joint", -6.28 + 0.548 * 12.56);
   expectJoint(problem, goal, "shoulder_lift_joint", -6.28 + 0.342 * 12.56);
   expectJoint(problem, goal, "elbow_joint", -3.14 + 0.326 * 6.28);
@@ -328,9 +333,16 @@ TEST(KauthamSharedData, BoxesWorldR2PlacesTheCubeAndTenControlledBoxes) {
   expectTranslation(statesFor(problem, query.init).basePoses[0], Vector3(0.6, 0.1, 0.112));
   expectTranslation(statesFor(problem, query.goal).basePoses[0], Vector3(0.85, 0.85, 0.112));
   // InitObs pairs (x, y) for plainbox_1..10; Z in [0.056, 0.056].
-  expectPlainBoxes(problem, {{0.2, 0.2, 0.056}, {0.2, 0.4, 0.056}, {0.2, 0.6, 0.056}, {0.2, 0.8, 0.056},
-                             {0.8, 0.2, 0.056}, {0.8, 0.4, 0.056}, {0.8, 0.6, 0.056}, {0.8, 0.8, 0.056},
-                             {0.4, 0.4, 0.056}, {0.6, 0.6, 0.056}});
+  expectPlainBoxes(problem, {{0.2, 0.2, 0.056},
+                             {0.2, 0.4, 0.056},
+                             {0.2, 0.6, 0.056},
+                             {0.2, 0.8, 0.056},
+                             {0.8, 0.2, 0.056},
+                             {0.8, 0.4, 0.056},
+                             {0.8, 0.6, 0.056},
+                             {0.8, 0.8, 0.056},
+                             {0.4, 0.4, 0.056},
+                             {0.6, 0.6, 0.056}});
 }
 
 TEST(KauthamSharedData, BoxesWorldR3PlacesTheCubeAndTenControlledBoxes) {
@@ -342,9 +354,16 @@ TEST(KauthamSharedData, BoxesWorldR3PlacesTheCubeAndTenControlledBoxes) {
   expectTranslation(statesFor(problem, query.init).basePoses[0], Vector3(0.1, 0.1, 0.156));
   expectTranslation(statesFor(problem, query.goal).basePoses[0], Vector3(0.85, 0.85, 0.906));
   // InitObs triples for plainbox_1..10 (X, Y, Z in [0, 1]).
-  expectPlainBoxes(problem, {{0.2, 0.2, 0.2}, {0.2, 0.2, 0.4}, {0.2, 0.4, 0.6}, {0.2, 0.4, 0.8},
-                             {0.8, 0.8, 0.2}, {0.8, 0.6, 0.4}, {0.8, 0.4, 0.6}, {0.8, 0.8, 0.8},
-                             {0.4, 0.4, 0.4}, {0.6, 0.6, 0.6}});
+  expectPlainBoxes(problem, {{0.2, 0.2, 0.2},
+                             {0.2, 0.2, 0.4},
+                             {0.2, 0.4, 0.6},
+                             {0.2, 0.4, 0.8},
+                             {0.8, 0.8, 0.2},
+                             {0.8, 0.6, 0.4},
+                             {0.8, 0.4, 0.6},
+                             {0.8, 0.8, 0.8},
+                             {0.4, 0.4, 0.4},
+                             {0.6, 0.6, 0.6}});
 }
 
 }  // namespace

@@ -23,7 +23,8 @@ namespace lang2manip::test {
 ///   slide:    prismatic along x, [0, 0.4],  fore  -> slider
 inline std::string armUrdf(const std::string& name = "arm") {
   return R"(<?xml version="1.0"?>
-<robot name=")" + name + R"(">
+<robot name=")" +
+         name + R"(">
   <link name="base"><collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision></link>
   <link name="upper"><collision><geometry><cylinder radius="0.04" length="0.5"/></geometry></collision></link>
   <link name="fore"/>
@@ -56,8 +57,7 @@ inline std::string mimicHandUrdf() {
 }
 
 /// A one-link obstacle made of one box of size `size` ("x y z"), plus `extra` inside <robot>.
-inline std::string boxUrdf(const std::string& name, const std::string& size,
-                           const std::string& extra = "") {
+inline std::string boxUrdf(const std::string& name, const std::string& size, const std::string& extra = "") {
   return "<?xml version=\"1.0\"?>\n<robot name=\"" + name + "\">\n" + extra +
          "  <link name=\"body\"><collision><geometry><box size=\"" + size +
          "\"/></geometry></collision></link>\n</robot>\n";
@@ -66,6 +66,28 @@ inline std::string boxUrdf(const std::string& name, const std::string& size,
 /// `body` inside <Problem name="test">...</Problem>.
 inline std::string problemXml(const std::string& body) {
   return "<?xml version=\"1.0\"?>\n<Problem name=\"test\">\n" + body + "</Problem>\n";
+}
+
+/// `body` inside <ControlSet>...</ControlSet>.
+inline std::string controlSet(const std::string& body) {
+  return "<?xml version=\"1.0\"?>\n<ControlSet>\n" + body + "</ControlSet>\n";
+}
+
+/// A control named `name` moving one DOF with coefficient 1.
+inline std::string simpleControl(const std::string& name, const std::string& dof) {
+  return "  <Control name=\"" + name + "\" eigValue=\"1.0\"><DOF name=\"" + dof +
+         "\" value=\"1.0\"/></Control>\n";
+}
+
+/// A <Planner> block with `queries` (each a <Query> element) inside <Queries>.
+inline std::string plannerWithQueries(const std::string& queries) {
+  return "  <Planner><Parameters><Name>omplRRT</Name></Parameters>\n    <Queries>\n" + queries +
+         "    </Queries>\n  </Planner>\n";
+}
+
+/// An old-form query: one <Init> and one <Goal>.
+inline std::string oldQuery(const std::string& init, const std::string& goal) {
+  return "      <Query><Init>" + init + "</Init><Goal>" + goal + "</Goal></Query>\n";
 }
 
 /// 1-based line of the first occurrence of `needle` in `text` (0 when absent).

@@ -23,9 +23,9 @@ Vector3 rpyFromQuaternion(const Quaternion& q) {
 }
 
 Quaternion quaternionFromKauthamAxisAngle(const Vector3& axis, double angle) {
-  const double norm = axis.norm();
-  if (norm == 0.0) return Quaternion::Identity();
-  return Quaternion(Eigen::AngleAxisd(angle, axis / norm));
+  if (axis.isZero(0.0)) return Quaternion::Identity();
+  const Vector3 v = axis * std::sin(angle / 2.0);
+  return Quaternion(std::cos(angle / 2.0), v.x(), v.y(), v.z()).normalized();
 }
 
 void axisAngleFromQuaternion(const Quaternion& q, Vector3& axis, double& angle) {

@@ -12,8 +12,10 @@ Quaternion quaternionFromRpy(double roll, double pitch, double yaw);
 /// Roll, pitch, yaw of `q` in the URDF convention (inverse of quaternionFromRpy).
 Vector3 rpyFromQuaternion(const Quaternion& q);
 
-/// Kautham's Home convention: a rotation of `angle` about `axis`. The axis is normalized; an
-/// all-zero axis means the identity whatever the angle (Kautham's UR5 demo relies on it).
+/// Kautham's Home convention (SE3Conf::fromAxisToQuaternion): q = (cos(angle/2), axis *
+/// sin(angle/2)) normalized as a quaternion. The axis is NOT normalized first, so for a non-unit
+/// axis the rotation angle differs from `angle`; for a unit axis it is the usual axis-angle
+/// rotation. An all-zero axis means the identity whatever the angle (Kautham's UR5 demo).
 Quaternion quaternionFromKauthamAxisAngle(const Vector3& axis, double angle);
 
 /// Axis (unit, or +z for the identity) and angle in [0, pi] of `q`.

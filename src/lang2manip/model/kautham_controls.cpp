@@ -74,28 +74,6 @@ ControlSet readControls(const XmlDocument& document) {
   return set;
 }
 
-// `text` with the XML special characters escaped, for attribute values.
-std::string escaped(const std::string& text) {
-  std::string result;
-  for (const char c : text) {
-    switch (c) {
-      case '&': result += "&amp;"; break;
-      case '<': result += "&lt;"; break;
-      case '>': result += "&gt;"; break;
-      case '"': result += "&quot;"; break;
-      case '\'': result += "&apos;"; break;
-      default: result += c;
-    }
-  }
-  return result;
-}
-
-std::string formatNumber(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
-}
-
 }  // namespace
 
 std::vector<double> ControlSet::dofValues(const std::vector<double>& c,
@@ -109,7 +87,7 @@ std::vector<double> ControlSet::dofValues(const std::vector<double>& c,
   for (std::size_t d = 0; d < dofs.size(); ++d) p[d] = dofs[d].offset;
   for (std::size_t j = 0; j < controls.size(); ++j) {
     if (!std::isfinite(c[j]) || c[j] < 0.0 || c[j] > 1.0) {
-      throw InputError(what + ": value " + formatNumber(c[j]) + " of control \"" +
+      throw InputError(what + ": value " + exactNumber(c[j]) + " of control \"" +
                        controls[j].name + "\" is outside [0, 1]");
     }
     for (const auto& [dof, coefficient] : controls[j].coefficients) {
@@ -151,16 +129,16 @@ std::string writeControlString(const ControlSet& controls) {
   // has an offset (e.g. a base X3 fixing a yaw) would otherwise be lost.
   std::string xml = "<?xml version=\"1.0\"?>\n<ControlSet>\n  <Offset>\n";
   for (const ControlledDof& dof : controls.dofs) {
-    xml += "    <DOF name=\"" + escaped(dof.fullName()) + "\" value=\"" + formatNumber(dof.offset) +
+    xml += "    <DOF name=\"" + xmlEscaped(dof.fullName()) + "\" value=\"" + exactNumber(dof.offset) +
            "\"/>\n";
   }
   xml += "  </Offset>\n";
   for (const Control& control : controls.controls) {
-    xml += "  <Control name=\"" + escaped(control.name) + "\" eigValue=\"" +
-           formatNumber(control.eigValue) + "\">\n";
+    xml += "  <Control name=\"" + xmlEscaped(control.name) + "\" eigValue=\"" +
+           exactNumber(control.eigValue) + "\">\n";
     for (const auto& [dof, coefficient] : control.coefficients) {
-      xml += "    <DOF name=\"" + escaped(controls.dofs[static_cast<std::size_t>(dof)].fullName()) +
-             "\" value=\"" + formatNumber(coefficient) + "\"/>\n";
+      xml += "    <DOF name=\"" + xmlEscaped(controls.dofs[static_cast<std::size_t>(dof)].fullName()) +
+             "\" value=\"" + exactNumber(coefficient) + "\"/>\n";
     }
     xml += "  </Control>\n";
   }

@@ -25,8 +25,10 @@ struct DofTarget {
 std::vector<DofTarget> resolveDofTargets(const KauthamProblem& problem, const ControlSet& controls,
                                          bool robots);
 
-/// Default controls: one per movable joint of each robot, plus one per base axis X/Y/Z whose
-/// <Limits> have min != max (Kautham's behaviour for an empty robot control file).
+/// Default controls (kautham-format.md, for an empty robot control file): one per movable joint
+/// with a non-empty range, plus one per base axis X/Y/Z whose <Limits> have min != max; a robot
+/// with a moving base keeps its Home orientation (X1..X3 offsets 0). Kautham itself also adds
+/// X1..X3 controls; lang2manip does not.
 ControlSet defaultRobotControls(const KauthamProblem& problem);
 
 }  // namespace lang2manip

@@ -66,8 +66,10 @@ Pose basePose(const Pose& home, const BaseLimits& limits, const BaseDofs& dofs) 
   const Vector3 translation(axisValue(limits, DofKind::kX, dofs.values[0]),
                             axisValue(limits, DofKind::kY, dofs.values[1]),
                             axisValue(limits, DofKind::kZ, dofs.values[2]));
+  // Unnamed rotation DOFs keep Kautham's default offset 0.5 (a half turn about (0,-1,1)/sqrt(2)),
+  // which is why Kautham's files give X1..X3 offsets explicitly.
   const Quaternion rotation = quaternionFromKauthamUnitCube(
-      dofs.values[3].value_or(0.0), dofs.values[4].value_or(0.0), dofs.values[5].value_or(0.0));
+      dofs.values[3].value_or(0.5), dofs.values[4].value_or(0.5), dofs.values[5].value_or(0.5));
   return home * makePose(translation, rotation);
 }
 
@@ -123,13 +125,22 @@ ControlSet defaultRobotControls(const KauthamProblem& problem) {
   };
   for (std::size_t r = 0; r < problem.robots.size(); ++r) {
     const KauthamEntity& robot = problem.robots[r];
+    bool movesBase = false;
     for (const auto& [name, range] : {std::pair{"X", robot.limits.x}, std::pair{"Y", robot.limits.y},
                                       std::pair{"Z", robot.limits.z}}) {
-      if (range && range->first != range->second) add(robot.name, name);
+      if (range && range->first != range->second) {
+        add(robot.name, name);
+        movesBase = true;
+      }
+    }
+    // A moving base keeps its Home orientation (offsets 0 instead of Kautham's 0.5 half turn).
+    for (const char* rotation : {"X1", "X2", "X3"}) {
+      if (movesBase) set.dofs.push_back(ControlledDof{robot.name, rotation, 0.0, 0});
     }
     const RobotModel& model = *problem.scene.robots()[r].model;
     for (const int joint : model.variableJoints()) {
-      add(robot.name, model.joints()[static_cast<std::size_t>(joint)].childLink);
+      const Joint& description = model.joints()[static_cast<std::size_t>(joint)];
+      if (description.limits.lower < description.limits.upper) add(robot.name, description.childLink);
     }
   }
   return set;

@@ -64,17 +64,9 @@ class ProblemReader {
     const Vector3 axis(document_.numberAttribute(home, "WX", 0.0),
                        document_.numberAttribute(home, "WY", 0.0),
                        document_.numberAttribute(home, "WZ", 0.0));
-    return makePose(translation, homeRotation(axis, document_.numberAttribute(home, "TH", 0.0)));
+    return makePose(translation, quaternionFromKauthamAxisAngle(axis, document_.numberAttribute(home, "TH", 0.0)));
   }
 
-  // Kautham's SE3Conf::fromAxisToQuaternion: q = (cos(TH/2), axis * sin(TH/2)) normalised as a
-  // quaternion, the axis itself NOT normalised first (kautham-format.md), so a non-unit axis
-  // changes the angle. An all-zero axis is the identity (the UR5 demo's TH="1.0").
-  static Quaternion homeRotation(const Vector3& axis, double angle) {
-    if (axis.isZero(0.0)) return Quaternion::Identity();
-    const Vector3 v = axis * std::sin(angle / 2.0);
-    return Quaternion(std::cos(angle / 2.0), v.x(), v.y(), v.z()).normalized();
-  }
 
   BaseLimits readLimits(const pugi::xml_node& entity) const {
     BaseLimits limits;

@@ -6,15 +6,11 @@
 #include "lang2manip/core/rotation.hpp"
 #include "lang2manip/model/kautham_dof_target.hpp"
 #include "lang2manip/model/object_model.hpp"
+#include "lang2manip/model/xml_document.hpp"
 
 namespace lang2manip {
 namespace {
 
-std::string number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
-}
 
 void writeFile(const std::filesystem::path& path, const std::string& text) {
   std::ofstream stream(path, std::ios::binary | std::ios::trunc);
@@ -28,9 +24,9 @@ std::string homeXml(const Pose& pose) {
   double angle = 0.0;
   axisAngleFromQuaternion(Quaternion(pose.linear()), axis, angle);
   const Vector3& t = pose.translation();
-  return "    <Home X=\"" + number(t.x()) + "\" Y=\"" + number(t.y()) + "\" Z=\"" + number(t.z()) +
-         "\" WX=\"" + number(axis.x()) + "\" WY=\"" + number(axis.y()) + "\" WZ=\"" +
-         number(axis.z()) + "\" TH=\"" + number(angle) + "\"/>\n";
+  return "    <Home X=\"" + exactNumber(t.x()) + "\" Y=\"" + exactNumber(t.y()) + "\" Z=\"" + exactNumber(t.z()) +
+         "\" WX=\"" + exactNumber(axis.x()) + "\" WY=\"" + exactNumber(axis.y()) + "\" WZ=\"" +
+         exactNumber(axis.z()) + "\" TH=\"" + exactNumber(angle) + "\"/>\n";
 }
 
 std::string limitsXml(const BaseLimits& limits) {
@@ -38,8 +34,8 @@ std::string limitsXml(const BaseLimits& limits) {
   for (const auto& [name, range] : {std::pair{"X", limits.x}, std::pair{"Y", limits.y},
                                     std::pair{"Z", limits.z}}) {
     if (range) {
-      xml += std::string("    <Limits name=\"") + name + "\" min=\"" + number(range->first) +
-             "\" max=\"" + number(range->second) + "\"/>\n";
+      xml += std::string("    <Limits name=\"") + name + "\" min=\"" + exactNumber(range->first) +
+             "\" max=\"" + exactNumber(range->second) + "\"/>\n";
     }
   }
   return xml;
@@ -70,7 +66,7 @@ std::string robotXml(const SceneRobot& robot, const KauthamEntity* entity,
   const bool hasBaseLimits = robot.baseLimits.x || robot.baseLimits.y || robot.baseLimits.z;
   const Pose home = entity && hasBaseLimits ? entity->home : robot.basePose;
   return "  <Robot robot=\"" + xmlEscaped(relativeReference(urdf, directory)) + "\" scale=\"" +
-         number(scale) + "\">\n" + homeXml(home) + "    <KauthamName name=\"" +
+         exactNumber(scale) + "\">\n" + homeXml(home) + "    <KauthamName name=\"" +
          xmlEscaped(robot.name) + "\"/>\n" + limitsXml(robot.baseLimits) + "  </Robot>\n";
 }
 
@@ -122,7 +118,7 @@ std::vector<double> normalizedControls(const KauthamProblem& problem, const Cont
 
 std::string valuesText(const std::vector<double>& values) {
   std::string text;
-  for (const double value : values) text += (text.empty() ? "" : " ") + number(value);
+  for (const double value : values) text += (text.empty() ? "" : " ") + exactNumber(value);
   return text;
 }
 

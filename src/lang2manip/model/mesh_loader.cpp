@@ -2,9 +2,7 @@
 
 #include <Inventor/SbMatrix.h>
 #include <Inventor/SoDB.h>
-#include <Inventor/SoFullPath.h>
 #include <Inventor/SoInput.h>
-#include <Inventor/SoPath.h>
 #include <Inventor/SoPrimitiveVertex.h>
 #include <Inventor/VRMLnodes/SoVRMLCoordinate.h>
 #include <Inventor/VRMLnodes/SoVRMLIndexedLine.h>
@@ -13,11 +11,13 @@
 #include <Inventor/VRMLnodes/SoVRMLTextureCoordinate.h>
 #include <Inventor/VRMLnodes/SoVRMLVertexPoint.h>
 #include <Inventor/actions/SoCallbackAction.h>
-#include <Inventor/actions/SoSearchAction.h>
 #include <Inventor/errors/SoDebugError.h>
 #include <Inventor/errors/SoMemoryError.h>
 #include <Inventor/errors/SoReadError.h>
-#include <Inventor/lists/SoPathList.h>
+#include <Inventor/fields/SoMFNode.h>
+#include <Inventor/fields/SoSFNode.h>
+#include <Inventor/lists/SoFieldList.h>
+#include <Inventor/misc/SoChildList.h>
 #include <Inventor/nodes/SoFaceSet.h>
 #include <Inventor/nodes/SoIndexedLineSet.h>
 #include <Inventor/nodes/SoIndexedNurbsCurve.h>
@@ -52,9 +52,10 @@
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
-#include <iterator>
 #include <regex>
+#include <sstream>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -118,9 +119,12 @@ class MeshBuilder {
     return index;
   }
 
-  /// Adds a triangle unless an index is invalid or two are equal (no area to collide with).
+  /// Adds a triangle unless an index is invalid or it has no area (nothing to collide with).
   void addTriangle(int a, int b, int c) {
     if (a == kInvalid || b == kInvalid || c == kInvalid || a == b || b == c || a == c) return;
+    if (!hasArea(mesh_.vertices[a].data(), mesh_.vertices[b].data(), mesh_.vertices[c].data())) {
+      return;
+    }
     mesh_.triangles.push_back({a, b, c});
   }
 
@@ -147,6 +151,13 @@ class MeshBuilder {
       return seed;
     }
   };
+
+  // Plain arithmetic: this runs per triangle, and unoptimised Eigen makes debug builds crawl.
+  static bool hasArea(const double* a, const double* b, const double* c) {
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    return u[1] * v[2] != u[2] * v[1] || u[2] * v[0] != u[0] * v[2] || u[0] * v[1] != u[1] * v[0];
+  }
 
   TriangleMesh mesh_;
   std::unordered_map<std::array<double, 3>, int, KeyHash> merged_;
@@ -209,7 +220,9 @@ int elementDepth(const std::string& text) {
 /// Throws when a text file nests deeper than kMaxNestingDepth (binary files are not scanned).
 void checkNestingDepth(const fs::path& path, const std::string& name, bool xml) {
   std::ifstream stream(path, std::ios::binary);
-  const std::string text((std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
+  std::ostringstream contents;
+  contents << stream.rdbuf();
+  const std::string text = std::move(contents).str();
   if (!xml && text.substr(0, text.find('\n')).find("binary") != std::string::npos) return;
   if ((xml ? elementDepth(text) : braceDepth(text)) > kMaxNestingDepth) {
     throw InputError(SourceLocation{name, 0}, "nesting deeper than " +
@@ -228,6 +241,16 @@ Eigen::Affine3d toAffine(const aiMatrix4x4& m) {
   return Eigen::Affine3d(matrix);
 }
 
+/// X * v in plain arithmetic (this runs per vertex; see MeshBuilder::hasArea).
+Vector3 transformed(const Eigen::Affine3d& X, const aiVector3D& v) {
+  const double* m = X.data();  // column-major 4 x 4
+  const double x = v.x;
+  const double y = v.y;
+  const double z = v.z;
+  return {m[0] * x + m[4] * y + m[8] * z + m[12], m[1] * x + m[5] * y + m[9] * z + m[13],
+          m[2] * x + m[6] * y + m[10] * z + m[14]};
+}
+
 /// Adds the triangles of `mesh` (points and lines are skipped), its vertices moved by X_RN into
 /// the root frame. assimp has already merged identical vertices within the mesh; vertices are
 /// added when a triangle first uses them, so unused ones do not widen the bounds.
@@ -238,8 +261,7 @@ void addAssimpMesh(const aiMesh& mesh, const Eigen::Affine3d& X_RN, MeshBuilder&
   const auto index = [&](unsigned i) {
     if (i >= mesh.mNumVertices) return MeshBuilder::kInvalid;
     if (added[i] == kNotAdded) {
-      const aiVector3D& v = mesh.mVertices[i];
-      added[i] = builder.addVertex(X_RN * Vector3(v.x, v.y, v.z));
+      added[i] = builder.addVertex(transformed(X_RN, mesh.mVertices[i]));
     }
     return added[i];
   };
@@ -400,20 +422,39 @@ class CoinRef {
   SoNode* node_;
 };
 
-/// Calls `clear` on every node of type T in the graph, VRML field values included.
+/// Every node reachable from `root`, each once: group children and the values of node fields
+/// (VRML keeps geometry, coordinates and normals in fields).
+std::vector<SoNode*> reachableNodes(SoNode* root) {
+  std::vector<SoNode*> nodes;
+  std::unordered_set<SoNode*> seen;
+  std::vector<SoNode*> pending = {root};
+  while (!pending.empty()) {
+    SoNode* node = pending.back();
+    pending.pop_back();
+    if (node == nullptr || !seen.insert(node).second) continue;
+    nodes.push_back(node);
+    if (const SoChildList* children = node->getChildren()) {
+      for (int i = 0; i < children->getLength(); ++i) pending.push_back((*children)[i]);
+    }
+    SoFieldList fields;
+    node->getFields(fields);
+    for (int i = 0; i < fields.getLength(); ++i) {
+      if (fields[i]->isOfType(SoSFNode::getClassTypeId())) {
+        pending.push_back(static_cast<SoSFNode*>(fields[i])->getValue());
+      } else if (fields[i]->isOfType(SoMFNode::getClassTypeId())) {
+        const auto* values = static_cast<SoMFNode*>(fields[i]);
+        for (int j = 0; j < values->getNum(); ++j) pending.push_back((*values)[j]);
+      }
+    }
+  }
+  return nodes;
+}
+
+/// Calls `clear` on each of `nodes` that is a T.
 template <typename T, typename Clear>
-void clearEach(SoNode* root, Clear clear) {
-  SoSearchAction search;
-  search.setType(T::getClassTypeId());
-  search.setInterest(SoSearchAction::ALL);
-  search.setSearchingAll(TRUE);
-  search.apply(root);
-  const SoPathList& paths = search.getPaths();
-  for (int i = 0; i < paths.getLength(); ++i) {
-    // SoPath::getTail() stops at the last public node (a VRML Shape holding the geometry);
-    // the full path ends at the node found.
-    SoNode* node = static_cast<SoFullPath*>(paths[i])->getTail();
-    if (node != nullptr && node->isOfType(T::getClassTypeId())) clear(static_cast<T*>(node));
+void clearEach(const std::vector<SoNode*>& nodes, Clear clear) {
+  for (SoNode* node : nodes) {
+    if (node->isOfType(T::getClassTypeId())) clear(static_cast<T*>(node));
   }
 }
 
@@ -421,21 +462,22 @@ void clearEach(SoNode* root, Clear clear) {
 /// the indices (an out-of-range normalIndex crashes it). Emptying them and their indices makes
 /// Coin compute its own, which is safe.
 void dropNormalsAndTextureCoordinates(SoNode* root) {
-  clearEach<SoNormal>(root, [](SoNormal* n) { n->vector.setNum(0); });
-  clearEach<SoVRMLNormal>(root, [](SoVRMLNormal* n) { n->vector.setNum(0); });
-  clearEach<SoTextureCoordinate2>(root, [](SoTextureCoordinate2* t) { t->point.setNum(0); });
-  clearEach<SoTextureCoordinate3>(root, [](SoTextureCoordinate3* t) { t->point.setNum(0); });
-  clearEach<SoVRMLTextureCoordinate>(root, [](SoVRMLTextureCoordinate* t) { t->point.setNum(0); });
-  clearEach<SoVertexProperty>(root, [](SoVertexProperty* p) {
+  const std::vector<SoNode*> nodes = reachableNodes(root);
+  clearEach<SoNormal>(nodes, [](SoNormal* n) { n->vector.setNum(0); });
+  clearEach<SoVRMLNormal>(nodes, [](SoVRMLNormal* n) { n->vector.setNum(0); });
+  clearEach<SoTextureCoordinate2>(nodes, [](SoTextureCoordinate2* t) { t->point.setNum(0); });
+  clearEach<SoTextureCoordinate3>(nodes, [](SoTextureCoordinate3* t) { t->point.setNum(0); });
+  clearEach<SoVRMLTextureCoordinate>(nodes, [](SoVRMLTextureCoordinate* t) { t->point.setNum(0); });
+  clearEach<SoVertexProperty>(nodes, [](SoVertexProperty* p) {
     p->normal.setNum(0);
     p->texCoord.setNum(0);
     p->texCoord3.setNum(0);
   });
-  clearEach<SoIndexedShape>(root, [](SoIndexedShape* s) {
+  clearEach<SoIndexedShape>(nodes, [](SoIndexedShape* s) {
     s->normalIndex.setNum(0);
     s->textureCoordIndex.setNum(0);
   });
-  clearEach<SoVRMLIndexedShape>(root, [](SoVRMLIndexedShape* s) {
+  clearEach<SoVRMLIndexedShape>(nodes, [](SoVRMLIndexedShape* s) {
     s->normal.setValue(nullptr);
     s->texCoord.setValue(nullptr);
     s->color.setValue(nullptr);

@@ -1,5 +1,5 @@
 #pragma once
-/// @file Loads triangle meshes from STL, DAE (COLLADA), OBJ (assimp) and Inventor .iv /
+/// @file Loads triangle meshes from STL, DAE (COLLADA), OBJ, PLY (assimp) and Inventor .iv /
 /// VRML .wrl (Coin3D), each file once.
 
 #include <map>
@@ -19,8 +19,8 @@ namespace lang2manip {
 /// transforms) are applied, so vertices are in the file's root frame. COLLADA <up_axis> is
 /// ignored (a Z_UP file is not turned to Y up) and <unit> is applied, as RViz does; MoveIt's
 /// geometric_shapes also ignores the up axis but drops the unit as well. Only triangles are kept
-/// (points and lines are dropped); vertices shared by faces are merged, and triangles with two
-/// equal corners are dropped. Inventor/VRML primitives (Cube, Sphere, Cylinder, Cone, Box, ...)
+/// (points and lines are dropped); vertices shared by faces are merged, and triangles with no
+/// area are dropped. Inventor/VRML primitives (Cube, Sphere, Cylinder, Cone, Box, ...)
 /// are tessellated by Coin. A missing texture image only logs a warning.
 ///
 /// Throws InputError "file[:line]: what" when the file is missing, not a regular file,

@@ -56,24 +56,19 @@ void applyMetadata(SceneObject& object, const std::filesystem::path& urdf, doubl
   }
 }
 
-std::string number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
-}
 
 std::string triple(const Vector3& v) {
-  return number(v.x()) + " " + number(v.y()) + " " + number(v.z());
+  return exactNumber(v.x()) + " " + exactNumber(v.y()) + " " + exactNumber(v.z());
 }
 
 std::string geometryXml(const Geometry& geometry) {
   if (const auto* box = std::get_if<Box>(&geometry)) return "<box size=\"" + triple(box->size) + "\"/>";
   if (const auto* sphere = std::get_if<Sphere>(&geometry)) {
-    return "<sphere radius=\"" + number(sphere->radius) + "\"/>";
+    return "<sphere radius=\"" + exactNumber(sphere->radius) + "\"/>";
   }
   if (const auto* cylinder = std::get_if<Cylinder>(&geometry)) {
-    return "<cylinder radius=\"" + number(cylinder->radius) + "\" length=\"" +
-           number(cylinder->length) + "\"/>";
+    return "<cylinder radius=\"" + exactNumber(cylinder->radius) + "\" length=\"" +
+           exactNumber(cylinder->length) + "\"/>";
   }
   const auto& mesh = std::get<MeshGeometry>(geometry);
   const std::string file = mesh.mesh ? mesh.mesh->source : mesh.reference;
@@ -89,7 +84,7 @@ std::string shapeXml(const Shape& shape, const char* element) {
   if (shape.material) {
     const Vector4& c = shape.material->rgba;
     xml += "      <material name=\"" + xmlEscaped(shape.material->name) + "\"><color rgba=\"" +
-           number(c[0]) + " " + number(c[1]) + " " + number(c[2]) + " " + number(c[3]) +
+           exactNumber(c[0]) + " " + exactNumber(c[1]) + " " + exactNumber(c[2]) + " " + exactNumber(c[3]) +
            "\"/></material>\n";
   }
   return xml + "    </" + element + ">\n";
@@ -110,20 +105,6 @@ SceneObject objectFromModel(const RobotModel& model, const std::string& name,
   return object;
 }
 
-std::string xmlEscaped(const std::string& text) {
-  std::string escaped;
-  for (const char c : text) {
-    switch (c) {
-      case '&': escaped += "&amp;"; break;
-      case '<': escaped += "&lt;"; break;
-      case '>': escaped += "&gt;"; break;
-      case '"': escaped += "&quot;"; break;
-      case '\'': escaped += "&apos;"; break;
-      default: escaped += c;
-    }
-  }
-  return escaped;
-}
 
 std::string objectUrdfString(const SceneObject& object) {
   std::string xml = "<?xml version=\"1.0\"?>\n<robot name=\"" + xmlEscaped(object.kind) + "\">\n";

@@ -26,7 +26,4 @@ SceneObject objectFromModel(const RobotModel& model, const std::string& name,
 /// Mesh references are written as absolute paths.
 std::string objectUrdfString(const SceneObject& object);
 
-/// `text` with XML special characters escaped, for attribute values and text.
-std::string xmlEscaped(const std::string& text);
-
 }  // namespace lang2manip

@@ -1,6 +1,7 @@
 #include "lang2manip/model/xml_document.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -90,6 +91,27 @@ double XmlDocument::numberAttribute(const pugi::xml_node& node, const char* name
 double XmlDocument::requiredNumberAttribute(const pugi::xml_node& node, const char* name) const {
   requiredAttribute(node, name);
   return numberAttribute(node, name, 0.0);
+}
+
+std::string xmlEscaped(const std::string& text) {
+  std::string escaped;
+  for (const char c : text) {
+    switch (c) {
+      case '&': escaped += "&amp;"; break;
+      case '<': escaped += "&lt;"; break;
+      case '>': escaped += "&gt;"; break;
+      case '"': escaped += "&quot;"; break;
+      case '\'': escaped += "&apos;"; break;
+      default: escaped += c;
+    }
+  }
+  return escaped;
+}
+
+std::string exactNumber(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  return buffer;
 }
 
 }  // namespace lang2manip

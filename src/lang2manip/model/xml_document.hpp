@@ -52,6 +52,12 @@ class XmlDocument {
   std::vector<std::size_t> lineStarts_;
 };
 
+/// `text` with XML special characters escaped, for attribute values and text.
+std::string xmlEscaped(const std::string& text);
+
+/// `value` with enough digits (%.17g) to read back exactly.
+std::string exactNumber(double value);
+
 /// Reads a whole file; throws InputError "<what> <path>: file does not exist" / "cannot be read".
 std::string readTextFile(const std::filesystem::path& path, const std::string& what);
 
