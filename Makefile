@@ -25,6 +25,9 @@ test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
 # Debug build of the tests under AddressSanitizer and UndefinedBehaviorSanitizer.
+# tests/lsan.supp lists the leaks of Debian's libraries that LeakSanitizer is told to ignore.
+test-sanitize: export LSAN_OPTIONS = suppressions=$(CURDIR)/tests/lsan.supp
+test-sanitize: export UBSAN_OPTIONS = print_stacktrace=1:halt_on_error=1
 test-sanitize:
 	$(MAKE) test BUILD_DIR=build-sanitize BUILD_TYPE=Debug CMAKE_FLAGS=-DLANG2MANIP_SANITIZE=ON
 
