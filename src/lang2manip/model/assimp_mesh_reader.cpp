@@ -1,0 +1,110 @@
+#include "lang2manip/model/assimp_mesh_reader.hpp"
+
+#include <assimp/Importer.hpp>
+#include <assimp/config.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/model/mesh_builder.hpp"
+
+namespace lang2manip {
+namespace {
+
+namespace fs = std::filesystem;
+
+Eigen::Affine3d toAffine(const aiMatrix4x4& m) {
+  Eigen::Matrix4d matrix;
+  matrix << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2,
+      m.d3, m.d4;
+  return Eigen::Affine3d(matrix);
+}
+
+/// X * v in plain arithmetic (this runs per vertex; see hasArea() in mesh_builder.cpp).
+Vector3 transformed(const Eigen::Affine3d& X, const aiVector3D& v) {
+  const double* m = X.data();  // column-major 4 x 4
+  const double x = v.x;
+  const double y = v.y;
+  const double z = v.z;
+  return {m[0] * x + m[4] * y + m[8] * z + m[12], m[1] * x + m[5] * y + m[9] * z + m[13],
+          m[2] * x + m[6] * y + m[10] * z + m[14]};
+}
+
+/// Adds the triangles of `mesh` (points and lines are skipped), its vertices moved by X_RN into
+/// the root frame. assimp has already merged identical vertices within the mesh; vertices are
+/// added when a triangle first uses them, so unused ones do not widen the bounds.
+void addAssimpMesh(const aiMesh& mesh, const Eigen::Affine3d& X_RN, MeshBuilder& builder) {
+  if (mesh.mVertices == nullptr || mesh.mFaces == nullptr) return;
+  constexpr int kNotAdded = -2;
+  std::vector<int> added(mesh.mNumVertices, kNotAdded);
+  const auto index = [&](unsigned i) {
+    if (i >= mesh.mNumVertices) return MeshBuilder::kInvalid;
+    if (added[i] == kNotAdded) {
+      added[i] = builder.addVertex(transformed(X_RN, mesh.mVertices[i]));
+    }
+    return added[i];
+  };
+  for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+    const aiFace& face = mesh.mFaces[f];
+    if (face.mNumIndices != 3 || face.mIndices == nullptr) continue;
+    builder.addTriangle(index(face.mIndices[0]), index(face.mIndices[1]), index(face.mIndices[2]));
+  }
+}
+
+/// Adds the meshes of every node, each in the root frame R (node transforms applied), walking
+/// the tree with an explicit stack so that a deep hierarchy cannot overflow the call stack.
+void addAssimpScene(const aiScene& scene, MeshBuilder& builder) {
+  std::vector<std::pair<const aiNode*, Eigen::Affine3d>> pending;
+  pending.emplace_back(scene.mRootNode, toAffine(scene.mRootNode->mTransformation));
+  while (!pending.empty()) {
+    const auto [node, X_RN] = pending.back();
+    pending.pop_back();
+    for (unsigned m = 0; m < node->mNumMeshes; ++m) {
+      const unsigned meshIndex = node->mMeshes[m];
+      if (meshIndex < scene.mNumMeshes && scene.mMeshes[meshIndex] != nullptr) {
+        addAssimpMesh(*scene.mMeshes[meshIndex], X_RN, builder);
+      }
+    }
+    for (unsigned c = 0; c < node->mNumChildren; ++c) {
+      const aiNode* child = node->mChildren[c];
+      if (child != nullptr) pending.emplace_back(child, X_RN * toAffine(child->mTransformation));
+    }
+  }
+}
+
+/// Keeps COLLADA's unit and ignores its up axis (see readMeshWithAssimp()), and drops all but
+/// positions.
+void configure(Assimp::Importer& importer) {
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
+  // Only positions are kept: dropping normals and the like first lets JoinIdenticalVertices
+  // merge the corners that faces share (an STL repeats them with each face's normal).
+  importer.SetPropertyInteger(
+      AI_CONFIG_PP_RVC_FLAGS,
+      aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
+          aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
+          aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS);
+}
+
+}  // namespace
+
+TriangleMesh readMeshWithAssimp(const fs::path& path) {
+  if (lowerCaseExtension(path) == ".dae") checkNestingDepth(path, MeshNesting::kXmlElements);
+  Assimp::Importer importer;
+  configure(importer);
+  const unsigned steps = aiProcess_RemoveComponent | aiProcess_Triangulate |
+                         aiProcess_JoinIdenticalVertices | aiProcess_SortByPType;
+  const aiScene* scene = importer.ReadFile(path.string(), steps);
+  if (scene == nullptr) {
+    throw InputError(SourceLocation{path.string(), 0},
+                     std::string("cannot read mesh: ") + importer.GetErrorString());
+  }
+  MeshBuilder builder;
+  if (scene->mRootNode != nullptr) addAssimpScene(*scene, builder);
+  return builder.finish(path);
+}
+
+}  // namespace lang2manip

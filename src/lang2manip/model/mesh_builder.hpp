@@ -1,0 +1,71 @@
+#pragma once
+/// @file Internal: pieces shared by the mesh readers (assimp_mesh_reader.cpp and
+/// coin_mesh_reader.cpp): the builder that collects triangles into an indexed mesh, and the
+/// nesting-depth pre-scan that protects the parsers' stacks.
+
+#include <array>
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <unordered_map>
+
+#include "lang2manip/core/types.hpp"
+#include "lang2manip/model/triangle_mesh.hpp"
+
+namespace lang2manip {
+
+/// Collects root-frame triangles into an indexed mesh. Never throws while collecting (it is
+/// called from inside Coin's traversal): invalid input is remembered; check problem() afterwards.
+class MeshBuilder {
+ public:
+  static constexpr int kInvalid = -1;
+
+  /// Appends a vertex; kInvalid when it is not finite or the mesh is full.
+  int addVertex(const Vector3& point);
+
+  /// The index of a vertex with exactly these coordinates, appending one if there is none.
+  int mergedVertex(const Vector3& point);
+
+  /// Adds a triangle unless an index is invalid or it has no area (nothing to collide with).
+  void addTriangle(int a, int b, int c);
+
+  /// What makes the collected mesh unusable, or "" when it is fine.
+  [[nodiscard]] std::string problem() const;
+
+  /// The collected mesh, its source set to `source`.
+  TriangleMesh take(std::string source);
+
+  /// The collected mesh read from `path`, its source the absolute path. Throws InputError
+  /// "path: mesh <problem>" when problem() is not empty.
+  TriangleMesh finish(const std::filesystem::path& path);
+
+ private:
+  struct KeyHash {
+    std::size_t operator()(const std::array<double, 3>& key) const noexcept;
+  };
+
+  TriangleMesh mesh_;
+  std::unordered_map<std::array<double, 3>, int, KeyHash> merged_;
+  bool nonFinite_ = false;
+  bool tooLarge_ = false;
+};
+
+/// How a text mesh format nests, for checkNestingDepth().
+enum class MeshNesting {
+  kBraces,       ///< { } and [ ] of Inventor and VRML; binary Inventor files are not scanned.
+  kXmlElements,  ///< elements of XML (COLLADA).
+};
+
+/// The deepest nesting a mesh file may have. Coin's and assimp's COLLADA parsers recurse once
+/// per nesting level and overflow the stack on files nested some 10,000 levels deep, so deeper
+/// files are refused before they are parsed.
+constexpr int kMaxMeshNestingDepth = 1000;
+
+/// Throws InputError "path: nesting deeper than 1000 levels..." when the file at `path` nests
+/// deeper than kMaxMeshNestingDepth.
+void checkNestingDepth(const std::filesystem::path& path, MeshNesting nesting);
+
+/// The extension of `path` in lower case, with the dot ("" when there is none).
+std::string lowerCaseExtension(const std::filesystem::path& path);
+
+}  // namespace lang2manip
