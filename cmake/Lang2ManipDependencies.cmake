@@ -8,6 +8,12 @@ find_package(pugixml REQUIRED)
 find_package(yaml-cpp REQUIRED)
 find_package(nlohmann_json 3.11 REQUIRED)
 find_package(CLI11 REQUIRED)
+find_package(orocos_kdl REQUIRED)                # variables: orocos_kdl_LIBRARIES
+find_package(ompl REQUIRED)                      # variables: OMPL_INCLUDE_DIRS, OMPL_LIBRARIES
+find_package(fcl REQUIRED)                       # target: fcl
+if(LANG2MANIP_BUILD_BENCHMARKS)
+  find_package(benchmark REQUIRED)               # benchmark::benchmark
+endif()
 if(LANG2MANIP_BUILD_TESTS)
   find_package(GTest REQUIRED)
   include(GoogleTest)

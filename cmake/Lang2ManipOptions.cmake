@@ -15,6 +15,10 @@ if(LANG2MANIP_SANITIZE)
   add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer
                       -fno-sanitize-recover=undefined)
   add_link_options(-fsanitize=address,undefined)
+  # Eigen 3.4 switches to its own offset-pointer aligned_malloc under AddressSanitizer; Debian's
+  # liborocos-kdl (not instrumented) then frees our Eigen buffers with plain free() (bad-free in
+  # KDL's LMA solver). glibc's malloc already gives Eigen's 16-byte alignment here.
+  add_compile_definitions(EIGEN_MALLOC_ALREADY_ALIGNED=1)
 endif()
 
 # lang2manip_add_module(NAME SOURCES ... DEPENDS ...)

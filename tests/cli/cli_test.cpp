@@ -65,7 +65,44 @@ TEST(Cli, ShowJsonHasRobotsObjectsAndQueries) {
   EXPECT_FALSE(report["objects"].empty());
   ASSERT_FALSE(report["queries"].empty());
   EXPECT_EQ(report["queries"][0]["robots"][0]["start"].size(), 8U);
-  EXPECT_TRUE(report["queries"][0]["collision_free"].is_null());
+  // The paper's query: the start (home) and the goal (above the marker) are collision-free.
+  EXPECT_TRUE(report["queries"][0]["collision_free"].get<bool>()) << report["queries"][0].dump(2);
+  EXPECT_TRUE(report["queries"][0]["start_collision"]["valid"].get<bool>());
+  EXPECT_TRUE(report["queries"][0]["goal_collision"]["contacts"].empty());
+}
+
+TEST(Cli, CheckReportsEachQueryStateOfTheDefaultProblem) {
+  const RunResult result = run("check");
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("problem panda_desk: all states collision-free"));
+  EXPECT_THAT(result.output, HasSubstr("query 1 start: valid"));
+  EXPECT_THAT(result.output, HasSubstr("query 1 goal: valid"));
+}
+
+TEST(Cli, CheckNamesTheCollidingPairsOfAConfiguration) {
+  // Home with joint 6 at its lower limit folds the wrist into link 5.
+  const RunResult text = run("check panda_desk --robot panda --config 0 -0.785 0 -2.356 0 -0.0175 0.785 0.04");
+  EXPECT_EQ(text.exitCode, 0) << text.output;
+  EXPECT_THAT(text.output, HasSubstr("configuration of panda: INVALID"));
+  EXPECT_THAT(text.output, HasSubstr("panda/panda_link5 - panda/panda_link7: penetration"));
+  const RunResult json = run("check --json --config 0 1.7628 0 -2.356 0 1.571 0.785 0.04", false);
+  const nlohmann::json report = nlohmann::json::parse(json.output);
+  EXPECT_FALSE(report["valid"].get<bool>());
+  bool desk = false;
+  for (const auto& contact : report["checks"][0]["contacts"]) {
+    desk = desk || (contact["first"] == "panda/panda_link5" && contact["second"] == "desk" &&
+                    contact["penetration_depth"].get<double>() > 0.0);
+  }
+  EXPECT_TRUE(desk) << json.output;
+}
+
+TEST(Cli, CheckRejectsBadConfigurations) {
+  RunResult result = run("check --robot pr2 --config 0 0");
+  EXPECT_NE(result.exitCode, 0);
+  EXPECT_THAT(result.output, HasSubstr("unknown robot 'pr2'; valid robots: panda"));
+  result = run("check --config 0 0");
+  EXPECT_NE(result.exitCode, 0);
+  EXPECT_THAT(result.output, HasSubstr("has 2 values; the robot has 8 joint variables"));
 }
 
 TEST(Cli, ShowEveryBuiltInProblem) {

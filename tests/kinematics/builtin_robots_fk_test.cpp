@@ -12,7 +12,6 @@
 #include <utility>
 #include <vector>
 
-#include "lang2manip/core/error.hpp"
 #include "lang2manip/kinematics/forward_kinematics.hpp"
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/model/urdf_reader.hpp"

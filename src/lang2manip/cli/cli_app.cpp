@@ -14,6 +14,8 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   app.set_version_flag("--version", "lang2manip 0.1.0");
   addProblemsCommand(app, out);
   addShowCommand(app, out);
+  addCheckCommand(app, out);
+  addBenchCommand(app, out);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

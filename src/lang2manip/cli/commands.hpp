@@ -13,4 +13,11 @@ void addProblemsCommand(CLI::App& app, std::ostream& out);
 /// `lang2manip show [PROBLEM] [--robot NAME] [--json]`: robots, controls, objects and queries.
 void addShowCommand(CLI::App& app, std::ostream& out);
 
+/// `lang2manip check [PROBLEM] [--robot NAME --config q1 q2 ...] [--json]`: whether each query's
+/// start and goal (or the given configuration) is collision-free, naming the colliding pairs.
+void addCheckCommand(CLI::App& app, std::ostream& out);
+
+/// `lang2manip bench KIND ...`: benchmarks that print figures (kinds: ik; see bench_commands.hpp).
+void addBenchCommand(CLI::App& app, std::ostream& out);
+
 }  // namespace lang2manip

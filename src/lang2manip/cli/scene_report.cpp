@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "lang2manip/cli/collision_queries.hpp"
+#include "lang2manip/collision/fcl_collision_checker.hpp"
 #include "lang2manip/core/rotation.hpp"
 
 namespace lang2manip {
@@ -68,7 +70,10 @@ json controlsJson(const ControlSet& controls) {
 json queriesJson(const LoadedProblem& loaded) {
   json queries = json::array();
   const auto& robots = loaded.problem.scene.robots();
-  for (const auto& [start, goal] : loaded.queries) {
+  const std::vector<QueryCollisions> collisions =
+      checkQueries(loaded, FclCollisionChecker(loaded.problem.scene));
+  for (std::size_t q = 0; q < loaded.queries.size(); ++q) {
+    const auto& [start, goal] = loaded.queries[q];
     json perRobot = json::array();
     for (std::size_t r = 0; r < robots.size(); ++r) {
       json entry{{"robot", robots[r].name}, {"start", vectorJson(start.configurations[r])},
@@ -79,9 +84,14 @@ json queriesJson(const LoadedProblem& loaded) {
       }
       perRobot.push_back(entry);
     }
+    const QueryCollisions& result = collisions[q];
+    const bool free = result.start.valid && result.goal.valid;
     queries.push_back({{"robots", perRobot},
-                       {"collision_free", nullptr},
-                       {"collision_check", "not available: collision checking is not implemented yet"}});
+                       {"collision_free", free},
+                       {"start_collision", collisionReportJson(result.start)},
+                       {"goal_collision", collisionReportJson(result.goal)},
+                       {"collision_check", "start " + collisionSummary(result.start) + "; goal " +
+                                               collisionSummary(result.goal)}});
   }
   return queries;
 }

@@ -10,7 +10,8 @@
 namespace lang2manip {
 
 /// Robots (DOFs, joint names, limits, base pose, configuration, manipulators), controls,
-/// objects (pose, size, kind, role) and queries (start and goal joint values).
+/// objects (pose, size, kind, role) and queries (start and goal joint values, and whether both
+/// are collision-free with the exact FCL checker, naming the colliding pairs).
 nlohmann::json problemReport(const LoadedProblem& problem);
 
 /// Human-readable rendering of problemReport().

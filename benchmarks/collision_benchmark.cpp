@@ -1,0 +1,133 @@
+// Microseconds per state check of the exact (FCL) checker: self-collision only, the paper's desk
+// scene (panda_desk) and a mesh scene from ../shared/data/kautham (TX90 + gripper, TwoCan), each
+// with and without the bounding-box pre-check (the in-process baseline), over seeded random
+// configurations and over valid ones only (every pair reaches the end of the list).
+// Counters: median_us and p95_us per check (each check timed alone), valid = fraction valid.
+//
+//   build/benchmarks/collision_benchmark [--benchmark_filter=Desk]
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "lang2manip/collision/fcl_collision_checker.hpp"
+#include "lang2manip/core/random.hpp"
+#include "lang2manip/model/builtin_data.hpp"
+#include "lang2manip/model/kautham_problem.hpp"
+#include "lang2manip/model/urdf_reader.hpp"
+
+namespace lang2manip {
+namespace {
+
+constexpr int kConfigurations = 2000;
+constexpr std::uint64_t kSeed = 42;
+
+std::filesystem::path tx90Problem() {
+  return std::filesystem::path(LANG2MANIP_SHARED_DIR) /
+         "data/kautham/OMPL_geo_demos/TX90_IOC/OMPL_RRTConnect_TX90_gripper_TwoCan.xml";
+}
+
+Scene sceneNamed(const std::string& name) {
+  if (name == "self") {
+    Scene scene;
+    SceneRobot robot;
+    robot.name = "panda";
+    robot.model = readUrdfFile(builtinRobotUrdf("panda"));
+    robot.configuration = robot.model->namedConfiguration("home");
+    scene.addRobot(robot);
+    return scene;
+  }
+  if (name == "desk") return readKauthamProblem(resolveProblem("panda_desk")).scene;
+  return readKauthamProblem(tx90Problem()).scene;
+}
+
+/// One checker per (scene, pre-check), built once; the ACM is shared between the two variants.
+struct Fixture {
+  std::unique_ptr<FclCollisionChecker> checker;
+  std::vector<VectorX> random;
+  std::vector<VectorX> valid;
+};
+
+Fixture& fixture(const std::string& scene, bool precheck) {
+  static std::map<std::pair<std::string, bool>, Fixture> fixtures;
+  Fixture& entry = fixtures[{scene, precheck}];
+  if (entry.checker) return entry;
+  FclCheckerSettings settings;
+  settings.boundingBoxPrecheck = precheck;
+  if (precheck == false) {
+    settings.precomputedMatrices = {fixture(scene, true).checker->sharedAllowedCollisions(0)};
+  }
+  entry.checker = std::make_unique<FclCollisionChecker>(sceneNamed(scene), settings);
+  const RobotModel& model = *entry.checker->scene().robots()[0].model;
+  Random random(kSeed);
+  const auto context = entry.checker->makeContext();
+  while (entry.random.size() < kConfigurations || entry.valid.size() < kConfigurations) {
+    const VectorX q = random.uniformVector(model.lowerLimits(), model.upperLimits());
+    const bool valid = entry.checker->isStateValid(0, q, *context);
+    if (entry.random.size() < kConfigurations) entry.random.push_back(q);
+    if (valid && entry.valid.size() < kConfigurations) entry.valid.push_back(q);
+  }
+  return entry;
+}
+
+void checkStates(benchmark::State& state, const std::string& scene, bool precheck, bool validOnly) {
+  if (scene == "tx90" && !std::filesystem::exists(tx90Problem())) {
+    state.SkipWithError(("../shared is absent: " + tx90Problem().string() + " not found").c_str());
+    return;
+  }
+  Fixture& f = fixture(scene, precheck);
+  const std::vector<VectorX>& configurations = validOnly ? f.valid : f.random;
+  const auto context = f.checker->makeContext();
+  std::vector<double> times;
+  times.reserve(1 << 20);
+  std::size_t i = 0;
+  int valid = 0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    const bool ok = f.checker->isStateValid(0, configurations[i], *context);
+    const auto end = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(ok);
+    valid += ok ? 1 : 0;
+    if (times.size() < times.capacity()) times.push_back(std::chrono::duration<double, std::micro>(end - start).count());
+    i = (i + 1) % configurations.size();
+  }
+  std::sort(times.begin(), times.end());
+  if (!times.empty()) {
+    state.counters["median_us"] = times[times.size() / 2];
+    state.counters["p95_us"] = times[times.size() * 95 / 100];
+  }
+  state.counters["valid"] = static_cast<double>(valid) / static_cast<double>(std::max<std::int64_t>(state.iterations(), 1));
+  state.counters["pairs"] = static_cast<double>(f.checker->pairCount(0));
+}
+
+void registerAll() {
+  for (const std::string scene : {"self", "desk", "tx90"}) {
+    for (const bool validOnly : {false, true}) {
+      for (const bool precheck : {true, false}) {
+        const std::string name = "StateCheck/" + scene + (validOnly ? "/valid_states" : "/random_states") +
+                                 (precheck ? "/aabb_precheck" : "/no_precheck");
+        benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& state) {
+          checkStates(state, scene, precheck, validOnly);
+        })->Unit(benchmark::kMicrosecond);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace lang2manip
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  lang2manip::registerAll();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,14 @@
+#pragma once
+/// @file The kinds of `lang2manip bench`: each adds itself as a subcommand of the `bench` command
+/// (addBenchCommand() in commands.hpp creates it and calls them).
+
+#include <CLI/CLI.hpp>
+#include <ostream>
+
+namespace lang2manip {
+
+/// `lang2manip bench ik --robot NAME [--samples N] [--seed N] [--timeout-ms T] [--json]`: the
+/// TRAC-IK protocol (docs/benchmarks.md) for every registered IK solver in one run.
+void addBenchIkCommand(CLI::App& bench, std::ostream& out);
+
+}  // namespace lang2manip

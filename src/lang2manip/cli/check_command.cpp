@@ -1,0 +1,108 @@
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lang2manip/cli/collision_queries.hpp"
+#include "lang2manip/cli/commands.hpp"
+#include "lang2manip/collision/fcl_collision_checker.hpp"
+#include "lang2manip/model/builtin_data.hpp"
+
+namespace lang2manip {
+namespace {
+
+using nlohmann::json;
+
+struct CheckOptions {
+  std::string problem;
+  std::string robot = "panda";
+  bool robotGiven = false;
+  std::vector<double> config;
+  bool json = false;
+};
+
+json checkEntry(const std::string& what, const CollisionReport& report) {
+  json entry = collisionReportJson(report);
+  entry["state"] = what;
+  return entry;
+}
+
+/// The given configuration of one robot (the others at the problem's scene state).
+json checkConfiguration(const CheckOptions& options, const CollisionChecker& checker) {
+  const int robot = options.robotGiven ? checker.robotIndex(options.robot) : 0;
+  const VectorX q = Eigen::Map<const VectorX>(options.config.data(), static_cast<Eigen::Index>(options.config.size()));
+  const auto context = checker.makeContext();
+  const CollisionReport report = checker.checkState(robot, q, CollisionRequest{true}, *context);
+  json entry = checkEntry("configuration", report);
+  entry["robot"] = checker.scene().robots()[static_cast<std::size_t>(robot)].name;
+  entry["configuration"] = options.config;
+  return json::array({entry});
+}
+
+json checkProblemQueries(const LoadedProblem& loaded, const CollisionChecker& checker) {
+  json checks = json::array();
+  const std::vector<QueryCollisions> results = checkQueries(loaded, checker);
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    const std::string query = "query " + std::to_string(i + 1);
+    checks.push_back(checkEntry(query + " start", results[i].start));
+    checks.push_back(checkEntry(query + " goal", results[i].goal));
+  }
+  return checks;
+}
+
+std::string checkText(const json& report) {
+  std::string text = "problem " + report["problem"].get<std::string>() + ": " +
+                     (report["valid"].get<bool>() ? "all states collision-free" : "COLLISION") + "\n";
+  for (const json& check : report["checks"]) {
+    text += check["state"].get<std::string>() +
+            (check.contains("robot") ? " of " + check["robot"].get<std::string>() : "") + ": " +
+            (check["valid"].get<bool>() ? "valid" : "INVALID") + "\n";
+    for (const json& contact : check["contacts"]) {
+      char depth[64];
+      std::snprintf(depth, sizeof depth, "%.4f", contact["penetration_depth"].get<double>());
+      text += "  " + contact["first"].get<std::string>() + " - " + contact["second"].get<std::string>() +
+              ": penetration " + depth + " m\n";
+    }
+    if (check["valid"].get<bool>() && check.contains("closest")) {
+      char distance[64];
+      std::snprintf(distance, sizeof distance, "%.4f", check["minimum_distance"].get<double>());
+      text += "  clearance " + std::string(distance) + " m (" + check["closest"][0].get<std::string>() +
+              " - " + check["closest"][1].get<std::string>() + ")\n";
+    }
+  }
+  return text;
+}
+
+void runCheck(const CheckOptions& options, std::ostream& out) {
+  const LoadedProblem loaded = loadProblem(options.problem, options.robot);
+  const FclCollisionChecker checker(loaded.problem.scene);
+  json report{{"problem", loaded.name}, {"file", loaded.file}, {"checker", "fcl"}};
+  report["checks"] = options.config.empty() ? checkProblemQueries(loaded, checker)
+                                            : checkConfiguration(options, checker);
+  bool valid = true;
+  for (const json& check : report["checks"]) valid = valid && check["valid"].get<bool>();
+  report["valid"] = valid;
+  out << (options.json ? report.dump(2) + "\n" : checkText(report));
+}
+
+}  // namespace
+
+void addCheckCommand(CLI::App& app, std::ostream& out) {
+  auto options = std::make_shared<CheckOptions>();
+  CLI::App* command = app.add_subcommand(
+      "check", "Check whether states are collision-free (each query's start and goal, or --config)");
+  command->add_option("PROBLEM", options->problem,
+                      "Built-in problem name, Kautham problem .xml, or MoveIt scene .yaml (default: " +
+                          defaultProblemName() + ")");
+  command->add_option("--robot", options->robot,
+                      "Robot whose --config is given (default: the first); built-in robot for "
+                      "MoveIt scenes")
+      ->capture_default_str();
+  command->add_option("--config", options->config, "Joint values of the robot (one per variable)");
+  command->add_flag("--json", options->json, "Print JSON");
+  command->callback([options, command, &out] {
+    options->robotGiven = command->count("--robot") > 0;
+    runCheck(*options, out);
+  });
+}
+
+}  // namespace lang2manip

@@ -1,0 +1,140 @@
+#include "lang2manip/collision/allowed_collision_matrix.hpp"
+
+#include <numeric>
+
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/core/random.hpp"
+
+namespace lang2manip {
+namespace {
+
+int findRoot(std::vector<int>& parent, int i) {
+  while (parent[static_cast<std::size_t>(i)] != i) {
+    parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+    i = parent[static_cast<std::size_t>(i)];
+  }
+  return i;
+}
+
+void allowAdjacent(const RobotModel& model, AllowedCollisionMatrix& matrix) {
+  const std::vector<int> groups = rigidLinkGroups(model);
+  const int links = matrix.linkCount();
+  for (int a = 0; a < links; ++a) {
+    for (int b = a + 1; b < links; ++b) {
+      if (linksAdjacent(model, groups, a, b)) matrix.allow(a, b, AllowedReason::kAdjacent);
+    }
+  }
+}
+
+void allowSrdf(const RobotModel& model, AllowedCollisionMatrix& matrix) {
+  for (const DisabledCollision& pair : model.semantics().disabledCollisions) {
+    const std::optional<int> a = model.findLink(pair.link1);
+    const std::optional<int> b = model.findLink(pair.link2);
+    if (!a || !b) {
+      throw InputError(SourceLocation{model.semantics().source, 0},
+                       "disable_collisions names an unknown link '" + (a ? pair.link2 : pair.link1) +
+                           "' of robot '" + model.name() + "'");
+    }
+    if (*a != *b) matrix.allow(*a, *b, AllowedReason::kSrdf);
+  }
+}
+
+void allowSampled(const RobotModel& model, const LinkCollisionTest& test,
+                  const AllowedCollisionSettings& settings, AllowedCollisionMatrix& matrix) {
+  if (settings.samples < 1) {
+    throw InputError("allowed-collision matrix: samples must be at least 1, got " +
+                     std::to_string(settings.samples));
+  }
+  const std::size_t links = static_cast<std::size_t>(matrix.linkCount());
+  std::vector<int> hits(links * links, 0);
+  std::vector<char> inCollision(links * links, 0);
+  Random random(settings.seed);
+  for (int s = 0; s < settings.samples; ++s) {
+    const VectorX q = random.uniformVector(model.lowerLimits(), model.upperLimits());
+    std::fill(inCollision.begin(), inCollision.end(), 0);
+    test(q, inCollision);
+    for (std::size_t i = 0; i < hits.size(); ++i) hits[i] += inCollision[i] != 0 ? 1 : 0;
+  }
+  for (std::size_t a = 0; a < links; ++a) {
+    for (std::size_t b = a + 1; b < links; ++b) {
+      const int count = hits[a * links + b];
+      const int ia = static_cast<int>(a);
+      const int ib = static_cast<int>(b);
+      if (count == 0 && settings.disableNever) matrix.allow(ia, ib, AllowedReason::kNever);
+      if (count == settings.samples && settings.disableAlways) matrix.allow(ia, ib, AllowedReason::kAlways);
+    }
+  }
+}
+
+}  // namespace
+
+std::string allowedReasonName(AllowedReason reason) {
+  switch (reason) {
+    case AllowedReason::kNone: return "none";
+    case AllowedReason::kSameLink: return "same link";
+    case AllowedReason::kAdjacent: return "adjacent";
+    case AllowedReason::kSrdf: return "srdf";
+    case AllowedReason::kNever: return "never";
+    case AllowedReason::kAlways: return "always";
+  }
+  return "none";
+}
+
+AllowedCollisionMatrix::AllowedCollisionMatrix(int linkCount)
+    : count_(linkCount),
+      reasons_(static_cast<std::size_t>(linkCount) * static_cast<std::size_t>(linkCount),
+               AllowedReason::kNone) {
+  for (int i = 0; i < linkCount; ++i) reasons_[index(i, i)] = AllowedReason::kSameLink;
+}
+
+void AllowedCollisionMatrix::allow(int a, int b, AllowedReason reason) noexcept {
+  if (reasons_[index(a, b)] != AllowedReason::kNone) return;
+  reasons_[index(a, b)] = reason;
+  reasons_[index(b, a)] = reason;
+}
+
+int AllowedCollisionMatrix::count(AllowedReason reason) const noexcept {
+  int total = 0;
+  for (int a = 0; a < count_; ++a) {
+    for (int b = a + 1; b < count_; ++b) total += reasons_[index(a, b)] == reason ? 1 : 0;
+  }
+  return total;
+}
+
+std::vector<int> rigidLinkGroups(const RobotModel& model) {
+  std::vector<int> parent(model.links().size());
+  std::iota(parent.begin(), parent.end(), 0);
+  for (std::size_t j = 0; j < model.joints().size(); ++j) {
+    if (model.joints()[j].type != JointType::kFixed) continue;
+    const int a = findRoot(parent, model.parentLinkOf(static_cast<int>(j)));
+    const int b = findRoot(parent, model.childLinkOf(static_cast<int>(j)));
+    parent[static_cast<std::size_t>(b)] = a;
+  }
+  std::vector<int> groups(parent.size());
+  for (std::size_t i = 0; i < parent.size(); ++i) groups[i] = findRoot(parent, static_cast<int>(i));
+  return groups;
+}
+
+bool linksAdjacent(const RobotModel& model, const std::vector<int>& rigidGroups, int a, int b) {
+  const int ga = rigidGroups[static_cast<std::size_t>(a)];
+  const int gb = rigidGroups[static_cast<std::size_t>(b)];
+  if (ga == gb) return true;
+  for (std::size_t j = 0; j < model.joints().size(); ++j) {
+    const int parent = rigidGroups[static_cast<std::size_t>(model.parentLinkOf(static_cast<int>(j)))];
+    const int child = rigidGroups[static_cast<std::size_t>(model.childLinkOf(static_cast<int>(j)))];
+    if ((parent == ga && child == gb) || (parent == gb && child == ga)) return true;
+  }
+  return false;
+}
+
+AllowedCollisionMatrix computeAllowedCollisionMatrix(const RobotModel& model,
+                                                     const LinkCollisionTest& test,
+                                                     const AllowedCollisionSettings& settings) {
+  AllowedCollisionMatrix matrix(static_cast<int>(model.links().size()));
+  allowAdjacent(model, matrix);
+  allowSrdf(model, matrix);
+  if (settings.disableNever || settings.disableAlways) allowSampled(model, test, settings, matrix);
+  return matrix;
+}
+
+}  // namespace lang2manip

@@ -1,0 +1,81 @@
+#pragma once
+/// @file Which link pairs of a robot may touch (and so are never checked): the allowed-collision
+/// matrix, computed automatically the way MoveIt's setup assistant does (adjacent links, pairs
+/// never or always in collision over random samples) plus the SRDF's disabled pairs.
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "lang2manip/core/types.hpp"
+#include "lang2manip/model/robot_model.hpp"
+
+namespace lang2manip {
+
+/// Why a link pair is allowed to touch (kNone: it is checked).
+enum class AllowedReason : std::uint8_t { kNone, kSameLink, kAdjacent, kSrdf, kNever, kAlways };
+
+/// "none", "same link", "adjacent", "srdf", "never", "always".
+std::string allowedReasonName(AllowedReason reason);
+
+/// A symmetric link-by-link matrix of AllowedReason. Immutable once computed; const methods are
+/// thread-safe.
+class AllowedCollisionMatrix {
+ public:
+  /// Every pair checked except a link with itself.
+  explicit AllowedCollisionMatrix(int linkCount);
+
+  [[nodiscard]] int linkCount() const noexcept { return count_; }
+  /// True when links `a` and `b` may touch (indices not checked: inner-loop call).
+  [[nodiscard]] bool isAllowed(int a, int b) const noexcept {
+    return reasons_[index(a, b)] != AllowedReason::kNone;
+  }
+  [[nodiscard]] AllowedReason reason(int a, int b) const noexcept { return reasons_[index(a, b)]; }
+  /// Allows a pair unless it is allowed already (the first reason is kept).
+  void allow(int a, int b, AllowedReason reason) noexcept;
+  /// Number of distinct pairs a < b allowed for `reason`.
+  [[nodiscard]] int count(AllowedReason reason) const noexcept;
+
+ private:
+  [[nodiscard]] std::size_t index(int a, int b) const noexcept {
+    return static_cast<std::size_t>(a) * static_cast<std::size_t>(count_) + static_cast<std::size_t>(b);
+  }
+  int count_ = 0;
+  std::vector<AllowedReason> reasons_;
+};
+
+/// Settings of computeAllowedCollisionMatrix() (the tuning constants, documented in one place).
+struct AllowedCollisionSettings {
+  /// Random configurations sampled uniformly within the joint limits.
+  int samples = 2000;
+  std::uint64_t seed = 20240611;
+  /// Disable pairs that never collide in the samples (MoveIt's "Never"): faster checks, at the
+  /// risk of missing a rare contact the samples did not find.
+  bool disableNever = true;
+  /// Disable pairs that collide in every sample (MoveIt's "Always": built-in overlaps).
+  bool disableAlways = true;
+};
+
+/// Tells, for configuration `q`, which link pairs collide: sets inCollision[a * linkCount + b]
+/// (and [b * linkCount + a]) to 1 for each colliding pair of distinct links. The vector has
+/// linkCount^2 entries, all 0 on entry.
+using LinkCollisionTest = std::function<void(const VectorX& q, std::vector<char>& inCollision)>;
+
+/// Links rigidly connected to each other (through fixed joints) share a group id; indexed like
+/// RobotModel::links().
+std::vector<int> rigidLinkGroups(const RobotModel& model);
+
+/// True when links `a` and `b` are rigidly connected or joined by one movable joint, possibly
+/// through fixed joints on either side.
+bool linksAdjacent(const RobotModel& model, const std::vector<int>& rigidGroups, int a, int b);
+
+/// The matrix for `model`: adjacent pairs, the SRDF's disabled pairs (unknown link names in the
+/// SRDF throw InputError naming them), then, when enabled, the never/always pairs found by
+/// `test` over `settings.samples` seeded random configurations (deterministic).
+/// @throws InputError for samples < 1 when never/always detection is on.
+AllowedCollisionMatrix computeAllowedCollisionMatrix(const RobotModel& model,
+                                                     const LinkCollisionTest& test,
+                                                     const AllowedCollisionSettings& settings = {});
+
+}  // namespace lang2manip

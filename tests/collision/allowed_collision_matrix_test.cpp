@@ -1,0 +1,108 @@
+// The allowed-collision matrix: adjacency (through fixed joints), SRDF pairs, never/always pairs.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "collision_test_support.hpp"
+#include "lang2manip/collision/allowed_collision_matrix.hpp"
+#include "lang2manip/core/error.hpp"
+
+namespace lang2manip::test {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::ThrowsMessage;
+
+TEST(AllowedCollisionMatrix, StartsWithEveryPairCheckedButTheDiagonal) {
+  AllowedCollisionMatrix matrix(3);
+  EXPECT_TRUE(matrix.isAllowed(1, 1));
+  EXPECT_FALSE(matrix.isAllowed(0, 2));
+  matrix.allow(2, 0, AllowedReason::kSrdf);
+  matrix.allow(0, 2, AllowedReason::kNever);
+  EXPECT_TRUE(matrix.isAllowed(0, 2));
+  EXPECT_EQ(matrix.reason(0, 2), AllowedReason::kSrdf);
+  EXPECT_EQ(matrix.count(AllowedReason::kSrdf), 1);
+  EXPECT_EQ(allowedReasonName(AllowedReason::kAlways), "always");
+}
+
+TEST(AllowedCollisionMatrix, AdjacencyFollowsFixedJoints) {
+  const RobotModelPtr panda = builtinRobot("panda");
+  const std::vector<int> groups = rigidLinkGroups(*panda);
+  const auto link = [&](const char* name) { return panda->linkIndex(name); };
+  EXPECT_EQ(groups[static_cast<std::size_t>(link("panda_link7"))], groups[static_cast<std::size_t>(link("panda_hand"))]);
+  EXPECT_TRUE(linksAdjacent(*panda, groups, link("panda_link6"), link("panda_hand")));
+  EXPECT_TRUE(linksAdjacent(*panda, groups, link("panda_link8"), link("panda_leftfinger")));
+  EXPECT_FALSE(linksAdjacent(*panda, groups, link("panda_link5"), link("panda_link7")));
+  EXPECT_FALSE(linksAdjacent(*panda, groups, link("panda_link0"), link("panda_link2")));
+}
+
+/// A fake link test: pair (1, 2) always collides, pair (3, 4) when q[0] > 0, nothing else.
+void fakeTest(int links, const VectorX& q, std::vector<char>& hits) {
+  const auto set = [&](int a, int b) {
+    hits[static_cast<std::size_t>(a * links + b)] = hits[static_cast<std::size_t>(b * links + a)] = 1;
+  };
+  set(1, 2);
+  if (q[0] > 0.0) set(3, 4);
+}
+
+TEST(AllowedCollisionMatrix, SampledPairsWithAFakeTest) {
+  const RobotModelPtr panda = builtinRobot("panda");
+  const int links = static_cast<int>(panda->links().size());
+  int calls = 0;
+  AllowedCollisionSettings settings;
+  settings.samples = 300;
+  const auto test = [&](const VectorX& q, std::vector<char>& hits) {
+    ++calls;
+    fakeTest(links, q, hits);
+  };
+  const AllowedCollisionMatrix matrix = computeAllowedCollisionMatrix(*panda, test, settings);
+  EXPECT_EQ(calls, 300);
+  // Links 1 and 2 are adjacent (adjacency is recorded first); 3 and 4 sometimes collide.
+  EXPECT_EQ(matrix.reason(1, 2), AllowedReason::kAdjacent);
+  EXPECT_EQ(matrix.reason(3, 4), AllowedReason::kAdjacent);
+  EXPECT_EQ(matrix.reason(0, 5), AllowedReason::kNever);
+
+  settings.disableNever = false;
+  const auto far = [&](const VectorX& q, std::vector<char>& hits) {
+    hits[static_cast<std::size_t>(0 * links + 5)] = hits[static_cast<std::size_t>(5 * links + 0)] = 1;
+    if (q[0] > 0.0) hits[static_cast<std::size_t>(1 * links + 6)] = hits[static_cast<std::size_t>(6 * links + 1)] = 1;
+  };
+  const AllowedCollisionMatrix sampled = computeAllowedCollisionMatrix(*panda, far, settings);
+  EXPECT_EQ(sampled.reason(0, 5), AllowedReason::kAlways);
+  EXPECT_EQ(sampled.reason(1, 6), AllowedReason::kNone);
+  EXPECT_EQ(sampled.count(AllowedReason::kNever), 0);
+  settings.samples = 0;
+  EXPECT_THAT([&] { (void)computeAllowedCollisionMatrix(*panda, far, settings); },
+              ThrowsMessage<InputError>(HasSubstr("samples must be at least 1")));
+}
+
+TEST(AllowedCollisionMatrix, ComputedForThePandaWithFcl) {
+  const FclCollisionChecker checker(robotOnlyScene("panda"));
+  const AllowedCollisionMatrix& matrix = checker.allowedCollisions(0);
+  const RobotModel& panda = *checker.scene().robots()[0].model;
+  const auto reason = [&](const char* a, const char* b) {
+    return matrix.reason(panda.linkIndex(a), panda.linkIndex(b));
+  };
+  EXPECT_EQ(reason("panda_link1", "panda_link2"), AllowedReason::kAdjacent);
+  EXPECT_EQ(reason("panda_link6", "panda_hand"), AllowedReason::kAdjacent);
+  // SRDF pairs that are not adjacent: "Never" pairs of the SRDF, and the fingers.
+  EXPECT_EQ(reason("panda_link0", "panda_link2"), AllowedReason::kSrdf);
+  EXPECT_EQ(reason("panda_leftfinger", "panda_rightfinger"), AllowedReason::kSrdf);
+  for (const DisabledCollision& pair : panda.semantics().disabledCollisions) {
+    EXPECT_TRUE(matrix.isAllowed(panda.linkIndex(pair.link1), panda.linkIndex(pair.link2)))
+        << pair.link1 << " " << pair.link2;
+  }
+  // Link 5 and link 7 collide in some configurations (joint 6 at its lower limit): kept.
+  EXPECT_EQ(reason("panda_link5", "panda_link7"), AllowedReason::kNone);
+  EXPECT_EQ(reason("panda_link0", "panda_hand"), AllowedReason::kNone);
+  // Deterministic: the same seed gives the same matrix.
+  const FclCollisionChecker again(robotOnlyScene("panda"));
+  for (int a = 0; a < matrix.linkCount(); ++a) {
+    for (int b = 0; b < matrix.linkCount(); ++b) {
+      ASSERT_EQ(matrix.reason(a, b), again.allowedCollisions(0).reason(a, b));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace lang2manip::test
