@@ -1,0 +1,103 @@
+#include "lang2manip/symbolic/action.hpp"
+
+#include <array>
+#include <sstream>
+#include <utility>
+
+namespace lang2manip {
+namespace {
+
+template <typename Enum, std::size_t N>
+using NameTable = std::array<std::pair<Enum, const char*>, N>;
+
+constexpr NameTable<ActionType, 4> kActionNames{{
+    {ActionType::kPick, "pick"},
+    {ActionType::kPlace, "place"},
+    {ActionType::kMove, "move"},
+    {ActionType::kPush, "push"},
+}};
+
+constexpr NameTable<SpatialRelation, 7> kRelationNames{{
+    {SpatialRelation::kIn, "in"},
+    {SpatialRelation::kOn, "on"},
+    {SpatialRelation::kLeftOf, "left_of"},
+    {SpatialRelation::kRightOf, "right_of"},
+    {SpatialRelation::kInFrontOf, "in_front_of"},
+    {SpatialRelation::kBehind, "behind"},
+    {SpatialRelation::kNextTo, "next_to"},
+}};
+
+constexpr NameTable<GraspDirection, 4> kGraspNames{{
+    {GraspDirection::kAuto, "auto"},
+    {GraspDirection::kTop, "top"},
+    {GraspDirection::kSide, "side"},
+    {GraspDirection::kFront, "front"},
+}};
+
+template <typename Enum, std::size_t N>
+std::string nameOf(const NameTable<Enum, N>& table, Enum value) {
+  for (const auto& [entry, name] : table) {
+    if (entry == value) return name;
+  }
+  return "unknown";
+}
+
+template <typename Enum, std::size_t N>
+std::optional<Enum> valueOf(const NameTable<Enum, N>& table, const std::string& name) {
+  for (const auto& [entry, entryName] : table) {
+    if (name == entryName) return entry;
+  }
+  return std::nullopt;
+}
+
+template <typename Enum, std::size_t N>
+std::vector<std::string> namesOf(const NameTable<Enum, N>& table) {
+  std::vector<std::string> names;
+  for (const auto& entry : table) names.emplace_back(entry.second);
+  return names;
+}
+
+}  // namespace
+
+std::string actionTypeName(ActionType type) { return nameOf(kActionNames, type); }
+std::string spatialRelationName(SpatialRelation relation) { return nameOf(kRelationNames, relation); }
+std::string graspDirectionName(GraspDirection direction) { return nameOf(kGraspNames, direction); }
+
+std::optional<ActionType> actionTypeFromName(const std::string& name) {
+  return valueOf(kActionNames, name);
+}
+std::optional<SpatialRelation> spatialRelationFromName(const std::string& name) {
+  return valueOf(kRelationNames, name);
+}
+std::optional<GraspDirection> graspDirectionFromName(const std::string& name) {
+  return valueOf(kGraspNames, name);
+}
+
+std::vector<std::string> actionTypeNames() { return namesOf(kActionNames); }
+std::vector<std::string> spatialRelationNames() { return namesOf(kRelationNames); }
+std::vector<std::string> graspDirectionNames() { return namesOf(kGraspNames); }
+
+std::string describeGoal(const Goal& goal) {
+  std::ostringstream text;
+  switch (goal.kind) {
+    case GoalKind::kRelation:
+      text << goal.object << ' '
+           << (goal.relation ? spatialRelationName(*goal.relation) : std::string("?")) << ' '
+           << goal.target;
+      if (goal.distance) text << " at " << *goal.distance << " m";
+      break;
+    case GoalKind::kHolding:
+      text << "holding " << goal.object;
+      break;
+    case GoalKind::kDisplaced:
+      text << goal.object << " displaced by (" << goal.displacement.x() << ", "
+           << goal.displacement.y() << ", " << goal.displacement.z() << ")";
+      break;
+    case GoalKind::kAtConfiguration:
+      text << "at " << goal.configuration;
+      break;
+  }
+  return text.str();
+}
+
+}  // namespace lang2manip

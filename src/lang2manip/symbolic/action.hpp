@@ -1,0 +1,106 @@
+#pragma once
+/// @file The symbolic action grammar of the paper: each action is a(o, p, r, kappa) -- an
+/// action type, the object it acts on, its parameters, refinements, and a preferred motion
+/// planner -- and a plan is a sequence of actions. Also the goal relations an instruction asks
+/// for, which the final state is checked against.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lang2manip/core/types.hpp"
+
+namespace lang2manip {
+
+enum class ActionType { kPick, kPlace, kMove, kPush };
+
+/// Spatial relations between objects; left/right/front/behind are in the robot's base frame
+/// (front = +x of the base, left = +y).
+enum class SpatialRelation { kIn, kOn, kLeftOf, kRightOf, kInFrontOf, kBehind, kNextTo };
+
+enum class GraspDirection { kAuto, kTop, kSide, kFront };
+
+/// "pick", "place", "move", "push".
+std::string actionTypeName(ActionType type);
+/// "in", "on", "left_of", "right_of", "in_front_of", "behind", "next_to".
+std::string spatialRelationName(SpatialRelation relation);
+/// "auto", "top", "side", "front".
+std::string graspDirectionName(GraspDirection direction);
+
+/// Inverses of the names above; std::nullopt for an unknown name (callers report it with context).
+std::optional<ActionType> actionTypeFromName(const std::string& name);
+std::optional<SpatialRelation> spatialRelationFromName(const std::string& name);
+std::optional<GraspDirection> graspDirectionFromName(const std::string& name);
+
+/// The names accepted by the *FromName functions, for error messages ("pick, place, ...").
+std::vector<std::string> actionTypeNames();
+std::vector<std::string> spatialRelationNames();
+std::vector<std::string> graspDirectionNames();
+
+/// Parameters p of an action; which fields are meaningful depends on the action type:
+/// - place: `relation` + `target` (+ optional `distance` for left_of/right_of/in_front_of/
+///   behind/next_to), or an explicit `position` (+ optional `orientation`);
+/// - move: a `position` (+ `orientation`) of the tool frame, or a `configuration` name such as
+///   "home" (then `object` of the action is empty);
+/// - push: a `direction` (unit vector, robot base frame) and a `distance` in metres;
+/// - pick: none.
+struct ActionParams {
+  std::optional<SpatialRelation> relation;
+  std::string target;
+  std::optional<double> distance;
+  std::optional<Vector3> position;
+  std::optional<Quaternion> orientation;
+  std::string configuration;
+  std::optional<Vector3> direction;
+};
+
+/// Refinements r: how to grasp and approach.
+struct ActionRefinements {
+  GraspDirection grasp = GraspDirection::kAuto;
+  /// Approach direction of the gripper (unit vector, robot base frame), when requested.
+  std::optional<Vector3> approach;
+};
+
+struct SymbolicAction {
+  ActionType type = ActionType::kPick;
+  /// The object acted on; empty for `move` to a named configuration or a pose.
+  std::string object;
+  ActionParams params;
+  ActionRefinements refinements;
+  /// A registered motion planner name (e.g. "RRTConnect", "omplRRTStar"); empty = default.
+  std::string planner;
+};
+
+struct Plan {
+  std::vector<SymbolicAction> actions;
+  /// Optional free-text reasoning the planner gave with the plan.
+  std::string reasoning;
+};
+
+/// What an instruction asks to hold at the end; the final state is checked against these.
+enum class GoalKind {
+  /// `object` `relation` `target` (e.g. marker in pen_holder).
+  kRelation,
+  /// The robot holds `object`.
+  kHolding,
+  /// `object` moved by `displacement` (robot base frame) from where it started.
+  kDisplaced,
+  /// The robot is at the named `configuration` (e.g. "home").
+  kAtConfiguration,
+};
+
+struct Goal {
+  GoalKind kind = GoalKind::kRelation;
+  std::string object;
+  std::optional<SpatialRelation> relation;
+  std::string target;
+  /// For left_of/... relations with an explicit distance, metres.
+  std::optional<double> distance;
+  Vector3 displacement = Vector3::Zero();
+  std::string configuration;
+};
+
+/// "marker in pen_holder", "holding marker", "eraser displaced by (0, 0.05, 0)", "at home".
+std::string describeGoal(const Goal& goal);
+
+}  // namespace lang2manip

@@ -1,0 +1,37 @@
+#pragma once
+/// @file The symbolic state: facts derived from geometry that plans are validated against and
+/// that the offline planner searches over. Computed from a Scene by observeSymbolicState() and
+/// updated by the effects of actions.
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace lang2manip {
+
+struct SymbolicState {
+  /// Every object of the scene, in scene order.
+  std::vector<std::string> objects;
+  /// Objects that can be picked up.
+  std::set<std::string> movable;
+  /// Objects with the container role, and with the support role (tables, desks).
+  std::set<std::string> containers;
+  std::set<std::string> supports;
+  /// object -> the container it is inside.
+  std::map<std::string, std::string> inside;
+  /// object -> the object it rests on (a support or another object; absent when inside one).
+  std::map<std::string, std::string> onTopOf;
+  /// The object the robot holds, empty when its gripper is free.
+  std::string held;
+  /// The robot's current named configuration ("home"), empty when it is elsewhere.
+  std::string atConfiguration;
+
+  /// True when nothing rests on `object` (and, for a container, nothing is inside it).
+  [[nodiscard]] bool isClear(const std::string& object) const;
+  /// The objects resting on or inside `object`.
+  [[nodiscard]] std::vector<std::string> objectsOn(const std::string& object) const;
+  [[nodiscard]] bool hasObject(const std::string& object) const;
+};
+
+}  // namespace lang2manip

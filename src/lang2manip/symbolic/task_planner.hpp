@@ -1,0 +1,81 @@
+#pragma once
+/// @file The task-planner interface: the offline planner and the LLM planners answer a task
+/// with a symbolic Plan. Failures found later (validation, grounding) come back through
+/// PlanFeedback so the planner can repair its plan.
+
+#include <cstddef>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "lang2manip/core/stop_condition.hpp"
+#include "lang2manip/model/scene.hpp"
+#include "lang2manip/symbolic/action.hpp"
+
+namespace lang2manip {
+
+/// Why an action of a plan could not be grounded, reported by the execution layer.
+struct GroundingFailure {
+  std::size_t actionIndex = 0;
+  /// "grasp", "placement", "ik", "motion", "push", "verification".
+  std::string stage;
+  std::string object;
+  /// In words, naming objects: "no collision-free grasp of eraser: ...".
+  std::string reason;
+};
+
+/// One earlier round: what the planner answered and why it was not accepted, in words.
+struct PlanAttempt {
+  /// The raw answer (LLM text) or the plan as JSON.
+  std::string answer;
+  std::string failure;
+};
+
+struct PlanningRequest {
+  std::string task;
+  /// The world the task is about; not owned, must outlive the call.
+  const Scene* scene = nullptr;
+  /// The robot that will execute the plan.
+  std::string robot;
+  /// Earlier rounds of this task, oldest first (empty on the first round).
+  std::vector<PlanAttempt> earlierAttempts;
+};
+
+/// Counters of one planning round (accumulated over rounds by the repair loop).
+struct PlanningStatistics {
+  int llmCalls = 0;
+  long inputTokens = 0;
+  long outputTokens = 0;
+  double llmSeconds = 0.0;
+  double planningSeconds = 0.0;
+};
+
+/// A task planner could not produce a plan (an instruction it cannot ground, an LLM error that
+/// retries did not fix, a refusal). The message says why, in words for the user.
+class PlanningError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A planner answering tasks with symbolic plans.
+class TaskPlanner {
+ public:
+  virtual ~TaskPlanner() = default;
+  /// "offline", "openai:gpt-4o", ...
+  [[nodiscard]] virtual std::string name() const = 0;
+  /// A plan for `request`, or PlanningError. May return a plan that later fails validation;
+  /// the repair loop checks it. Adds to `statistics`.
+  virtual Plan plan(const PlanningRequest& request, const StopCondition& stop,
+                    PlanningStatistics& statistics) = 0;
+};
+
+/// Grounds and executes a plan; implemented by the execution layer.
+class PlanExecutor {
+ public:
+  virtual ~PlanExecutor() = default;
+  /// Executes `plan`; the first action that could not be grounded, or nullopt on success.
+  virtual std::optional<GroundingFailure> execute(const Plan& plan, const StopCondition& stop) = 0;
+};
+
+}  // namespace lang2manip
