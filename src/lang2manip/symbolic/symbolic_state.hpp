@@ -35,3 +35,22 @@ struct SymbolicState {
 };
 
 }  // namespace lang2manip
+
+namespace lang2manip {
+
+class Scene;
+
+/// Tolerances of the geometric tests behind observeSymbolicState().
+struct SymbolicStateTolerances {
+  /// How far an object's bottom may be from a support's top for "on", metres.
+  double contactGap = 0.015;
+  /// How far below a cavity's floor an object's centre may be and still count as "in", metres.
+  double cavityMargin = 0.01;
+};
+
+/// The symbolic state of `scene` from geometry: "in" when an object's centre lies inside a
+/// container's cavity, "on" when its bottom rests on the top of the highest object under its
+/// centre, "held" from the scene's attachments. atConfiguration is left empty.
+SymbolicState observeSymbolicState(const Scene& scene, const SymbolicStateTolerances& tolerances = {});
+
+}  // namespace lang2manip

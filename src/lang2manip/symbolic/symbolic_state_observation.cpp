@@ -1,0 +1,76 @@
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "lang2manip/model/scene.hpp"
+#include "lang2manip/symbolic/symbolic_state.hpp"
+
+namespace lang2manip {
+namespace {
+
+bool isInsideCavity(const SceneObject& item, const SceneObject& container,
+                    const SymbolicStateTolerances& tolerances) {
+  if (!container.cavity) return false;
+  const Vector3 centre = container.pose.inverse() * item.worldBounds().center();
+  const AlignedBox3& cavity = *container.cavity;
+  return centre.x() >= cavity.min().x() && centre.x() <= cavity.max().x() &&
+         centre.y() >= cavity.min().y() && centre.y() <= cavity.max().y() &&
+         centre.z() >= cavity.min().z() - tolerances.cavityMargin &&
+         centre.z() <= cavity.max().z();
+}
+
+bool restsOn(const AlignedBox3& item, const AlignedBox3& support,
+             const SymbolicStateTolerances& tolerances) {
+  const Vector3 centre = item.center();
+  const bool above = centre.x() >= support.min().x() && centre.x() <= support.max().x() &&
+                     centre.y() >= support.min().y() && centre.y() <= support.max().y();
+  return above && std::abs(item.min().z() - support.max().z()) <= tolerances.contactGap;
+}
+
+std::optional<std::string> containerOf(const Scene& scene, const SceneObject& item,
+                                       const SymbolicStateTolerances& tolerances) {
+  for (const SceneObject& other : scene.objects()) {
+    if (other.name != item.name && isInsideCavity(item, other, tolerances)) return other.name;
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> supportOf(const Scene& scene, const SceneObject& item,
+                                     const SymbolicStateTolerances& tolerances) {
+  const AlignedBox3 bounds = item.worldBounds();
+  std::optional<std::string> best;
+  double bestTop = -std::numeric_limits<double>::infinity();
+  for (const SceneObject& other : scene.objects()) {
+    if (other.name == item.name) continue;
+    const AlignedBox3 otherBounds = other.worldBounds();
+    if (restsOn(bounds, otherBounds, tolerances) && otherBounds.max().z() > bestTop) {
+      best = other.name;
+      bestTop = otherBounds.max().z();
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+SymbolicState observeSymbolicState(const Scene& scene, const SymbolicStateTolerances& tolerances) {
+  SymbolicState state;
+  for (const SceneObject& object : scene.objects()) {
+    state.objects.push_back(object.name);
+    if (object.movable) state.movable.insert(object.name);
+    if (object.role == ObjectRole::kContainer) state.containers.insert(object.name);
+    if (object.role == ObjectRole::kSupport) state.supports.insert(object.name);
+  }
+  for (const Attachment& attachment : scene.attachments()) state.held = attachment.object;
+  for (const SceneObject& object : scene.objects()) {
+    if (object.name == state.held) continue;
+    if (auto container = containerOf(scene, object, tolerances)) {
+      state.inside[object.name] = *container;
+    } else if (auto support = supportOf(scene, object, tolerances)) {
+      state.onTopOf[object.name] = *support;
+    }
+  }
+  return state;
+}
+
+}  // namespace lang2manip
