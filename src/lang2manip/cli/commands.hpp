@@ -17,6 +17,10 @@ void addShowCommand(CLI::App& app, std::ostream& out);
 /// start and goal (or the given configuration) is collision-free, naming the colliding pairs.
 void addCheckCommand(CLI::App& app, std::ostream& out);
 
+/// `lang2manip solve [PROBLEM] [--planner NAME] [--param NAME=VALUE ...] [--json] [--out FILE]`:
+/// solves the problem's motion queries and writes the paths and trajectories.
+void addSolveCommand(CLI::App& app, std::ostream& out);
+
 /// `lang2manip bench KIND ...`: benchmarks that print figures (kinds: ik; see bench_commands.hpp).
 void addBenchCommand(CLI::App& app, std::ostream& out);
 

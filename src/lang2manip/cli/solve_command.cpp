@@ -1,0 +1,174 @@
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <ompl/util/RandomNumbers.h>
+
+#include "lang2manip/cli/commands.hpp"
+#include "lang2manip/cli/problem_loading.hpp"
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/model/builtin_data.hpp"
+#include "lang2manip/planning/planning_session.hpp"
+
+namespace lang2manip {
+namespace {
+
+using nlohmann::json;
+
+struct SolveOptions {
+  std::string problem;
+  std::string robot = "panda";
+  std::string planner;
+  std::vector<std::string> parameters;
+  double timeLimit = 0.0;
+  int query = 0;
+  long seed = 1;
+  double resolution = MotionPlanningOptions{}.resolution;
+  bool json = false;
+  std::string out;
+};
+
+void configurePlanner(PlanningSession& session, const SolveOptions& options) {
+  if (!options.planner.empty()) session.setPlanner(options.planner);
+  for (const std::string& parameter : options.parameters) {
+    const auto equals = parameter.find('=');
+    if (equals == std::string::npos || equals == 0) {
+      throw InputError("--param \"" + parameter + "\": expected NAME=VALUE");
+    }
+    session.setPlannerParameter(parameter.substr(0, equals), parameter.substr(equals + 1));
+  }
+  if (options.timeLimit > 0.0) session.setPlannerParameter("_Max Planning Time", std::to_string(options.timeLimit));
+}
+
+json statisticsJson(const MotionPlanStatistics& statistics) {
+  return {{"planning_seconds", statistics.planningSeconds},
+          {"simplify_seconds", statistics.simplifySeconds},
+          {"parameterization_seconds", statistics.parameterizationSeconds},
+          {"verification_seconds", statistics.verificationSeconds},
+          {"iterations", statistics.iterations},
+          {"vertices", statistics.vertices},
+          {"edges", statistics.edges},
+          {"state_checks", statistics.stateChecks},
+          {"motion_checks", statistics.motionChecks},
+          {"length_before_simplification", statistics.lengthBeforeSimplification},
+          {"length_after_simplification", statistics.lengthAfterSimplification},
+          {"rejected_paths", statistics.rejectedPaths}};
+}
+
+json queryJson(std::size_t index, const PlanningSession& session, const MotionPlan& plan) {
+  json path = json::array();
+  for (const VectorX& point : plan.path) path.push_back(std::vector<double>(point.data(), point.data() + point.size()));
+  return {{"query", index + 1},
+          {"status", motionPlanStatusName(plan.status)},
+          {"message", plan.message},
+          {"planner", session.plannerSettings().planner()},
+          {"statistics", statisticsJson(plan.statistics)},
+          {"path_dof_names", session.pathDofNames()},
+          {"path", path},
+          {"trajectory", trajectoryToJson(plan.trajectory)},
+          {"duration", plan.trajectory.duration()}};
+}
+
+std::string queryText(const json& query) {
+  const json& statistics = query["statistics"];
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "query %d: %s by %s in %.1f ms (%ld vertices, %ld edges, %ld state and %ld motion "
+                "checks)\n",
+                query["query"].get<int>(), query["status"].get<std::string>().c_str(),
+                query["planner"].get<std::string>().c_str(), statistics["planning_seconds"].get<double>() * 1e3,
+                statistics["vertices"].get<long>(), statistics["edges"].get<long>(),
+                statistics["state_checks"].get<long>(), statistics["motion_checks"].get<long>());
+  std::string text = line;
+  if (query["status"] != "solved") return text + "  " + query["message"].get<std::string>() + "\n";
+  std::snprintf(line, sizeof line,
+                "  path: %zu points, length %.3f -> %.3f after simplification (%.1f ms); trajectory "
+                "%.2f s, %zu points, verified\n",
+                query["path"].size(), statistics["length_before_simplification"].get<double>(),
+                statistics["length_after_simplification"].get<double>(),
+                statistics["simplify_seconds"].get<double>() * 1e3, query["duration"].get<double>(),
+                query["trajectory"]["points"].size());
+  return text + line;
+}
+
+void writeOutputs(const std::string& out, const json& report, const std::vector<JointTrajectory>& trajectories) {
+  const std::filesystem::path file(out);
+  std::ofstream stream(file);
+  if (!stream) throw InputError("--out: cannot write " + file.string());
+  stream << report.dump(2) << '\n';
+  for (std::size_t q = 0; q < trajectories.size(); ++q) {
+    std::filesystem::path csv = file;
+    csv.replace_extension(trajectories.size() == 1 ? ".csv" : "_query" + std::to_string(q + 1) + ".csv");
+    std::ofstream csvStream(csv);
+    if (!csvStream) throw InputError("--out: cannot write " + csv.string());
+    csvStream << trajectoryToCsv(trajectories[q]);
+  }
+}
+
+void runSolve(const SolveOptions& options, std::ostream& out) {
+  ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(options.seed));
+  LoadedProblem loaded = loadProblem(options.problem, options.robot);
+  MotionPlanningOptions planningOptions;
+  planningOptions.resolution = options.resolution;
+  PlanningSession session(planningOptions);
+  session.openProblem(std::move(loaded.problem));
+  configurePlanner(session, options);
+  const std::vector<KauthamQuery> queries = session.problem().queries;
+  if (queries.empty()) throw InputError(loaded.file + ": the problem has no query to solve");
+  if (options.query < 0 || options.query > static_cast<int>(queries.size())) {
+    throw InputError("--query " + std::to_string(options.query) + ": the problem has " +
+                     std::to_string(queries.size()) + " queries (1.." + std::to_string(queries.size()) + ")");
+  }
+  json report{{"problem", loaded.name}, {"file", loaded.file}, {"queries", json::array()}};
+  std::vector<JointTrajectory> trajectories;
+  for (std::size_t q = 0; q < queries.size(); ++q) {
+    if (options.query != 0 && static_cast<int>(q) + 1 != options.query) continue;
+    session.setQuery(queries[q].init, queries[q].goal);
+    const MotionPlan& plan = session.solve();
+    report["queries"].push_back(queryJson(q, session, plan));
+    trajectories.push_back(plan.trajectory);
+  }
+  bool solved = true;
+  for (const json& query : report["queries"]) solved = solved && query["status"] == "solved";
+  report["solved"] = solved;
+  if (!options.out.empty()) writeOutputs(options.out, report, trajectories);
+  if (options.json) {
+    out << report.dump(2) << '\n';
+  } else {
+    out << "problem " << loaded.name << " (" << loaded.file << ")\n";
+    for (const json& query : report["queries"]) out << queryText(query);
+  }
+  if (!solved) throw InputError("not every query was solved");
+}
+
+}  // namespace
+
+void addSolveCommand(CLI::App& app, std::ostream& out) {
+  auto options = std::make_shared<SolveOptions>();
+  CLI::App* command = app.add_subcommand(
+      "solve", "Solve a problem's motion queries with its planner (or --planner) and write the trajectories");
+  command->add_option("PROBLEM", options->problem,
+                      "Built-in problem name, Kautham problem .xml, or MoveIt scene .yaml (default: " +
+                          defaultProblemName() + ")");
+  command->add_option("--robot", options->robot, "Built-in robot for MoveIt scenes")->capture_default_str();
+  command->add_option("--planner", options->planner, "Planner name (OMPL or Kautham name)");
+  command->add_option("--param", options->parameters, "Planner parameter NAME=VALUE (repeatable)");
+  command->add_option("--time-limit", options->timeLimit, "Planning time limit per query, seconds")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--query", options->query, "Solve only query N (1-based; default: all)");
+  command->add_option("--seed", options->seed, "Random seed")->capture_default_str();
+  command->add_option("--resolution", options->resolution,
+                      "Largest joint step (rad or m) between collision checks of a motion while "
+                      "planning; the result is re-verified at a finer resolution")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_flag("--json", options->json, "Print JSON");
+  command->add_option("--out", options->out,
+                      "Write the result as JSON to FILE and each trajectory as CSV beside it");
+  command->callback([options, &out] { runSolve(*options, out); });
+}
+
+}  // namespace lang2manip

@@ -1,0 +1,56 @@
+#pragma once
+/// @file Time parameterization of a piecewise-linear path into a trajectory that respects each
+/// joint's velocity and acceleration limits, its checks, and its files (JSON in the style of
+/// trajectory_msgs/JointTrajectory, and CSV).
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "lang2manip/core/types.hpp"
+#include "lang2manip/planning/planning_space.hpp"
+
+namespace lang2manip {
+
+struct TrajectoryPoint {
+  VectorX positions;
+  VectorX velocities;
+  VectorX accelerations;
+  /// Seconds from the start of the trajectory.
+  double time = 0.0;
+};
+
+struct JointTrajectory {
+  std::vector<std::string> jointNames;
+  std::vector<TrajectoryPoint> points;
+
+  [[nodiscard]] double duration() const { return points.empty() ? 0.0 : points.back().time; }
+};
+
+struct TimeParameterizationOptions {
+  /// Fraction of the velocity and acceleration limits used (0, 1].
+  double limitScale = 1.0;
+  /// Time between samples inside a segment, seconds (waypoints are always samples).
+  double sampleInterval = 0.02;
+};
+
+/// A trajectory through `path` (points of `space`): each segment is a synchronized trapezoidal
+/// velocity profile from rest to rest, the fastest one within every trajectory joint's limits.
+/// Throws InputError for an empty path, points of the wrong size, or options out of range.
+JointTrajectory timeParameterize(const PlanningSpace& space, const std::vector<VectorX>& path,
+                                 const TimeParameterizationOptions& options = {});
+
+/// Empty when every point of `trajectory` is within the space's velocity and acceleration
+/// limits (with `tolerance` relative slack) and times increase; otherwise says
+/// which joint, point and limit is violated.
+std::string checkTrajectoryLimits(const PlanningSpace& space, const JointTrajectory& trajectory,
+                                  double tolerance = 1e-6);
+
+/// {"joint_names": [...], "points": [{"positions", "velocities", "accelerations",
+/// "time_from_start": {"sec", "nanosec"}}]}.
+nlohmann::json trajectoryToJson(const JointTrajectory& trajectory);
+
+/// CSV with a header: time, then <joint> positions, <joint>_velocity, <joint>_acceleration.
+std::string trajectoryToCsv(const JointTrajectory& trajectory);
+
+}  // namespace lang2manip

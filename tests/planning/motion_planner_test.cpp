@@ -1,0 +1,120 @@
+#include <gtest/gtest.h>
+
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/planning/motion_planner.hpp"
+#include "lang2manip/planning/planner_registry.hpp"
+#include "planning_test_support.hpp"
+
+namespace lang2manip::test {
+namespace {
+
+TEST(PlanarArmProblem, StraightLineCollidesSoPlannersMustGoAround) {
+  const auto space = planarArmSpace();
+  EXPECT_TRUE(space->isValid(planarStart().data()));
+  EXPECT_TRUE(space->isValid(planarGoal().data()));
+  EXPECT_FALSE(space->isMotionValid(planarStart().data(), planarGoal().data(), 0.01));
+}
+
+TEST(MotionPlanner, SolvesSimplifiesAndReturnsAVerifiedTrajectory) {
+  MotionPlanner planner(planarArmSpace());
+  PlannerSettings settings;
+  settings.setParameter("_Max Planning Time", "5");
+  const MotionPlan plan = planner.solve(planarStart(), {planarGoal()}, settings, StopCondition::never());
+  ASSERT_TRUE(plan.solved()) << plan.message;
+  EXPECT_TRUE(plan.path.front().isApprox(planarStart()));
+  EXPECT_TRUE(plan.path.back().isApprox(planarGoal()));
+  EXPECT_EQ(planner.verifyPath(plan.path), "");
+  EXPECT_LE(plan.statistics.lengthAfterSimplification, plan.statistics.lengthBeforeSimplification + 1e-9);
+  EXPECT_GT(plan.statistics.stateChecks + plan.statistics.motionChecks, 0);
+  EXPECT_GT(plan.statistics.vertices, 1);
+  ASSERT_FALSE(plan.trajectory.points.empty());
+  EXPECT_EQ(checkTrajectoryLimits(planner.space(), plan.trajectory), "");
+  EXPECT_TRUE(plan.trajectory.points.back().positions.isApprox(planarGoal()));
+  EXPECT_TRUE(plan.trajectory.points.front().velocities.isZero());
+  EXPECT_EQ(plan.trajectory.jointNames, (std::vector<std::string>{"planar/shoulder", "planar/elbow"}));
+}
+
+TEST(MotionPlanner, AcceptsSeveralGoalsAndReachesOneOfThem) {
+  MotionPlanner planner(planarArmSpace());
+  VectorX other(2);
+  other << -1.0, 0.5;
+  const MotionPlan plan = planner.solve(planarStart(), {planarGoal(), other}, PlannerSettings{},
+                                        StopCondition::never());
+  ASSERT_TRUE(plan.solved()) << plan.message;
+  EXPECT_TRUE(plan.path.back().isApprox(planarGoal()) || plan.path.back().isApprox(other));
+}
+
+TEST(MotionPlanner, UnreachableGoalIsANoPathResultNotAnError) {
+  // Goal enclosed: the arm's tip inside a ring of posts is unreachable from outside.
+  Scene scene = planarArmScene();
+  SceneObject wall = scene.object("post");
+  wall.name = "wall";
+  wall.pose.translation() = Vector3(0.0, 0.0, 0.0);
+  wall.collisions = {Shape{Box{Vector3(0.02, 0.02, 0.4)}, Pose::Identity(), std::nullopt, "w"}};
+  // A thin pillar hugging the base blocks every rotation of the upper link past it.
+  wall.pose.translation() = Vector3(0.3, -0.05, 0.0);
+  scene.addObject(wall);
+  auto checker = std::make_shared<FclCollisionChecker>(scene);
+  auto space = std::make_shared<JointPlanningSpace>(checker, std::vector<std::string>{"planar"});
+  VectorX start(2), goal(2);
+  start << 0.5, 0.0;
+  goal << -0.5, 0.0;
+  ASSERT_TRUE(space->isValid(start.data()));
+  ASSERT_TRUE(space->isValid(goal.data()));
+  MotionPlanner planner(space);
+  PlannerSettings settings;
+  settings.setParameter("_Max Planning Time", "0.2");
+  const MotionPlan plan = planner.solve(start, {goal}, settings, StopCondition::never());
+  EXPECT_EQ(plan.status, MotionPlanStatus::kNoPath);
+  EXPECT_NE(plan.message.find("no path found in 0.2 s by RRTConnect"), std::string::npos) << plan.message;
+  EXPECT_TRUE(plan.trajectory.points.empty());
+}
+
+TEST(MotionPlanner, CancelledSolveStops) {
+  MotionPlanner planner(planarArmSpace());
+  auto flag = std::make_shared<std::atomic<bool>>(true);
+  const MotionPlan plan = planner.solve(planarStart(), {planarGoal()}, PlannerSettings{},
+                                        StopCondition::onCancel(flag));
+  EXPECT_EQ(plan.status, MotionPlanStatus::kStopped);
+}
+
+std::string errorOf(const std::function<void()>& call) {
+  try {
+    call();
+  } catch (const std::exception& error) {
+    return error.what();
+  }
+  return "(no error)";
+}
+
+TEST(MotionPlannerBadInput, EndpointsAreCheckedWithClearMessages) {
+  MotionPlanner planner(planarArmSpace());
+  const PlannerSettings settings;
+  const auto stop = StopCondition::never();
+  VectorX colliding(2);
+  colliding << 0.0, 0.0;  // stretched through the post
+  EXPECT_NE(errorOf([&] { (void)planner.solve(colliding, {planarGoal()}, settings, stop); })
+                .find("start is in collision: planar/fore touches post"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { (void)planner.solve(planarStart(), {colliding}, settings, stop); })
+                .find("goal is in collision"),
+            std::string::npos);
+  VectorX outside(2);
+  outside << 3.5, 0.0;
+  EXPECT_NE(errorOf([&] { (void)planner.solve(outside, {planarGoal()}, settings, stop); })
+                .find("start: planar/shoulder = 3.5"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { (void)planner.solve(VectorX::Zero(3), {planarGoal()}, settings, stop); })
+                .find("start has 3 values; the planning space has 2 (planar/shoulder, planar/elbow)"),
+            std::string::npos);
+  VectorX nan(2);
+  nan << std::nan(""), 0.0;
+  EXPECT_NE(errorOf([&] { (void)planner.solve(planarStart(), {nan}, settings, stop); })
+                .find("not a finite number"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { (void)planner.solve(planarStart(), {}, settings, stop); }).find("no goal"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace lang2manip::test

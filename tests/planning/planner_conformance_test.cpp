@@ -1,0 +1,39 @@
+// Every registered planner on the planar-arm problem: statistically, at least 9 of 10 runs solve
+// it, and every returned trajectory is verified and within limits.
+#include <gtest/gtest.h>
+
+#include "lang2manip/planning/motion_planner.hpp"
+#include "lang2manip/planning/planner_registry.hpp"
+#include "planning_test_support.hpp"
+
+namespace lang2manip::test {
+namespace {
+
+class PlannerConformance : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(PlannerConformance, SolvesNineOfTenRunsWithVerifiedTrajectories) {
+  const auto space = planarArmSpace();
+  MotionPlanner planner(space);
+  PlannerSettings settings;
+  settings.setPlanner(GetParam());
+  settings.setParameter("_Max Planning Time", "1");
+  int solved = 0;
+  for (int run = 0; run < 10; ++run) {
+    const MotionPlan plan = planner.solve(planarStart(), {planarGoal()}, settings, StopCondition::never());
+    if (!plan.solved()) {
+      ADD_FAILURE() << GetParam() << ": " << plan.message;
+      continue;
+    }
+    ++solved;
+    EXPECT_EQ(planner.verifyPath(plan.path), "");
+    EXPECT_EQ(checkTrajectoryLimits(*space, plan.trajectory), "");
+    EXPECT_TRUE(plan.trajectory.points.back().positions.isApprox(planarGoal(), 1e-9));
+  }
+  EXPECT_GE(solved, 9) << GetParam();
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryPlanner, PlannerConformance, ::testing::ValuesIn(plannerNames()),
+                         [](const auto& param) { return param.param; });
+
+}  // namespace
+}  // namespace lang2manip::test
