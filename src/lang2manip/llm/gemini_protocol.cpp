@@ -70,16 +70,28 @@ class GeminiProtocol final : public LlmProtocol {
       return reply;
     }
     const json& candidate = requireFirstElement(body, "candidates", "", who);
+    if (!candidate.is_object()) {
+      throw LlmError(LlmErrorKind::kBadResponse, who + ": answer field candidates[0] is not an object");
+    }
     const std::string reason = optionalString(candidate, "finishReason");
     reply.finish = geminiFinish(reason);
     if (reply.finish == FinishReason::kContentFilter) {
       reply.refusal = "the answer was blocked (finishReason " + reason + ")";
     }
-    const json parts = candidate.value("content", json()).value("parts", json());
+    const auto content = candidate.find("content");
+    const json parts = content != candidate.end() && content->is_object()
+                           ? content->value("parts", json())
+                           : json();
     bool hasText = false;
     for (const json& part : parts.is_array() ? parts : json::array()) {
-      if (part.value("thought", false) || !part.contains("text")) continue;
-      reply.content += optionalString(part, "text");
+      if (!part.is_object() || !part.contains("text") || part.value("thought", json()) == true) {
+        continue;
+      }
+      if (!part["text"].is_string()) {
+        throw LlmError(LlmErrorKind::kBadResponse,
+                       who + ": answer field candidates[0].content.parts[].text is not a string");
+      }
+      reply.content += part["text"].get<std::string>();
       hasText = true;
     }
     if (!hasText && reply.finish == FinishReason::kStop) {

@@ -43,7 +43,7 @@ class GeminiSchemaConverter {
     for (const char* unionKey : {"anyOf", "oneOf"}) {
       if (node.contains(unionKey)) mergeUnion(node[unionKey], path + "." + unionKey, refDepth, out);
     }
-    if (node.value("nullable", false)) out["nullable"] = true;
+    if (node.contains("nullable") && node["nullable"] == true) out["nullable"] = true;
     return out;
   }
 

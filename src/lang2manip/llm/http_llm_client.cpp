@@ -89,9 +89,7 @@ LlmReply HttpLlmClient::completeUnredacted(const LlmRequest& request, const Stop
           protocol_->buildRequest(request, config_.model, config_.apiKey);
       const HttpResponse response = postJson(config_.endpoint, httpRequest, config_.http, limited);
       if (isSuccess(response.status)) {
-        LlmReply reply = protocol_->parseReply(
-            parseResponseJson(response.body, "HTTP " + std::to_string(response.status)), request,
-            "HTTP " + std::to_string(response.status));
+        LlmReply reply = parseReply(response, request);
         reply.attempts = attempts;
         reply.latencySeconds = std::chrono::duration<double>(Clock::now() - start).count();
         if (reply.model.empty()) reply.model = config_.model;
@@ -143,6 +141,16 @@ LlmReply HttpLlmClient::completeUnredacted(const LlmRequest& request, const Stop
                      std::string(deadline ? "time budget ran out" : "cancelled") +
                          " while waiting to retry after " + failure.message);
     }
+  }
+}
+
+LlmReply HttpLlmClient::parseReply(const HttpResponse& response, const LlmRequest& request) const {
+  const std::string who = "HTTP " + std::to_string(response.status);
+  try {
+    return protocol_->parseReply(parseResponseJson(response.body, who), request, who);
+  } catch (const nlohmann::json::exception& error) {
+    throw LlmError(LlmErrorKind::kBadResponse,
+                   who + ": answer has an unexpected shape (" + error.what() + ")");
   }
 }
 

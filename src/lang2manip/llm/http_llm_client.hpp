@@ -40,6 +40,8 @@ class HttpLlmClient final : public LlmClient {
 
  private:
   LlmReply completeUnredacted(const LlmRequest& request, const StopCondition& stop);
+  [[nodiscard]] LlmReply parseReply(const HttpResponse& response,
+                                    const LlmRequest& request) const;
   [[noreturn]] void throwForStatus(const HttpResponse& response, int attempts) const;
   [[nodiscard]] std::string redacted(std::string message) const;
 

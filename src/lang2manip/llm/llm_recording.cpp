@@ -86,6 +86,9 @@ class ReplayLlmClient final : public LlmClient {
       } catch (const InputError& error) {
         throw LlmError(LlmErrorKind::kConfiguration,
                        file + ":" + std::to_string(lineNumber) + ": " + error.what());
+      } catch (const json::exception& error) {
+        throw LlmError(LlmErrorKind::kConfiguration, file + ":" + std::to_string(lineNumber) +
+                                                         ": unexpected shape (" + error.what() + ")");
       }
     }
   }
@@ -136,7 +139,10 @@ class ReplayLlmClient final : public LlmClient {
     if (line.contains("reply")) return llmReplyFromJson(line["reply"]);
     if (!line.contains("error")) throw InputError("neither reply nor error");
     const json& error = line["error"];
-    const std::string kindName = error.value("kind", "");
+    if (!error.is_object() || !error.contains("kind") || !error["kind"].is_string()) {
+      throw InputError("error.kind: missing or not a string");
+    }
+    const std::string kindName = error["kind"].get<std::string>();
     const auto kind = llmErrorKindFromName(kindName);
     if (!kind) throw InputError("error.kind: \"" + kindName + "\" is not an LLM error kind");
     if (!error.contains("message") || !error["message"].is_string()) {
