@@ -237,7 +237,8 @@ FakeHttpResponse fakeError(FakeLlmProtocol protocol, int status, const std::stri
 
 struct FakeLlmServer::State {
   FakeLlmProtocol protocol;
-  httplib::Server server;
+  std::unique_ptr<httplib::Server> server;
+  bool tls = false;
   std::thread thread;
   int port = 0;
   mutable std::mutex mutex;
@@ -281,23 +282,36 @@ void FakeLlmServer::State::handle(const httplib::Request& httpRequest,
   httpResponse.set_content(body, "application/json");
 }
 
-FakeLlmServer::FakeLlmServer(FakeLlmProtocol protocol) : state_(std::make_unique<State>()) {
+FakeLlmServer::FakeLlmServer(FakeLlmProtocol protocol) : FakeLlmServer(protocol, FakeTlsFiles{}) {}
+
+FakeLlmServer::FakeLlmServer(FakeLlmProtocol protocol, const FakeTlsFiles& tls)
+    : state_(std::make_unique<State>()) {
   state_->protocol = protocol;
   state_->fallback = fakeError(protocol, 500, "fake LLM server: no scripted response left");
-  state_->server.set_tcp_nodelay(true);
-  state_->server.Post(".*", [state = state_.get()](const httplib::Request& request,
-                                                   httplib::Response& response) {
+  state_->tls = !tls.certificateFile.empty();
+  if (state_->tls) {
+    auto server = std::make_unique<httplib::SSLServer>(tls.certificateFile.c_str(),
+                                                       tls.privateKeyFile.c_str());
+    if (!server->is_valid()) throw std::runtime_error("fake LLM server: bad TLS certificate or key");
+    state_->server = std::move(server);
+  } else {
+    state_->server = std::make_unique<httplib::Server>();
+  }
+  httplib::Server& server = *state_->server;
+  server.set_tcp_nodelay(true);
+  server.Post(".*", [state = state_.get()](const httplib::Request& request,
+                                           httplib::Response& response) {
     state->handle(request, response);
   });
-  state_->port = state_->server.bind_to_any_port("127.0.0.1");
+  state_->port = server.bind_to_any_port("127.0.0.1");
   if (state_->port <= 0) throw std::runtime_error("fake LLM server: cannot bind to 127.0.0.1");
-  state_->thread = std::thread([state = state_.get()] { state->server.listen_after_bind(); });
+  state_->thread = std::thread([&server] { server.listen_after_bind(); });
   // cpp-httplib 0.11 has no wait_until_ready(): poll is_running().
-  for (int i = 0; i < 2000 && !state_->server.is_running(); ++i) {
+  for (int i = 0; i < 2000 && !server.is_running(); ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
-  if (!state_->server.is_running()) {
-    state_->server.stop();
+  if (!server.is_running()) {
+    server.stop();
     state_->thread.join();
     throw std::runtime_error("fake LLM server: did not start");
   }
@@ -309,7 +323,7 @@ FakeLlmServer::~FakeLlmServer() {
     state_->shuttingDown = true;
   }
   state_->released.notify_all();
-  state_->server.stop();
+  state_->server->stop();
   if (state_->thread.joinable()) state_->thread.join();
 }
 
@@ -318,7 +332,8 @@ FakeLlmProtocol FakeLlmServer::protocol() const { return state_->protocol; }
 int FakeLlmServer::port() const { return state_->port; }
 
 std::string FakeLlmServer::baseUrl() const {
-  const std::string origin = "http://127.0.0.1:" + std::to_string(state_->port);
+  const std::string origin =
+      std::string(state_->tls ? "https" : "http") + "://127.0.0.1:" + std::to_string(state_->port);
   return state_->protocol == FakeLlmProtocol::kOpenAi ? origin + "/v1" : origin;
 }
 

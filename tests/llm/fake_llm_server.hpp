@@ -71,10 +71,18 @@ FakeHttpResponse fakeRefusal(FakeLlmProtocol protocol, const std::string& messag
 FakeHttpResponse fakeError(FakeLlmProtocol protocol, int status, const std::string& message,
                            HttpHeaders headers = {});
 
+/// PEM files for an HTTPS fake server.
+struct FakeTlsFiles {
+  std::string certificateFile;
+  std::string privateKeyFile;
+};
+
 class FakeLlmServer {
  public:
   /// Starts listening on 127.0.0.1 at an ephemeral port; returns once the server is running.
   explicit FakeLlmServer(FakeLlmProtocol protocol);
+  /// The same over HTTPS with the given certificate (baseUrl() then starts with https://).
+  FakeLlmServer(FakeLlmProtocol protocol, const FakeTlsFiles& tls);
   /// Releases delayed handlers, stops the server and joins its thread.
   ~FakeLlmServer();
   FakeLlmServer(const FakeLlmServer&) = delete;
