@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "fake_llm_server.hpp"
+#include "lang2manip/core/log.hpp"
 #include "lang2manip/llm/llm_client_factory.hpp"
 #include "llm_test_support.hpp"
 
@@ -225,6 +226,21 @@ TEST_P(LlmProtocolTest, RateLimitHonoursRetryAfterThenSucceeds) {
   EXPECT_EQ(reply.attempts, 2);
   EXPECT_EQ(server_.requestCount(), 2U);
   EXPECT_EQ(server_.requests()[0].body, server_.requests()[1].body);
+}
+
+TEST_P(LlmProtocolTest, RetriesAreLoggedWithoutTheKey) {
+  std::vector<std::string> messages;
+  setLogSink([&messages](LogLevel, std::string_view message) { messages.emplace_back(message); });
+  setLogLevel(LogLevel::kDebug);
+  server_.enqueueError(503, std::string("overloaded, key ") + kTestApiKey);
+  server_.enqueueAnswer(kPlanAnswer);
+  client()->complete(planRequest(), StopCondition::never());
+  setLogLevel(LogLevel::kWarn);
+  setLogSink({});
+  ASSERT_EQ(messages.size(), 1U);
+  EXPECT_THAT(messages[0], HasSubstr("retrying in"));
+  EXPECT_THAT(messages[0], HasSubstr("attempt 2 of 3"));
+  EXPECT_THAT(messages[0], Not(HasSubstr(kTestApiKey)));
 }
 
 TEST_P(LlmProtocolTest, ServerErrorIsRetriedThenSucceeds) {

@@ -57,6 +57,15 @@ TEST_P(LlmRecordingTest, RecordThenReplayGivesTheSameAnswersWithoutNetwork) {
   const std::string text = readFile(file());
   EXPECT_THAT(text, Not(HasSubstr(kTestApiKey)));
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 3);
+  const json firstLine = json::parse(text.substr(0, text.find('\n')));
+  EXPECT_EQ(firstLine["client"], spec);
+  EXPECT_EQ(firstLine["request"]["schema"], smallPlanSchema());
+  EXPECT_EQ(firstLine["request"]["system"], "You plan robot manipulation.");
+  EXPECT_EQ(firstLine["request"]["messages"][0]["content"], "first task");
+  EXPECT_EQ(firstLine["request"]["seed"], 7);
+  EXPECT_EQ(firstLine["reply"]["finish"], "stop");
+  EXPECT_EQ(firstLine["reply"]["content"], recorded[0].content);
+  EXPECT_GT(firstLine["reply"]["usage"]["outputTokens"].get<long>(), 0);
 
   LlmClientOptions options;
   options.replayFile = file().string();
