@@ -17,7 +17,7 @@ std::string joined(const std::string& path, const std::string& key) {
 
 std::string formatSeconds(double seconds) {
   char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3g", seconds);
+  std::snprintf(buffer, sizeof buffer, seconds >= 100.0 ? "%.0f" : "%.3g", seconds);
   return buffer;
 }
 
