@@ -11,6 +11,12 @@ find_package(CLI11 REQUIRED)
 find_package(orocos_kdl REQUIRED)                # variables: orocos_kdl_LIBRARIES
 find_package(ompl REQUIRED)                      # variables: OMPL_INCLUDE_DIRS, OMPL_LIBRARIES
 find_package(fcl REQUIRED)                       # target: fcl
+# cpp-httplib has no CMake config; Debian's build is a compiled library whose header holds only
+# declarations, so its compile definitions (CPPHTTPLIB_OPENSSL_SUPPORT, ...) MUST come from
+# pkg-config with it: without them the class layouts differ (double free).
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(HTTPLIB REQUIRED IMPORTED_TARGET cpp-httplib)
+find_package(OpenSSL REQUIRED)                   # OpenSSL::Crypto (certificate error strings)
 if(LANG2MANIP_BUILD_BENCHMARKS)
   find_package(benchmark REQUIRED)               # benchmark::benchmark
 endif()

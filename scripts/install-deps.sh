@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev liburdfdom-dev libassimp-dev libcoin-dev libpugixml-dev libyaml-cpp-dev
-  nlohmann-json3-dev libcli11-dev
+  nlohmann-json3-dev libcli11-dev libcpp-httplib-dev libssl-dev
   liborocos-kdl-dev libfcl-dev libccd-dev libompl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )

@@ -13,6 +13,37 @@ std::string finishReasonName(FinishReason reason) {
   return "other";
 }
 
+namespace {
+constexpr LlmErrorKind kAllErrorKinds[] = {
+    LlmErrorKind::kConfiguration, LlmErrorKind::kAuthentication, LlmErrorKind::kModelNotFound,
+    LlmErrorKind::kRateLimited,   LlmErrorKind::kServer,         LlmErrorKind::kTimeout,
+    LlmErrorKind::kCancelled,     LlmErrorKind::kTransport,      LlmErrorKind::kBadResponse,
+    LlmErrorKind::kReplayMiss};
+}  // namespace
+
+std::string llmErrorKindName(LlmErrorKind kind) {
+  switch (kind) {
+    case LlmErrorKind::kConfiguration: return "configuration";
+    case LlmErrorKind::kAuthentication: return "authentication";
+    case LlmErrorKind::kModelNotFound: return "model_not_found";
+    case LlmErrorKind::kRateLimited: return "rate_limited";
+    case LlmErrorKind::kServer: return "server";
+    case LlmErrorKind::kTimeout: return "timeout";
+    case LlmErrorKind::kCancelled: return "cancelled";
+    case LlmErrorKind::kTransport: return "transport";
+    case LlmErrorKind::kBadResponse: return "bad_response";
+    case LlmErrorKind::kReplayMiss: return "replay_miss";
+  }
+  return "transport";
+}
+
+std::optional<LlmErrorKind> llmErrorKindFromName(const std::string& name) {
+  for (const LlmErrorKind kind : kAllErrorKinds) {
+    if (llmErrorKindName(kind) == name) return kind;
+  }
+  return std::nullopt;
+}
+
 LlmError::LlmError(LlmErrorKind kind, const std::string& message, int httpStatus)
     : std::runtime_error(message), kind_(kind), httpStatus_(httpStatus) {}
 

@@ -56,6 +56,8 @@ struct LlmReply {
   int attempts = 1;
   /// The model that answered, as the server named it.
   std::string model;
+  /// True when the reply came from a --llm-replay file rather than the network.
+  bool replayed = false;
 };
 
 enum class LlmErrorKind {
@@ -70,6 +72,13 @@ enum class LlmErrorKind {
   kBadResponse,    ///< the server's answer does not follow the protocol
   kReplayMiss,     ///< --llm-replay has no recorded answer for this request
 };
+
+/// "configuration", "authentication", "model_not_found", "rate_limited", "server", "timeout",
+/// "cancelled", "transport", "bad_response", "replay_miss".
+std::string llmErrorKindName(LlmErrorKind kind);
+
+/// The kind named by llmErrorKindName(), or nullopt for an unknown name.
+std::optional<LlmErrorKind> llmErrorKindFromName(const std::string& name);
 
 /// An LLM call that failed; the message never contains an API key.
 class LlmError : public std::runtime_error {

@@ -1,0 +1,192 @@
+#include "lang2manip/llm/http_llm_client.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <regex>
+
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/core/log.hpp"
+#include "lang2manip/llm/llm_support.hpp"
+
+namespace lang2manip {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// A protocol may rewrite a rejected request a few times (json_object, max_completion_tokens...).
+constexpr int kMaxAdaptations = 3;
+
+std::string attemptsText(int attempts) {
+  return std::to_string(attempts) + (attempts == 1 ? " attempt" : " attempts");
+}
+
+bool isSuccess(int status) { return status >= 200 && status <= 299; }
+
+/// What a failed attempt leaves behind for the retry decision.
+struct Failure {
+  LlmErrorKind kind;
+  std::string message;
+  int status = 0;
+  std::optional<double> retryAfter;
+};
+
+}  // namespace
+
+void checkLlmRequest(const LlmRequest& request) {
+  if (request.messages.empty()) throw InputError("LLM request: no messages");
+  if (request.maxTokens < 1) {
+    throw InputError("LLM request: maxTokens must be at least 1, got " +
+                     std::to_string(request.maxTokens));
+  }
+  if (!std::isfinite(request.temperature) || request.temperature < 0.0 ||
+      request.temperature > 2.0) {
+    throw InputError("LLM request: temperature must be within [0, 2], got " +
+                     std::to_string(request.temperature));
+  }
+  if (request.schema.is_null()) return;
+  if (!request.schema.is_object()) throw InputError("LLM request: schema must be a JSON object");
+  static const std::regex kSchemaName("[A-Za-z0-9_-]{1,64}");
+  if (!std::regex_match(request.schemaName, kSchemaName)) {
+    throw InputError("LLM request: schema name \"" + request.schemaName +
+                     "\" must be 1-64 characters of A-Z, a-z, 0-9, _ and -");
+  }
+}
+
+HttpLlmClient::HttpLlmClient(std::unique_ptr<LlmProtocol> protocol, HttpLlmClientConfig config)
+    : protocol_(std::move(protocol)), config_(std::move(config)) {
+  if (!protocol_) throw LlmError(LlmErrorKind::kConfiguration, "LLM client: no protocol");
+  if (config_.model.empty()) {
+    throw LlmError(LlmErrorKind::kConfiguration, protocol_->provider() + ": no model name");
+  }
+  checkHttpOptions(config_.http);
+  checkRetryOptions(config_.retry);
+}
+
+std::string HttpLlmClient::name() const { return protocol_->provider() + ":" + config_.model; }
+
+LlmReply HttpLlmClient::complete(const LlmRequest& request, const StopCondition& stop) {
+  checkLlmRequest(request);
+  try {
+    return completeUnredacted(request, stop);
+  } catch (const LlmError& error) {
+    throw LlmError(error.kind(), redacted(name() + ": " + error.what()), error.httpStatus());
+  }
+}
+
+LlmReply HttpLlmClient::completeUnredacted(const LlmRequest& request, const StopCondition& stop) {
+  const Clock::time_point start = Clock::now();
+  const StopCondition limited =
+      stop.orElse(StopCondition::afterSeconds(config_.retry.totalTimeoutSeconds));
+  int attempts = 0;
+  int failures = 0;
+  int adaptations = 0;
+  while (true) {
+    ++attempts;
+    Failure failure{LlmErrorKind::kTransport, {}, 0, std::nullopt};
+    try {
+      const HttpRequest httpRequest =
+          protocol_->buildRequest(request, config_.model, config_.apiKey);
+      const HttpResponse response = postJson(config_.endpoint, httpRequest, config_.http, limited);
+      if (isSuccess(response.status)) {
+        LlmReply reply = parseReply(response, request);
+        reply.attempts = attempts;
+        reply.latencySeconds = std::chrono::duration<double>(Clock::now() - start).count();
+        if (reply.model.empty()) reply.model = config_.model;
+        return reply;
+      }
+      const std::string serverMessage = errorMessageFromBody(response.body);
+      if ((response.status == 400 || response.status == 422) && adaptations < kMaxAdaptations &&
+          protocol_->adaptToRejection(serverMessage)) {
+        ++adaptations;
+        logInfo(redacted(name() + ": server rejected the request (" + serverMessage +
+                         "); sending it again in a form it accepts"));
+        continue;
+      }
+      if (!isRetryableStatus(response.status)) throwForStatus(response, attempts);
+      failure = {response.status == 429 ? LlmErrorKind::kRateLimited : LlmErrorKind::kServer,
+                 "HTTP " + std::to_string(response.status) + ": " + serverMessage,
+                 response.status, retryAfterSeconds(response.headers)};
+    } catch (const LlmError& error) {
+      const bool retryable =
+          error.kind() == LlmErrorKind::kTransport || error.kind() == LlmErrorKind::kTimeout;
+      if (!retryable || limited.shouldStop()) throw;
+      failure = {error.kind(), error.what(), 0, std::nullopt};
+    }
+    ++failures;
+    if (failures >= config_.retry.maxAttempts) {
+      throw LlmError(failure.kind, failure.message + " (gave up after " + attemptsText(attempts) + ")",
+                     failure.status);
+    }
+    const double wait = failure.retryAfter.value_or(backoffSeconds(config_.retry, failures));
+    if (failure.retryAfter && *failure.retryAfter > config_.retry.maxRetryAfterSeconds) {
+      throw LlmError(failure.kind,
+                     failure.message + " (the server asks to wait " + formatSeconds(wait) +
+                         " s, more than the " + formatSeconds(config_.retry.maxRetryAfterSeconds) +
+                         " s allowed; " + attemptsText(attempts) + ")",
+                     failure.status);
+    }
+    if (wait >= limited.secondsLeft()) {
+      throw LlmError(failure.kind,
+                     failure.message + " (no time left to wait " + formatSeconds(wait) +
+                         " s for another attempt after " + attemptsText(attempts) + ")",
+                     failure.status);
+    }
+    logInfo(redacted(name() + ": " + failure.message + "; retrying in " + formatSeconds(wait) +
+                     " s (attempt " + std::to_string(attempts + 1) + " of " +
+                     std::to_string(config_.retry.maxAttempts) + ")"));
+    if (!sleepUnlessStopped(wait, limited)) {
+      const bool deadline = limited.secondsLeft() <= 0.0;
+      throw LlmError(deadline ? LlmErrorKind::kTimeout : LlmErrorKind::kCancelled,
+                     std::string(deadline ? "time budget ran out" : "cancelled") +
+                         " while waiting to retry after " + failure.message);
+    }
+  }
+}
+
+LlmReply HttpLlmClient::parseReply(const HttpResponse& response, const LlmRequest& request) const {
+  const std::string who = "HTTP " + std::to_string(response.status);
+  try {
+    return protocol_->parseReply(parseResponseJson(response.body, who), request, who);
+  } catch (const nlohmann::json::exception& error) {
+    throw LlmError(LlmErrorKind::kBadResponse,
+                   who + ": answer has an unexpected shape (" + error.what() + ")");
+  }
+}
+
+void HttpLlmClient::throwForStatus(const HttpResponse& response, int attempts) const {
+  const int status = response.status;
+  const std::string serverMessage = errorMessageFromBody(response.body);
+  const std::string http = "HTTP " + std::to_string(status) + ": " + serverMessage;
+  if (status == 401 || status == 403) {
+    const std::string hint = config_.apiKeyVariable.empty()
+                                 ? "check the API key"
+                                 : "check the API key in " + config_.apiKeyVariable;
+    throw LlmError(LlmErrorKind::kAuthentication, "the server refused the credentials (" + http +
+                                                      "); " + hint, status);
+  }
+  if (status == 404) {
+    throw LlmError(LlmErrorKind::kModelNotFound,
+                   "model \"" + config_.model + "\" not found at " + config_.endpoint.toString() +
+                       " (" + http + "); check the model name and the base URL",
+                   status);
+  }
+  if (status >= 400 && status <= 499) {
+    throw LlmError(LlmErrorKind::kConfiguration,
+                   "the server rejected the request (" + http + ") after " +
+                       attemptsText(attempts),
+                   status);
+  }
+  throw LlmError(LlmErrorKind::kBadResponse, "unexpected " + http, status);
+}
+
+std::string HttpLlmClient::redacted(std::string message) const {
+  const std::string& key = config_.apiKey;
+  if (key.empty()) return message;
+  for (std::size_t at = message.find(key); at != std::string::npos; at = message.find(key, at)) {
+    message.replace(at, key.size(), "[redacted]");
+  }
+  return message;
+}
+
+}  // namespace lang2manip

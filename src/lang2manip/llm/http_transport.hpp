@@ -1,0 +1,70 @@
+#pragma once
+/// @file One HTTP(S) POST of a JSON body, over cpp-httplib with OpenSSL: certificate
+/// verification against the system CA bundle, connect and per-attempt timeouts, cancellation
+/// through a StopCondition. cpp-httplib stays out of this header (its class layout depends on
+/// compile definitions only this module's sources get).
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "lang2manip/core/stop_condition.hpp"
+
+namespace lang2manip {
+
+/// Where requests go: "https://api.openai.com/v1" -> https, api.openai.com, 443, "/v1".
+struct HttpEndpoint {
+  std::string scheme;    ///< "http" or "https"
+  std::string host;
+  int port = 0;
+  std::string basePath;  ///< without a trailing slash; "" for the root
+
+  /// "scheme://host:port" (no path).
+  [[nodiscard]] std::string origin() const;
+  /// "scheme://host:port/basePath".
+  [[nodiscard]] std::string toString() const;
+};
+
+/// Parses an http(s) base URL. Throws LlmError(kConfiguration) naming `what` (e.g. "OPENAI_BASE_URL")
+/// for a missing scheme, an unsupported scheme, an empty host or a bad port. Query strings and
+/// fragments are rejected.
+HttpEndpoint parseBaseUrl(const std::string& url, const std::string& what);
+
+/// Transport settings shared by every protocol.
+struct HttpOptions {
+  /// Limit for establishing the TCP (and TLS) connection.
+  double connectTimeoutSeconds = 10.0;
+  /// Limit for one whole attempt (send and receive), enforced even against a server that
+  /// trickles bytes.
+  double requestTimeoutSeconds = 120.0;
+  /// PEM file of trusted certificates; empty: the system bundle
+  /// (/etc/ssl/certs/ca-certificates.crt when present, else OpenSSL's default paths).
+  std::string caCertFile;
+};
+
+/// Case-insensitive name, value.
+using HttpHeaders = std::vector<std::pair<std::string, std::string>>;
+
+/// The value of header `name` (case-insensitive), "" when absent.
+std::string findHeader(const HttpHeaders& headers, const std::string& name);
+
+struct HttpRequest {
+  std::string path;  ///< appended to the endpoint's basePath; starts with '/'
+  HttpHeaders headers;
+  std::string body;  ///< sent as application/json
+};
+
+struct HttpResponse {
+  int status = 0;
+  HttpHeaders headers;
+  std::string body;
+};
+
+/// POSTs `request` once. Any HTTP status is returned as a response. Throws LlmError:
+/// kTimeout when the attempt exceeds its limit or the stop condition's deadline passes,
+/// kCancelled when a cancel flag of `stop` is set (checked while waiting), kTransport for
+/// connection, TLS and certificate failures. Thread-safe (each call has its own connection).
+HttpResponse postJson(const HttpEndpoint& endpoint, const HttpRequest& request,
+                      const HttpOptions& options, const StopCondition& stop);
+
+}  // namespace lang2manip
