@@ -15,6 +15,8 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   addProblemsCommand(app, out);
   addShowCommand(app, out);
   addCheckCommand(app, out);
+  addObserveCommand(app, out);
+  addPlanCommand(app, out);
   addBenchCommand(app, out);
   try {
     app.parse(argc, argv);

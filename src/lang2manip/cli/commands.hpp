@@ -17,6 +17,14 @@ void addShowCommand(CLI::App& app, std::ostream& out);
 /// start and goal (or the given configuration) is collision-free, naming the colliding pairs.
 void addCheckCommand(CLI::App& app, std::ostream& out);
 
+/// `lang2manip observe [PROBLEM] [--robot NAME] [--json]`: the environment-state observation
+/// given to task planners (text), or the same as JSON.
+void addObserveCommand(CLI::App& app, std::ostream& out);
+
+/// `lang2manip plan [PROBLEM] --task "..." --print-prompt`: the assembled planner prompt. Running
+/// the planners from this command is not available yet (NotSupportedError).
+void addPlanCommand(CLI::App& app, std::ostream& out);
+
 /// `lang2manip bench KIND ...`: benchmarks that print figures (kinds: ik; see bench_commands.hpp).
 void addBenchCommand(CLI::App& app, std::ostream& out);
 

@@ -37,18 +37,22 @@ LlmTaskPlanner::LlmTaskPlanner(LlmClient& client, LlmTaskPlannerOptions options)
 std::string LlmTaskPlanner::name() const { return client_.name(); }
 
 LlmRequest LlmTaskPlanner::buildRequest(const PlanningRequest& request) const {
+  return buildPlanRequest(request, options_);
+}
+
+LlmRequest buildPlanRequest(const PlanningRequest& request, const LlmTaskPlannerOptions& options) {
   if (request.scene == nullptr) throw InputError("planning request: no scene given");
-  ObservationOptions observation = options_.observation;
+  ObservationOptions observation = options.observation;
   if (!request.robot.empty()) observation.robot = request.robot;
   LlmRequest llm;
-  llm.system = planSystemPrompt(options_.plannerNames);
+  llm.system = planSystemPrompt(options.plannerNames);
   llm.messages = planMessages(request.task, observationText(observeEnvironment(*request.scene, observation)),
-                              request.earlierAttempts, options_.maxAttemptsInContext);
+                              request.earlierAttempts, options.maxAttemptsInContext);
   llm.schema = planJsonSchema();
   llm.schemaName = "plan";
-  llm.maxTokens = options_.maxTokens;
-  llm.temperature = options_.temperature;
-  llm.seed = options_.seed;
+  llm.maxTokens = options.maxTokens;
+  llm.temperature = options.temperature;
+  llm.seed = options.seed;
   return llm;
 }
 

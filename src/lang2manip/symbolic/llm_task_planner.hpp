@@ -26,6 +26,10 @@ struct LlmTaskPlannerOptions {
   ObservationOptions observation;
 };
 
+/// The request an LlmTaskPlanner with `options` sends for `request` (system prompt, task and
+/// observation, earlier attempts, plan schema). Throws InputError when request.scene is null.
+LlmRequest buildPlanRequest(const PlanningRequest& request, const LlmTaskPlannerOptions& options);
+
 /// See the file comment. Not thread-safe (the client is used without locking).
 class LlmTaskPlanner final : public TaskPlanner {
  public:

@@ -84,7 +84,7 @@ std::string objectState(const json& object) {
   if (object["held"].get<bool>()) text = "held by the robot";
   if (!object["in"].is_null()) text = "in " + object["in"].get<std::string>();
   if (!object["on"].is_null()) text = "on " + object["on"].get<std::string>();
-  if (text.empty()) text = "resting on nothing known";
+  if (text.empty()) text = "not on any object";
   return text + (object["clear"].get<bool>() ? ", clear" : ", not clear");
 }
 
