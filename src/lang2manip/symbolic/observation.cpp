@@ -210,7 +210,7 @@ nlohmann::json observeEnvironment(const Scene& scene, const ObservationOptions& 
   }
   json objects = json::array();
   for (const SceneObject& object : scene.objects()) objects.push_back(objectJson(object, base, state, options.spatial));
-  return {{"frames", "world frame z up; relations and *_in_base values are in the base frame of robot " +
+  return {{"frames", "world frame z up; relations and base-frame positions use the base frame of robot " +
                          (mainRobot.empty() ? std::string("(none)") : mainRobot) +
                          ": x front, y left, z up; lengths in metres, angles in radians"},
           {"robot", mainRobot.empty() ? json(nullptr) : json(mainRobot)},
