@@ -152,5 +152,64 @@ TEST(Cli, HelpAndVersionSucceed) {
   EXPECT_THAT(run("--version").output, HasSubstr("lang2manip 0.1.0"));
 }
 
+TEST(Cli, ObserveDefaultsToThePaperSceneAndPrintsThePromptText) {
+  const RunResult result = run("observe");
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("Robot panda (model panda, 8 DOFs)"));
+  EXPECT_THAT(result.output, HasSubstr("panda_joint1 revolute 0.000 [-2.897, 2.897]"));
+  EXPECT_THAT(result.output, HasSubstr("tool frame panda_hand_tcp"));
+  EXPECT_THAT(result.output, HasSubstr("configuration: home"));
+  EXPECT_THAT(result.output, HasSubstr("holder: kind pen_holder"));
+  EXPECT_THAT(result.output, HasSubstr("  marker on desk\n"));
+  EXPECT_THAT(result.output, HasSubstr("  marker right_of eraser\n"));
+}
+
+TEST(Cli, ObserveJsonHasRobotsObjectsAndRelations) {
+  const RunResult result = run("observe ur5_desk --json", false);
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  const nlohmann::json observation = nlohmann::json::parse(result.output);
+  EXPECT_EQ(observation["robots"].size(), 1U);
+  EXPECT_FALSE(observation["robots"][0]["end_effectors"].empty());
+  EXPECT_EQ(observation["objects"].size(), 4U);
+  bool holderOnDesk = false;
+  for (const auto& fact : observation["relations"]) {
+    holderOnDesk = holderOnDesk || (fact["subject"] == "holder" && fact["relation"] == "on" && fact["object"] == "desk");
+  }
+  EXPECT_TRUE(holderOnDesk);
+}
+
+TEST(Cli, ObserveUnknownProblemIsAClearError) {
+  const RunResult result = run("observe no_such_problem");
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.output, HasSubstr("no_such_problem"));
+  EXPECT_THAT(result.output, HasSubstr("panda_desk"));
+}
+
+TEST(Cli, PlanPrintPromptShowsSystemPromptTaskAndObservation) {
+  const RunResult result = run("plan --task \"put the marker and eraser in the holder\" --print-prompt", false);
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("=== system ==="));
+  EXPECT_THAT(result.output, HasSubstr("ACTION GRAMMAR"));
+  EXPECT_THAT(result.output, HasSubstr("\"additionalProperties\":false"));
+  EXPECT_THAT(result.output, HasSubstr("prompt version lang2manip-plan-prompt-1"));
+  EXPECT_THAT(result.output, HasSubstr("=== user ===\nTASK: put the marker and eraser in the holder"));
+  EXPECT_THAT(result.output, HasSubstr("marker: kind marker, movable"));
+}
+
+TEST(Cli, PlanWithoutPrintPromptSaysPlanningIsNotAvailableYet) {
+  const RunResult result = run("plan --task \"put the marker in the holder\"");
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.output, HasSubstr("not available yet"));
+  EXPECT_THAT(result.output, HasSubstr("--print-prompt"));
+}
+
+TEST(Cli, PlanPrintPromptNeedsATask) {
+  for (const char* arguments : {"plan --print-prompt", "plan --print-prompt --task \"  \""}) {
+    const RunResult result = run(arguments);
+    EXPECT_EQ(result.exitCode, 1) << arguments;
+    EXPECT_THAT(result.output, HasSubstr("--task is required")) << arguments;
+  }
+}
+
 }  // namespace
 }  // namespace lang2manip

@@ -16,6 +16,8 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   addShowCommand(app, out);
   addCheckCommand(app, out);
   addSolveCommand(app, out);
+  addObserveCommand(app, out);
+  addPlanCommand(app, out);
   addBenchCommand(app, out);
   try {
     app.parse(argc, argv);

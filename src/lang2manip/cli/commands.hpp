@@ -21,6 +21,14 @@ void addCheckCommand(CLI::App& app, std::ostream& out);
 /// solves the problem's motion queries and writes the paths and trajectories.
 void addSolveCommand(CLI::App& app, std::ostream& out);
 
+/// `lang2manip observe [PROBLEM] [--robot NAME] [--json]`: the environment-state observation
+/// given to task planners (text), or the same as JSON.
+void addObserveCommand(CLI::App& app, std::ostream& out);
+
+/// `lang2manip plan [PROBLEM] --task "..." --print-prompt`: the assembled planner prompt. Running
+/// the planners from this command is not available yet (NotSupportedError).
+void addPlanCommand(CLI::App& app, std::ostream& out);
+
 /// `lang2manip bench KIND ...`: benchmarks that print figures (kinds: ik; see bench_commands.hpp).
 void addBenchCommand(CLI::App& app, std::ostream& out);
 

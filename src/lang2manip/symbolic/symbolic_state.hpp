@@ -26,6 +26,8 @@ struct SymbolicState {
   std::string held;
   /// The robot's current named configuration ("home"), empty when it is elsewhere.
   std::string atConfiguration;
+  /// The robot's named arm configurations (SRDF group states that set arm joints), for `move`.
+  std::set<std::string> namedConfigurations;
 
   /// True when nothing rests on `object` (and, for a container, nothing is inside it).
   [[nodiscard]] bool isClear(const std::string& object) const;
@@ -46,11 +48,20 @@ struct SymbolicStateTolerances {
   double contactGap = 0.015;
   /// How far below a cavity's floor an object's centre may be and still count as "in", metres.
   double cavityMargin = 0.01;
+  /// How far each arm joint may be from a named configuration's value for atConfiguration,
+  /// radians (or metres for prismatic joints).
+  double configurationTolerance = 1e-3;
 };
 
 /// The symbolic state of `scene` from geometry: "in" when an object's centre lies inside a
 /// container's cavity, "on" when its bottom rests on the top of the highest object under its
-/// centre, "held" from the scene's attachments. atConfiguration is left empty.
-SymbolicState observeSymbolicState(const Scene& scene, const SymbolicStateTolerances& tolerances = {});
+/// centre, "held" from the scene's attachments. atConfiguration is the first named state of the
+/// robot's SRDF whose arm joints all match the robot's configuration within tolerance (every
+/// group state of that name must match, so "home" of a two-armed robot covers both arms);
+/// named states that set only gripper joints ("open", "close") are not configurations. The
+/// robot is `robot`, or the scene's first robot when empty; a scene without robots leaves
+/// atConfiguration empty. Throws InputError for an unknown robot name.
+SymbolicState observeSymbolicState(const Scene& scene, const SymbolicStateTolerances& tolerances = {},
+                                   const std::string& robot = {});
 
 }  // namespace lang2manip

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -51,9 +52,55 @@ std::optional<std::string> supportOf(const Scene& scene, const SceneObject& item
   return best;
 }
 
+bool isArmJoint(const RobotModel& model, const std::string& joint) {
+  for (const Manipulator& arm : model.semantics().manipulators) {
+    if (std::find(arm.armJoints.begin(), arm.armJoints.end(), joint) != arm.armJoints.end()) return true;
+  }
+  return false;
+}
+
+/// Names of the named states that set at least one arm joint, in SRDF order, without repeats.
+std::vector<std::string> armConfigurationNames(const RobotModel& model) {
+  std::vector<std::string> names;
+  for (const NamedState& state : model.semantics().namedStates) {
+    const bool setsArm = std::any_of(state.values.begin(), state.values.end(),
+                                     [&](const auto& value) { return isArmJoint(model, value.first); });
+    if (setsArm && std::find(names.begin(), names.end(), state.name) == names.end()) {
+      names.push_back(state.name);
+    }
+  }
+  return names;
+}
+
+bool matchesNamedState(const SceneRobot& robot, const std::string& name, double tolerance) {
+  const RobotModel& model = *robot.model;
+  for (const NamedState& state : model.semantics().namedStates) {
+    if (state.name != name) continue;
+    for (const auto& [joint, value] : state.values) {
+      const auto index = model.findJoint(joint);
+      if (!index || !isArmJoint(model, joint)) continue;
+      const int variable = model.variableOfJoint(*index);
+      if (variable < 0) continue;
+      if (std::abs(robot.configuration[variable] - value) > tolerance) return false;
+    }
+  }
+  return true;
+}
+
+void observeConfiguration(const SceneRobot& robot, const SymbolicStateTolerances& tolerances,
+                          SymbolicState& state) {
+  for (const std::string& name : armConfigurationNames(*robot.model)) {
+    state.namedConfigurations.insert(name);
+    if (state.atConfiguration.empty() && matchesNamedState(robot, name, tolerances.configurationTolerance)) {
+      state.atConfiguration = name;
+    }
+  }
+}
+
 }  // namespace
 
-SymbolicState observeSymbolicState(const Scene& scene, const SymbolicStateTolerances& tolerances) {
+SymbolicState observeSymbolicState(const Scene& scene, const SymbolicStateTolerances& tolerances,
+                                   const std::string& robot) {
   SymbolicState state;
   for (const SceneObject& object : scene.objects()) {
     state.objects.push_back(object.name);
@@ -61,7 +108,14 @@ SymbolicState observeSymbolicState(const Scene& scene, const SymbolicStateTolera
     if (object.role == ObjectRole::kContainer) state.containers.insert(object.name);
     if (object.role == ObjectRole::kSupport) state.supports.insert(object.name);
   }
-  for (const Attachment& attachment : scene.attachments()) state.held = attachment.object;
+  if (!robot.empty()) {
+    observeConfiguration(scene.robot(robot), tolerances, state);
+  } else if (!scene.robots().empty()) {
+    observeConfiguration(scene.robots().front(), tolerances, state);
+  }
+  for (const Attachment& attachment : scene.attachments()) {
+    if (robot.empty() || attachment.robot == robot) state.held = attachment.object;
+  }
   for (const SceneObject& object : scene.objects()) {
     if (object.name == state.held) continue;
     if (auto container = containerOf(scene, object, tolerances)) {

@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lang2manip/core/stop_condition.hpp"
@@ -56,6 +57,19 @@ struct PlanningStatistics {
 class PlanningError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+/// A planner's answer could not be used: malformed or truncated JSON, a refusal, a plan with
+/// unknown names. Unlike other PlanningErrors the repair loop feeds it back to the planner.
+class UnusableAnswerError : public PlanningError {
+ public:
+  /// `answer` is the raw answer (may be empty); `failure` says what is wrong, in words.
+  UnusableAnswerError(std::string answer, const std::string& failure)
+      : PlanningError(failure), answer_(std::move(answer)) {}
+  [[nodiscard]] const std::string& answer() const noexcept { return answer_; }
+
+ private:
+  std::string answer_;
 };
 
 /// A planner answering tasks with symbolic plans.

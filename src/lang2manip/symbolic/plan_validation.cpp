@@ -1,0 +1,222 @@
+#include "lang2manip/symbolic/plan_validation.hpp"
+
+#include "lang2manip/symbolic/plan_json.hpp"
+
+namespace lang2manip {
+namespace {
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
+
+std::string joined(const std::set<std::string>& names) {
+  return joined(std::vector<std::string>(names.begin(), names.end()));
+}
+
+std::string unknownObject(const std::string& name, const SymbolicState& state) {
+  return "there is no object \"" + name + "\" (objects: " + joined(state.objects) + ")";
+}
+
+std::string heldText(const SymbolicState& state) {
+  return "the gripper holds " + state.held + "; place it first";
+}
+
+/// Where `object` currently is, for messages: "in holder", "on desk", "held".
+std::string locationOf(const std::string& object, const SymbolicState& state) {
+  if (state.held == object) return "held";
+  if (auto it = state.inside.find(object); it != state.inside.end()) return "in " + it->second;
+  if (auto it = state.onTopOf.find(object); it != state.onTopOf.end()) return "on " + it->second;
+  return "not on anything known";
+}
+
+std::vector<std::string> pickProblems(const SymbolicAction& action, const SymbolicState& state) {
+  const std::string& o = action.object;
+  if (o.empty()) return {"pick needs an object"};
+  if (!state.hasObject(o)) return {unknownObject(o, state)};
+  if (state.held == o) return {o + " is already held"};
+  std::vector<std::string> problems;
+  if (!state.movable.count(o)) problems.push_back(o + " is fixed and cannot be picked");
+  if (!state.held.empty()) problems.push_back("the gripper is not free: " + heldText(state));
+  if (!state.isClear(o)) {
+    problems.push_back(o + " is not clear: " + joined(state.objectsOn(o)) + " " +
+                       (state.containers.count(o) ? "is in it" : "is on it") + "; move them first");
+  }
+  return problems;
+}
+
+std::vector<std::string> placeTargetProblems(const SymbolicAction& action, const SymbolicState& state) {
+  const std::string& target = action.params.target;
+  if (!action.params.relation) return {};
+  if (target.empty()) return {"place " + spatialRelationName(*action.params.relation) + " needs a target object"};
+  if (!state.hasObject(target)) return {unknownObject(target, state)};
+  if (target == action.object) return {action.object + " cannot be placed relative to itself"};
+  if (target == state.held) return {"the target " + target + " is held by the gripper"};
+  if (*action.params.relation == SpatialRelation::kIn && !state.containers.count(target)) {
+    return {target + " is not a container" +
+            (state.containers.empty() ? std::string(" (the scene has no containers)")
+                                      : " (containers: " + joined(state.containers) + ")")};
+  }
+  if (*action.params.relation == SpatialRelation::kOn && !state.supports.count(target) &&
+      !state.isClear(target)) {
+    return {target + " is not clear: " + joined(state.objectsOn(target)) + " is on it"};
+  }
+  return {};
+}
+
+std::vector<std::string> placeProblems(const SymbolicAction& action, const SymbolicState& state) {
+  const std::string& o = action.object;
+  if (o.empty()) return {"place needs an object"};
+  if (!state.hasObject(o)) return {unknownObject(o, state)};
+  std::vector<std::string> problems;
+  if (state.held != o) {
+    problems.push_back(o + " is not held" +
+                       (state.held.empty() ? std::string("; pick it first")
+                                           : " (the gripper holds " + state.held + "); place " +
+                                                 state.held + " and pick " + o + " first"));
+  }
+  for (std::string& problem : placeTargetProblems(action, state)) problems.push_back(std::move(problem));
+  if (!action.params.relation && !action.params.position) {
+    problems.push_back("place needs a relation with a target, or a position");
+  }
+  return problems;
+}
+
+std::vector<std::string> moveProblems(const SymbolicAction& action, const SymbolicState& state) {
+  std::vector<std::string> problems;
+  const std::string& configuration = action.params.configuration;
+  if (!configuration.empty() && !state.namedConfigurations.empty() &&
+      !state.namedConfigurations.count(configuration)) {
+    problems.push_back("the robot has no configuration \"" + configuration +
+                       "\" (configurations: " + joined(state.namedConfigurations) + ")");
+  }
+  if (configuration.empty() && !action.params.position) {
+    problems.push_back("move needs a configuration or a position");
+  }
+  if (!action.object.empty() && !state.hasObject(action.object)) {
+    problems.push_back(unknownObject(action.object, state));
+  } else if (!action.object.empty() && state.held != action.object) {
+    problems.push_back("move carries only the held object, and " + action.object + " is not held (it is " +
+                       locationOf(action.object, state) + ")");
+  }
+  return problems;
+}
+
+std::vector<std::string> pushProblems(const SymbolicAction& action, const SymbolicState& state) {
+  const std::string& o = action.object;
+  if (o.empty()) return {"push needs an object"};
+  if (!state.hasObject(o)) return {unknownObject(o, state)};
+  std::vector<std::string> problems;
+  if (state.held == o) problems.push_back(o + " is held; place it instead of pushing it");
+  else if (!state.held.empty()) problems.push_back("push needs a free gripper: " + heldText(state));
+  if (!state.movable.count(o)) problems.push_back(o + " is fixed and cannot be pushed");
+  if (!action.params.direction) problems.push_back("push needs a direction");
+  if (!action.params.distance) problems.push_back("push needs a distance");
+  return problems;
+}
+
+/// What `target` rests on, for an object placed beside it.
+std::string supportBeside(const std::string& target, const SymbolicState& state) {
+  if (state.supports.count(target)) return target;
+  if (auto it = state.onTopOf.find(target); it != state.onTopOf.end()) return it->second;
+  return {};
+}
+
+void applyPlace(const SymbolicAction& action, SymbolicState& state) {
+  state.held.clear();
+  if (!action.params.relation) return;
+  const std::string& target = action.params.target;
+  switch (*action.params.relation) {
+    case SpatialRelation::kIn:
+      state.inside[action.object] = target;
+      break;
+    case SpatialRelation::kOn:
+      state.onTopOf[action.object] = target;
+      break;
+    default:
+      if (std::string support = supportBeside(target, state); !support.empty()) {
+        state.onTopOf[action.object] = support;
+      }
+      break;
+  }
+}
+
+}  // namespace
+
+std::string PlanValidation::summary() const {
+  std::string text;
+  for (const std::string& problem : problems) text += (text.empty() ? "" : "\n") + problem;
+  return text;
+}
+
+std::vector<std::string> actionProblems(const SymbolicAction& action, const SymbolicState& state) {
+  switch (action.type) {
+    case ActionType::kPick: return pickProblems(action, state);
+    case ActionType::kPlace: return placeProblems(action, state);
+    case ActionType::kMove: return moveProblems(action, state);
+    case ActionType::kPush: return pushProblems(action, state);
+  }
+  return {"unknown action type"};
+}
+
+void applyAction(const SymbolicAction& action, SymbolicState& state) {
+  state.atConfiguration.clear();
+  switch (action.type) {
+    case ActionType::kPick:
+      state.inside.erase(action.object);
+      state.onTopOf.erase(action.object);
+      state.held = action.object;
+      break;
+    case ActionType::kPlace:
+      applyPlace(action, state);
+      break;
+    case ActionType::kMove:
+      state.atConfiguration = action.params.configuration;
+      break;
+    case ActionType::kPush:
+      break;
+  }
+}
+
+PlanValidation validatePlan(const Plan& plan, const SymbolicState& initial) {
+  PlanValidation result;
+  result.finalState = initial;
+  for (std::size_t i = 0; i < plan.actions.size(); ++i) {
+    const SymbolicAction& action = plan.actions[i];
+    const std::vector<std::string> problems = actionProblems(action, result.finalState);
+    if (!problems.empty()) {
+      const std::string prefix = "step " + std::to_string(i + 1) + " (" + describeAction(action) + "): ";
+      for (const std::string& problem : problems) result.problems.push_back(prefix + problem);
+      result.failedStep = i;
+      return result;
+    }
+    applyAction(action, result.finalState);
+  }
+  return result;
+}
+
+std::optional<bool> goalHolds(const SymbolicState& state, const Goal& goal) {
+  switch (goal.kind) {
+    case GoalKind::kHolding:
+      return state.held == goal.object;
+    case GoalKind::kAtConfiguration:
+      return state.atConfiguration == goal.configuration;
+    case GoalKind::kDisplaced:
+      return std::nullopt;
+    case GoalKind::kRelation:
+      break;
+  }
+  if (!goal.relation) return std::nullopt;
+  if (*goal.relation == SpatialRelation::kIn) {
+    const auto it = state.inside.find(goal.object);
+    return it != state.inside.end() && it->second == goal.target;
+  }
+  if (*goal.relation == SpatialRelation::kOn) {
+    const auto it = state.onTopOf.find(goal.object);
+    return it != state.onTopOf.end() && it->second == goal.target;
+  }
+  return std::nullopt;
+}
+
+}  // namespace lang2manip

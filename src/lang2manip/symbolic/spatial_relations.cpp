@@ -1,0 +1,147 @@
+#include "lang2manip/symbolic/spatial_relations.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/model/scene.hpp"
+#include "lang2manip/symbolic/plan_validation.hpp"
+
+namespace lang2manip {
+namespace {
+
+std::string metres(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3f m", value);
+  return buffer;
+}
+
+const SceneObject& objectNamed(const Scene& scene, const std::string& name, const std::string& role) {
+  const SceneObject* object = scene.findObject(name);
+  if (object == nullptr) {
+    std::string names;
+    for (const SceneObject& o : scene.objects()) names += (names.empty() ? "" : ", ") + o.name;
+    throw InputError("goal " + role + ": unknown object \"" + name + "\" (objects: " + names + ")");
+  }
+  return *object;
+}
+
+/// Offset of `a`'s centre from `b`'s centre in the base frame.
+Vector3 centreOffset(const Pose& base, const SceneObject& a, const SceneObject& b) {
+  return base.linear().transpose() * (a.worldBounds().center() - b.worldBounds().center());
+}
+
+/// The signed offset along the side a relation names (positive when on that side).
+double offsetAlong(SpatialRelation relation, const Vector3& offset) {
+  switch (relation) {
+    case SpatialRelation::kLeftOf: return offset.y();
+    case SpatialRelation::kRightOf: return -offset.y();
+    case SpatialRelation::kInFrontOf: return offset.x();
+    case SpatialRelation::kBehind: return -offset.x();
+    default: return 0.0;
+  }
+}
+
+std::string sideWords(SpatialRelation relation) {
+  switch (relation) {
+    case SpatialRelation::kLeftOf: return "left of";
+    case SpatialRelation::kRightOf: return "right of";
+    case SpatialRelation::kInFrontOf: return "in front of";
+    case SpatialRelation::kBehind: return "behind";
+    default: return spatialRelationName(relation);
+  }
+}
+
+GoalCheck checkSide(const Goal& goal, const Vector3& offset, const SpatialOptions& options) {
+  const double along = offsetAlong(*goal.relation, offset);
+  const std::string words = goal.object + " is " + metres(along) + " " + sideWords(*goal.relation) + " " + goal.target;
+  if (goal.distance) {
+    const bool holds = std::abs(along - *goal.distance) <= options.distanceTolerance;
+    return {holds, words + " (wanted " + metres(*goal.distance) + ")"};
+  }
+  return {along > options.directionMargin, words};
+}
+
+GoalCheck checkNextTo(const Goal& goal, const SceneObject& a, const SceneObject& b, const SpatialOptions& options) {
+  const double gap = boxGap(a.worldBounds(), b.worldBounds());
+  const double limit = goal.distance ? *goal.distance + options.distanceTolerance : options.nearDistance;
+  return {gap <= limit, goal.object + " is " + metres(gap) + " from " + goal.target + " (at most " + metres(limit) + ")"};
+}
+
+GoalCheck checkDisplaced(const Scene& scene, const Goal& goal, const GoalCheckOptions& options) {
+  if (options.initialScene == nullptr) {
+    throw InputError("goal \"" + describeGoal(goal) + "\": a displacement needs the initial scene");
+  }
+  const Pose base = robotBaseFrame(scene, options.robot);
+  const Vector3 before = objectNamed(*options.initialScene, goal.object, "object").pose.translation();
+  const Vector3 after = objectNamed(scene, goal.object, "object").pose.translation();
+  const Vector3 moved = base.linear().transpose() * (after - before);
+  const double error = (moved - goal.displacement).norm();
+  char buffer[128];
+  std::snprintf(buffer, sizeof buffer, "%s moved by (%.3f, %.3f, %.3f) m, %.3f m from the wanted displacement",
+                goal.object.c_str(), moved.x(), moved.y(), moved.z(), error);
+  return {error <= options.spatial.distanceTolerance, buffer};
+}
+
+std::string locationWords(const std::string& object, const SymbolicState& state) {
+  if (state.held == object) return "held";
+  if (auto it = state.inside.find(object); it != state.inside.end()) return "in " + it->second;
+  if (auto it = state.onTopOf.find(object); it != state.onTopOf.end()) return "on " + it->second;
+  return "not on anything";
+}
+
+GoalCheck checkSymbolic(const Scene& scene, const Goal& goal, const GoalCheckOptions& options) {
+  const SymbolicState state = observeSymbolicState(scene, options.tolerances, options.robot);
+  const bool holds = goalHolds(state, goal).value_or(false);
+  std::string explanation = describeGoal(goal) + (holds ? ": holds" : ": does not hold");
+  if (!holds && goal.kind == GoalKind::kRelation) explanation += " (" + goal.object + " is " + locationWords(goal.object, state) + ")";
+  if (!holds && goal.kind == GoalKind::kHolding) explanation += state.held.empty() ? " (the gripper is empty)" : " (holding " + state.held + ")";
+  if (!holds && goal.kind == GoalKind::kAtConfiguration) {
+    explanation += state.atConfiguration.empty() ? " (at no named configuration)" : " (at " + state.atConfiguration + ")";
+  }
+  return {holds, explanation};
+}
+
+}  // namespace
+
+Pose robotBaseFrame(const Scene& scene, const std::string& robot) {
+  if (!robot.empty()) return scene.robot(robot).basePose;
+  return scene.robots().empty() ? Pose::Identity() : scene.robots().front().basePose;
+}
+
+double boxGap(const AlignedBox3& a, const AlignedBox3& b) {
+  const Vector3 separation = (a.min() - b.max()).cwiseMax(b.min() - a.max()).cwiseMax(0.0);
+  return separation.norm();
+}
+
+std::vector<SpatialRelation> directionalRelations(const Vector3& offset, double margin) {
+  std::vector<SpatialRelation> relations;
+  if (offset.y() > margin) relations.push_back(SpatialRelation::kLeftOf);
+  if (offset.y() < -margin) relations.push_back(SpatialRelation::kRightOf);
+  if (offset.x() > margin) relations.push_back(SpatialRelation::kInFrontOf);
+  if (offset.x() < -margin) relations.push_back(SpatialRelation::kBehind);
+  return relations;
+}
+
+GoalCheck checkGoalInScene(const Scene& scene, const Goal& goal, const GoalCheckOptions& options) {
+  if (goal.kind == GoalKind::kDisplaced) return checkDisplaced(scene, goal, options);
+  if (goal.kind != GoalKind::kRelation) {
+    if (goal.kind == GoalKind::kHolding) objectNamed(scene, goal.object, "object");
+    return checkSymbolic(scene, goal, options);
+  }
+  const SceneObject& a = objectNamed(scene, goal.object, "object");
+  const SceneObject& b = objectNamed(scene, goal.target, "target");
+  if (!goal.relation) throw InputError("goal \"" + describeGoal(goal) + "\": no relation");
+  switch (*goal.relation) {
+    case SpatialRelation::kIn:
+    case SpatialRelation::kOn:
+      return checkSymbolic(scene, goal, options);
+    case SpatialRelation::kNextTo:
+      return checkNextTo(goal, a, b, options.spatial);
+    default:
+      return checkSide(goal, centreOffset(robotBaseFrame(scene, options.robot), a, b), options.spatial);
+  }
+}
+
+}  // namespace lang2manip

@@ -1,0 +1,62 @@
+#pragma once
+/// @file Geometric spatial relations in the robot's base frame (x front, y left, z up), shared
+/// by the observation text and the geometric goal check so that both say the same; and the
+/// check of goals against a Scene.
+
+#include <string>
+#include <vector>
+
+#include "lang2manip/core/types.hpp"
+#include "lang2manip/symbolic/action.hpp"
+#include "lang2manip/symbolic/symbolic_state.hpp"
+
+namespace lang2manip {
+
+class Scene;
+
+/// Thresholds of the geometric relations.
+struct SpatialOptions {
+  /// An offset along an axis counts as left/right/front/behind beyond this, metres.
+  double directionMargin = 0.02;
+  /// Objects whose bounding boxes are closer than this are "near" (and "next_to"), metres.
+  double nearDistance = 0.10;
+  /// How far an explicit distance or displacement may be off, metres.
+  double distanceTolerance = 0.02;
+};
+
+/// X_WB of `robot` (the scene's first robot when empty; identity for a scene without robots).
+/// Throws InputError for an unknown robot name.
+Pose robotBaseFrame(const Scene& scene, const std::string& robot);
+
+/// The smallest distance between two boxes (0 when they overlap).
+double boxGap(const AlignedBox3& a, const AlignedBox3& b);
+
+/// left_of / right_of / in_front_of / behind for `offset` = position of A minus position of B
+/// in the base frame: A is left_of B when offset.y > margin, in_front_of when offset.x > margin.
+std::vector<SpatialRelation> directionalRelations(const Vector3& offset, double margin);
+
+/// Options of checkGoalInScene().
+struct GoalCheckOptions {
+  /// The robot whose base frame and gripper are meant (first robot when empty).
+  std::string robot;
+  /// The scene before execution; needed for displacement goals.
+  const Scene* initialScene = nullptr;
+  SpatialOptions spatial;
+  SymbolicStateTolerances tolerances;
+};
+
+struct GoalCheck {
+  bool holds = false;
+  /// Why, in words: "marker is 0.120 m left of eraser", "eraser is not in holder (on desk)".
+  std::string explanation;
+};
+
+/// Whether `goal` holds in `scene`: in/on/holding/at-configuration from observeSymbolicState();
+/// side relations from the bounding-box centres in the robot base frame (with an explicit
+/// distance, the offset along that side must match it within tolerance); next_to when the boxes
+/// are within nearDistance (or the explicit distance); displaced by comparing with
+/// options.initialScene. Throws InputError for unknown objects, or a displacement goal without
+/// an initial scene.
+GoalCheck checkGoalInScene(const Scene& scene, const Goal& goal, const GoalCheckOptions& options = {});
+
+}  // namespace lang2manip

@@ -1,0 +1,223 @@
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/model/builtin_data.hpp"
+#include "lang2manip/model/kautham_problem.hpp"
+#include "lang2manip/symbolic/plan_validation.hpp"
+#include "lang2manip/symbolic/spatial_relations.hpp"
+
+namespace lang2manip {
+namespace {
+
+using ::testing::Contains;
+using ::testing::HasSubstr;
+
+SymbolicAction pick(const std::string& object) { return {ActionType::kPick, object, {}, {}, ""}; }
+
+SymbolicAction place(const std::string& object, SpatialRelation relation, const std::string& target) {
+  SymbolicAction action{ActionType::kPlace, object, {}, {}, ""};
+  action.params.relation = relation;
+  action.params.target = target;
+  return action;
+}
+
+SymbolicAction moveTo(const std::string& configuration) {
+  SymbolicAction action{ActionType::kMove, "", {}, {}, ""};
+  action.params.configuration = configuration;
+  return action;
+}
+
+SymbolicAction push(const std::string& object) {
+  SymbolicAction action{ActionType::kPush, object, {}, {}, ""};
+  action.params.direction = Vector3::UnitY();
+  action.params.distance = 0.05;
+  return action;
+}
+
+Goal relationGoal(const std::string& object, SpatialRelation relation, const std::string& target) {
+  Goal goal;
+  goal.object = object;
+  goal.relation = relation;
+  goal.target = target;
+  return goal;
+}
+
+Goal kindGoal(GoalKind kind, const std::string& object) {
+  Goal goal;
+  goal.kind = kind;
+  goal.object = object;
+  return goal;
+}
+
+class PlanValidationTest : public ::testing::Test {
+ protected:
+  PlanValidationTest()
+      : problem_(readKauthamProblem(resolveProblem("panda_desk"))), state_(observeSymbolicState(problem_.scene)) {}
+
+  PlanValidation validate(std::vector<SymbolicAction> actions) const {
+    Plan plan;
+    plan.actions = std::move(actions);
+    return validatePlan(plan, state_);
+  }
+
+  KauthamProblem problem_;
+  SymbolicState state_;
+};
+
+TEST_F(PlanValidationTest, PaperPlanIsValidAndPutsBothObjectsInTheHolder) {
+  const PlanValidation result = validate({pick("marker"), place("marker", SpatialRelation::kIn, "holder"),
+                                          pick("eraser"), place("eraser", SpatialRelation::kIn, "holder"),
+                                          moveTo("home")});
+  EXPECT_TRUE(result.valid()) << result.summary();
+  EXPECT_EQ(result.finalState.inside.at("marker"), "holder");
+  EXPECT_EQ(result.finalState.inside.at("eraser"), "holder");
+  EXPECT_TRUE(result.finalState.held.empty());
+  EXPECT_EQ(result.finalState.atConfiguration, "home");
+  EXPECT_EQ(goalHolds(result.finalState, relationGoal("marker", SpatialRelation::kIn, "holder")), true);
+  EXPECT_EQ(goalHolds(state_, relationGoal("marker", SpatialRelation::kIn, "holder")), false);
+}
+
+TEST_F(PlanValidationTest, PlaceBeforePickNamesTheStepAndTheObject) {
+  const PlanValidation result = validate({pick("marker"), place("marker", SpatialRelation::kIn, "holder"),
+                                          place("eraser", SpatialRelation::kIn, "holder")});
+  EXPECT_FALSE(result.valid());
+  EXPECT_EQ(result.failedStep, 2U);
+  EXPECT_THAT(result.problems, Contains("step 3 (place eraser in holder): eraser is not held; pick it first"));
+}
+
+TEST_F(PlanValidationTest, UnknownObjectIsNamedWithTheValidOnes) {
+  const PlanValidation result = validate({pick("cup")});
+  EXPECT_THAT(result.problems, Contains("step 1 (pick cup): there is no object \"cup\" (objects: desk, marker, eraser, holder)"));
+}
+
+TEST_F(PlanValidationTest, PickingTheHeldObjectAgainIsRejected) {
+  const PlanValidation result = validate({pick("marker"), pick("marker")});
+  EXPECT_THAT(result.problems, Contains("step 2 (pick marker): marker is already held"));
+}
+
+TEST_F(PlanValidationTest, PickingASecondObjectNeedsAFreeGripper) {
+  const PlanValidation result = validate({pick("marker"), pick("eraser")});
+  EXPECT_THAT(result.problems,
+              Contains("step 2 (pick eraser): the gripper is not free: the gripper holds marker; place it first"));
+}
+
+TEST_F(PlanValidationTest, PlacingInANonContainerListsTheContainers) {
+  const PlanValidation result = validate({pick("marker"), place("marker", SpatialRelation::kIn, "eraser")});
+  EXPECT_THAT(result.problems, Contains("step 2 (place marker in eraser): eraser is not a container (containers: holder)"));
+}
+
+TEST_F(PlanValidationTest, FixedObjectsCannotBePicked) {
+  EXPECT_THAT(validate({pick("desk")}).problems, Contains(HasSubstr("desk is fixed and cannot be picked")));
+}
+
+TEST_F(PlanValidationTest, AnObjectWithSomethingInItIsNotClear) {
+  const PlanValidation result = validate({pick("marker"), place("marker", SpatialRelation::kIn, "holder"), pick("holder")});
+  EXPECT_THAT(result.problems, Contains("step 3 (pick holder): holder is not clear: marker is in it; move them first"));
+}
+
+TEST_F(PlanValidationTest, PlacingWhileHoldingAnotherObjectSaysWhatIsHeld) {
+  const PlanValidation result = validate({pick("marker"), place("eraser", SpatialRelation::kOn, "desk")});
+  EXPECT_THAT(result.problems, Contains(HasSubstr("eraser is not held (the gripper holds marker)")));
+}
+
+TEST_F(PlanValidationTest, StackingNeedsAClearTarget) {
+  const PlanValidation result = validate({pick("marker"), place("marker", SpatialRelation::kOn, "eraser"),
+                                          pick("holder"), place("holder", SpatialRelation::kOn, "eraser")});
+  EXPECT_THAT(result.problems, Contains("step 4 (place holder on eraser): eraser is not clear: marker is on it"));
+}
+
+TEST_F(PlanValidationTest, PushNeedsAFreeGripperAndMoveAKnownConfiguration) {
+  EXPECT_THAT(validate({pick("marker"), push("eraser")}).problems,
+              Contains(HasSubstr("step 2 (push eraser 0.05 m along (0, 1, 0)): push needs a free gripper")));
+  EXPECT_THAT(validate({moveTo("dance")}).problems,
+              Contains("step 1 (move to dance): the robot has no configuration \"dance\" (configurations: home)"));
+  EXPECT_TRUE(validate({push("eraser"), moveTo("home")}).valid());
+}
+
+TEST_F(PlanValidationTest, PlacingBesideAnObjectLandsOnItsSupport) {
+  const PlanValidation result = validate({pick("marker"), place("marker", SpatialRelation::kLeftOf, "holder")});
+  ASSERT_TRUE(result.valid()) << result.summary();
+  EXPECT_EQ(result.finalState.onTopOf.at("marker"), "desk");
+  EXPECT_FALSE(goalHolds(result.finalState, relationGoal("marker", SpatialRelation::kLeftOf, "holder")).has_value());
+}
+
+TEST(SymbolicStateConfigurationTest, PaperSceneStartsAtHome) {
+  KauthamProblem problem = readKauthamProblem(resolveProblem("panda_desk"));
+  SymbolicState state = observeSymbolicState(problem.scene);
+  EXPECT_EQ(state.atConfiguration, "home");
+  EXPECT_EQ(state.namedConfigurations, std::set<std::string>{"home"});
+  VectorX q = problem.scene.robots().front().configuration;
+  q[0] += 0.3;
+  problem.scene.setConfiguration(problem.scene.robots().front().name, q);
+  EXPECT_EQ(observeSymbolicState(problem.scene).atConfiguration, "");
+  EXPECT_THROW(observeSymbolicState(problem.scene, {}, "no_such_robot"), InputError);
+}
+
+class GeometricGoalTest : public ::testing::Test {
+ protected:
+  GeometricGoalTest() : problem_(readKauthamProblem(resolveProblem("panda_desk"))) {}
+  Scene& scene() { return problem_.scene; }
+  KauthamProblem problem_;
+};
+
+TEST_F(GeometricGoalTest, SideRelationsAreInTheRobotBaseFrame) {
+  // Marker at y = -0.18, eraser at y = +0.17, robot facing +x: the eraser is left of the marker.
+  const Goal eraserLeft = relationGoal("eraser", SpatialRelation::kLeftOf, "marker");
+  const Goal markerLeft = relationGoal("marker", SpatialRelation::kLeftOf, "eraser");
+  const Goal markerRight = relationGoal("marker", SpatialRelation::kRightOf, "eraser");
+  EXPECT_TRUE(checkGoalInScene(scene(), eraserLeft).holds);
+  EXPECT_FALSE(checkGoalInScene(scene(), markerLeft).holds);
+  EXPECT_TRUE(checkGoalInScene(scene(), markerRight).holds);
+  EXPECT_THAT(checkGoalInScene(scene(), markerLeft).explanation, HasSubstr("left of eraser"));
+  // Turning the robot around swaps left and right.
+  Pose turned = scene().robots().front().basePose;
+  turned.linear() = Eigen::AngleAxisd(3.14159265358979, Vector3::UnitZ()).toRotationMatrix();
+  scene().robot(scene().robots().front().name).basePose = turned;
+  EXPECT_TRUE(checkGoalInScene(scene(), markerLeft).holds);
+}
+
+TEST_F(GeometricGoalTest, ExplicitDistancesAndNextTo) {
+  Goal left = relationGoal("eraser", SpatialRelation::kLeftOf, "marker");
+  const double offset = scene().object("eraser").worldBounds().center().y() - scene().object("marker").worldBounds().center().y();
+  left.distance = offset;
+  EXPECT_TRUE(checkGoalInScene(scene(), left).holds);
+  left.distance = offset + 0.1;
+  EXPECT_FALSE(checkGoalInScene(scene(), left).holds);
+  const Goal nextTo = relationGoal("eraser", SpatialRelation::kNextTo, "marker");
+  EXPECT_FALSE(checkGoalInScene(scene(), nextTo).holds);
+  Pose near = scene().object("marker").pose;
+  near.translation().y() += 0.06;
+  scene().object("eraser").pose = near;
+  EXPECT_TRUE(checkGoalInScene(scene(), nextTo).holds) << checkGoalInScene(scene(), nextTo).explanation;
+}
+
+TEST_F(GeometricGoalTest, InHoldingDisplacedAndErrors) {
+  const Scene before = scene();
+  const Goal inHolder = relationGoal("eraser", SpatialRelation::kIn, "holder");
+  const GoalCheck notYet = checkGoalInScene(scene(), inHolder);
+  EXPECT_FALSE(notYet.holds);
+  EXPECT_THAT(notYet.explanation, HasSubstr("eraser is on desk"));
+  Pose inside = scene().object("holder").pose;
+  inside.translation().z() += 0.02;
+  scene().object("eraser").pose = inside;
+  EXPECT_TRUE(checkGoalInScene(scene(), inHolder).holds);
+
+  Goal displaced = kindGoal(GoalKind::kDisplaced, "marker");
+  displaced.displacement = Vector3(0.0, 0.05, 0.0);
+  scene().object("marker").pose.translation().y() += 0.05;
+  GoalCheckOptions options;
+  options.initialScene = &before;
+  EXPECT_TRUE(checkGoalInScene(scene(), displaced, options).holds);
+  displaced.displacement = Vector3(0.05, 0.0, 0.0);
+  EXPECT_FALSE(checkGoalInScene(scene(), displaced, options).holds);
+  EXPECT_THROW(checkGoalInScene(scene(), displaced), InputError);
+  EXPECT_THROW(checkGoalInScene(scene(), relationGoal("cup", SpatialRelation::kIn, "holder")), InputError);
+  EXPECT_FALSE(checkGoalInScene(scene(), kindGoal(GoalKind::kHolding, "marker")).holds);
+  Goal home = kindGoal(GoalKind::kAtConfiguration, "");
+  home.configuration = "home";
+  EXPECT_TRUE(checkGoalInScene(scene(), home).holds);
+}
+
+}  // namespace
+}  // namespace lang2manip
