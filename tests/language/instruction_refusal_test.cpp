@@ -66,7 +66,8 @@ const Refusal kRefusals[] = {
     {W, "put the block in the white cup, then the other", "could not ground \"the block\""},
     {W, "put the small block in the box", "it is ambiguous: it could be red_block or blue_block"},
     {W, "put the blocks in the red block", "red_block is not a container"},
-    {W, "put the blocks on the table and the cups on", "expected an object after \"on\""},
+    {W, "put the blocks on the table and the cups next to", "expected an object after \"next to\""},
+    {D, "put the eraser in", "expected an object after \"in\""},
     {W, "put the marker_1 in the cups", "a relation needs one target object"},
 };
 

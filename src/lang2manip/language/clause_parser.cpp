@@ -70,7 +70,12 @@ void StepParser::parse(const Words& words, const StepModifiers& modifiers) {
     failStep(step, "the only place to " + step.verb.lemma + " is home");
   } else {
     parseObjects(step);
-    if (!parseRelation(step) && !parseDisplacement(step)) parseWithoutPlace(step);
+    if (parseRelation(step)) {
+      while (parseRelation(step)) {
+      }  // "on the desk next to the holder"
+    } else if (!parseDisplacement(step)) {
+      parseWithoutPlace(step);
+    }
     parseGappedRelations(step);
     skipSource(step);
   }
@@ -164,6 +169,14 @@ bool StepParser::parseRelation(Step& step) {
   const auto direction = vocabulary::matchDirection(words, at);
   if (direction && direction->length >= relation->length) return false;
   const std::optional<NounPhrase> targetPhrase = reader_.read(words, at + relation->length);
+  const bool stranded = at + relation->length == words.size();
+  const bool inOrOn = relation->relation && !isDirectional(*relation->relation);
+  if (!targetPhrase && stranded && inOrOn && !discourse_.lastTarget.empty()) {
+    // "..., then put the eraser in": the latest target
+    step.at = words.size();
+    addRelationGoals(step, RelationSpec{*relation->relation, discourse_.lastTarget, distance});
+    return true;
+  }
   if (!targetPhrase) {
     throwGroundingError(joinWords(words, at, words.size()),
                         "expected an object after \"" +

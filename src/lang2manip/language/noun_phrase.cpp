@@ -294,6 +294,10 @@ std::optional<NounPhrase> NounPhraseReader::read(const Words& words, std::size_t
       adjectives = true;
     }
     const bool determiner = position > at;
+    if (first == "both" && phrase.noun && !phrase.noun->plural) {
+      phrase.quantity = Quantity::kDefinite;  // "both the marker and the eraser"
+      phrase.count = 0;
+    }
     if (!phrase.noun && !phrase.one && phrase.other && !adjectives) {
       phrase.one = true;  // "the other", "another"
     }
