@@ -220,6 +220,12 @@ const CorpusEntry kCorpus[] = {
      "holding marker; marker in holder | grasp marker=side"},
     {D, "put the marker in the holder, after that push the eraser 3 cm forward",
      "marker in holder; eraser displaced by (0.03, 0, 0)"},
+    {W, "put one marker in the box", "marker_1 in box"},
+    {W, "put one block in the white cup and one in the box",
+     "red_block in white_cup; blue_block in box"},
+    {W, "put the red block in the white cup, then put the blue block in the other one",
+     "red_block in white_cup; blue_block in yellow_cup"},
+    {W, "put the three blocks in the box", "red_block in box; blue_block in box; green_block in box"},
     {W, "nudge both markers to the left",
      "marker_1 displaced by (0, 0.02, 0); marker_2 displaced by (0, 0.02, 0)"},
 };

@@ -68,6 +68,8 @@ const Refusal kRefusals[] = {
     {W, "put the blocks in the red block", "red_block is not a container"},
     {W, "put the blocks on the table and the cups next to", "expected an object after \"next to\""},
     {D, "put the eraser in", "expected an object after \"in\""},
+    {W, "put the red block on the blue block, then put the green block on the other one",
+     "could not ground \"the other one\": there is no other one: already mentioned"},
     {W, "put the marker_1 in the cups", "a relation needs one target object"},
 };
 

@@ -57,6 +57,18 @@ TEST(OfflineTaskPlannerTest, RequestWithoutSceneIsAnError) {
   EXPECT_NE(planningErrorOf(planner, request).find("the request has no scene"), std::string::npos);
 }
 
+TEST(OfflineTaskPlannerTest, UnknownRobotIsAnError) {
+  OfflineTaskPlanner planner;
+  const Scene scene = test::deskScene();
+  PlanningRequest request = requestFor(scene, "go home");
+  request.robot = "r2d2";
+  const std::string message = planningErrorOf(planner, request);
+  EXPECT_NE(message.find("offline planner: "), std::string::npos) << message;
+  EXPECT_NE(message.find("r2d2"), std::string::npos) << message;
+  request.robot = scene.robots().front().name;
+  EXPECT_EQ(planningErrorOf(planner, request), "no error");
+}
+
 TEST(OfflineTaskPlannerTest, StoppedBeforePlanningIsAnError) {
   OfflineTaskPlanner planner;
   const Scene scene = test::deskScene();

@@ -103,7 +103,7 @@ void StepParser::parseObjects(Step& step) {
   step.at = list.back().end;
   step.objects = groundList(step, list);
   for (const NounPhrase& phrase : list) {
-    if (phrase.noun) discourse_.lastNounObjects = phrase.noun->objects;
+    if (phrase.noun) discourse_.lastObjectNoun = phrase.noun->objects;
   }
   while (step.next("up") || step.next("down") || step.next("back") || step.next("away")) {
     if (step.next("back") && vocabulary::matchDirection(step.words, step.at) &&
@@ -207,7 +207,7 @@ std::string StepParser::groundTarget(Step& step, const NounPhrase& phrase, bool 
     throwGroundingError(phrase.text, "a relation needs one target object, but it names " +
                                          std::to_string(targets.size()));
   }
-  if (phrase.noun) discourse_.lastNounObjects = phrase.noun->objects;
+  if (phrase.noun) discourse_.lastTargetNoun = phrase.noun->objects;
   const std::string& target = targets.front();
   discourse_.lastTarget = target;
   discourse_.mention({target});

@@ -209,7 +209,11 @@ std::size_t NounPhraseReader::readDeterminer(const Words& words, std::size_t at,
   if (at + length < words.size() && phrase.quantity != Quantity::kExactly) {
     const std::optional<double> number = numberValue(words[at + length]);
     const bool unit = vocabulary::matchLength(words, at + length).has_value();
-    if (number && !unit && *number >= 1 && std::floor(*number) == *number) {
+    if (number && !unit && *number == 1) {
+      phrase.quantity = Quantity::kIndefinite;  // "one marker", "one of them"
+      phrase.one = true;
+      ++length;
+    } else if (number && !unit && *number > 1 && std::floor(*number) == *number) {
       phrase.quantity = Quantity::kExactly;
       phrase.count = static_cast<int>(*number);
       ++length;

@@ -59,8 +59,10 @@ struct Discourse {
   std::string lastTarget;
   /// Every object mentioned so far, in order.
   std::vector<std::string> mentioned;
-  /// The objects the latest noun named before adjectives narrowed them ("one" stands for it).
-  std::vector<std::string> lastNounObjects;
+  /// The objects the latest noun of an object acted on, and of a target, named before
+  /// adjectives narrowed them: "one" stands for the noun said last in the same role.
+  std::vector<std::string> lastObjectNoun;
+  std::vector<std::string> lastTargetNoun;
 
   void mention(const std::vector<std::string>& objects);
 };

@@ -53,6 +53,10 @@ std::vector<std::string> NounPhraseReader::ground(const NounPhrase& phrase,
   }
   const std::vector<std::string> byNoun = candidates(phrase, discourse, asTarget);
   std::vector<std::string> names = narrow(phrase, byNoun);
+  if (byNoun.empty() && phrase.other) {
+    throwGroundingError(phrase.text, "there is no other one: already mentioned " +
+                                         joinNames(discourse.mentioned));
+  }
   if (names.empty()) {
     std::string why = "no object matches (objects: " + objectList() + ")";
     if (!byNoun.empty() && byNoun.size() < objects_.size()) {
@@ -129,8 +133,10 @@ std::vector<std::string> NounPhraseReader::candidates(const NounPhrase& phrase,
   std::vector<std::string> names;
   if (phrase.noun) {
     names = phrase.noun->objects;
-  } else if (phrase.one && !discourse.lastNounObjects.empty()) {
-    names = discourse.lastNounObjects;
+  } else if (phrase.one && !(discourse.lastObjectNoun.empty() && discourse.lastTargetNoun.empty())) {
+    const bool targetNoun = asTarget ? !discourse.lastTargetNoun.empty()
+                                     : discourse.lastObjectNoun.empty();
+    names = targetNoun ? discourse.lastTargetNoun : discourse.lastObjectNoun;
   } else {
     for (const ObjectDescriptor& object : objects_) names.push_back(object.name);
     if (phrase.everything || !asTarget) {

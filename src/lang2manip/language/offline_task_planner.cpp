@@ -4,6 +4,7 @@
 #include <chrono>
 #include <map>
 
+#include "lang2manip/core/error.hpp"
 #include "lang2manip/language/instruction.hpp"
 #include "lang2manip/language/object_descriptor.hpp"
 #include "lang2manip/language/words.hpp"
@@ -110,8 +111,13 @@ Plan OfflineTaskPlanner::plan(const PlanningRequest& request, const StopConditio
   if (request.scene == nullptr) throw PlanningError("offline planner: the request has no scene");
   if (stop.shouldStop()) throw PlanningError("offline planner: stopped before planning");
   const Scene& scene = *request.scene;
-  TaskSpecification specification =
-      understandInstruction(request.task, describeObjects(scene, request.robot));
+  std::vector<ObjectDescriptor> objects;
+  try {
+    objects = describeObjects(scene, request.robot);
+  } catch (const InputError& error) {
+    throw PlanningError(std::string("offline planner: ") + error.what());
+  }
+  TaskSpecification specification = understandInstruction(request.task, objects);
   const SymbolicState state = observeSymbolicState(scene);
   const SequencingOptions options = sequencingOptionsFor(scene);
   Plan plan = sequenceGoals(specification, state, options);
