@@ -7,6 +7,8 @@
 
 #include "lang2manip/language/instruction.hpp"
 #include "lang2manip/language/object_descriptor.hpp"
+#include "lang2manip/model/builtin_data.hpp"
+#include "lang2manip/model/kautham_problem.hpp"
 #include "lang2manip/symbolic/task_planner.hpp"
 #include "language/language_test_scenes.hpp"
 #include "language/language_test_support.hpp"
@@ -226,6 +228,10 @@ const CorpusEntry kCorpus[] = {
     {W, "put the red block in the white cup, then put the blue block in the other one",
      "red_block in white_cup; blue_block in yellow_cup"},
     {W, "put the three blocks in the box", "red_block in box; blue_block in box; green_block in box"},
+    {D, "push the eraser away 3 cm", "eraser displaced by (0.03, 0, 0)"},
+    {D, "put the marker back in the holder", "marker in holder"},
+    {D, "pick the marker up and put it down next to the eraser",
+     "holding marker; marker next_to eraser"},
     {W, "nudge both markers to the left",
      "marker_1 displaced by (0, 0.02, 0); marker_2 displaced by (0, 0.02, 0)"},
 };
@@ -259,6 +265,24 @@ TEST(InstructionCorpusTest, EveryInstructionIsUnderstoodAsItsGoals) {
     ++checked;
   }
   EXPECT_GE(checked, 100);
+}
+
+TEST(InstructionCorpusTest, DeskInstructionsMeanTheSameOnEveryBuiltInDesk) {
+  for (const BuiltinProblem& problem : builtinProblems()) {
+    SCOPED_TRACE(problem.shortName);
+    const Scene scene = readKauthamProblem(problem.file).scene;
+    const std::vector<ObjectDescriptor> objects = describeObjects(scene);
+    for (const CorpusEntry& entry : kCorpus) {
+      if (entry.scene != SceneId::kDesk) continue;
+      SCOPED_TRACE(entry.instruction);
+      try {
+        EXPECT_EQ(test::summarize(understandInstruction(entry.instruction, objects)),
+                  entry.expected);
+      } catch (const PlanningError& error) {
+        ADD_FAILURE() << "refused: " << error.what();
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -105,11 +105,11 @@ void StepParser::parseObjects(Step& step) {
   for (const NounPhrase& phrase : list) {
     if (phrase.noun) discourse_.lastObjectNoun = phrase.noun->objects;
   }
-  while (step.next("up") || step.next("down") || step.next("back") || step.next("away")) {
-    if (step.next("back") && vocabulary::matchDirection(step.words, step.at) &&
-        !vocabulary::matchRelation(step.words, step.at + 1)) {
-      break;  // "push the eraser back 3 cm": a direction
-    }
+  // Particles: "pick it up", "put it down", "put it back in the holder" (but "push it back
+  // 3 cm" and "move it away" are directions).
+  while (step.next("up") || step.next("down") ||
+         ((step.next("back") || step.next("away")) &&
+          vocabulary::matchRelation(step.words, step.at + 1))) {
     if (step.next("down")) step.putsDown = true;
     ++step.at;
   }
