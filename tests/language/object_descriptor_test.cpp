@@ -57,6 +57,17 @@ TEST(ObjectDescriptorTest, NearestColourNames) {
   EXPECT_EQ(nearestColourName(Vector3(1, 0.5, 0)), "orange");
 }
 
+TEST(ObjectDescriptorTest, SizeClassesRankVolumesAmongMovableObjects) {
+  const std::vector<ObjectDescriptor> desk = describeObjects(test::deskScene());
+  EXPECT_EQ(find(desk, "eraser").sizeClass, "small");
+  EXPECT_EQ(find(desk, "marker").sizeClass, "medium");
+  EXPECT_EQ(find(desk, "holder").sizeClass, "large");
+  EXPECT_EQ(find(desk, "desk").sizeClass, "large");
+  const std::vector<ObjectDescriptor> bench = describeObjects(test::workbenchScene());
+  EXPECT_EQ(find(bench, "red_block").sizeClass, "small");
+  EXPECT_EQ(find(bench, "box").sizeClass, "large");
+}
+
 TEST(ObjectDescriptorTest, ColourWordsInTheNameCount) {
   const std::vector<ObjectDescriptor> all = describeObjects(test::workbenchScene());
   EXPECT_TRUE(has(find(all, "yellow_cup").colours, "yellow"));

@@ -70,12 +70,7 @@ void StepParser::parse(const Words& words, const StepModifiers& modifiers) {
     failStep(step, "the only place to " + step.verb.lemma + " is home");
   } else {
     parseObjects(step);
-    if (parseRelation(step)) {
-      while (parseRelation(step)) {
-      }  // "on the desk next to the holder"
-    } else if (!parseDisplacement(step)) {
-      parseWithoutPlace(step);
-    }
+    if (!parseRelations(step) && !parseDisplacement(step)) parseWithoutPlace(step);
     parseGappedRelations(step);
     skipSource(step);
   }
@@ -144,6 +139,12 @@ void StepParser::skipSource(Step& step) {
   // The source only has to name an object; where things are comes from the scene.
   (void)reader_.ground(*source, discourse_, true, step.objects);
   step.at = source->end;
+}
+
+bool StepParser::parseRelations(Step& step) {
+  bool any = false;
+  while (parseRelation(step)) any = true;  // "on the desk next to the holder"
+  return any;
 }
 
 bool StepParser::parseRelation(Step& step) {

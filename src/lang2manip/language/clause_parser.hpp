@@ -45,6 +45,8 @@ class StepParser {
 
   void parseHome(Step& step);
   void parseObjects(Step& step);
+  /// One or more relation phrases in a row; false when none.
+  bool parseRelations(Step& step);
   bool parseRelation(Step& step);
   bool parseDisplacement(Step& step);
   void parseWithoutPlace(Step& step);

@@ -97,6 +97,24 @@ std::vector<std::string> coloursOf(const SceneObject& object) {
   return colours;
 }
 
+/// Size classes by rank of volume among the movable objects.
+void classifySizes(std::vector<ObjectDescriptor>& descriptors) {
+  std::vector<double> volumes;
+  for (const ObjectDescriptor& descriptor : descriptors) {
+    if (descriptor.movable) volumes.push_back(descriptor.volume);
+  }
+  std::sort(volumes.begin(), volumes.end());
+  const auto count = static_cast<double>(volumes.size());
+  for (ObjectDescriptor& descriptor : descriptors) {
+    const auto below = static_cast<double>(
+        std::lower_bound(volumes.begin(), volumes.end(), descriptor.volume) - volumes.begin());
+    if (volumes.empty()) descriptor.sizeClass = "medium";
+    else if (below >= count * 2.0 / 3.0) descriptor.sizeClass = "large";
+    else if (below < count / 3.0) descriptor.sizeClass = "small";
+    else descriptor.sizeClass = "medium";
+  }
+}
+
 Pose robotBase(const Scene& scene, const std::string& robot) {
   if (!robot.empty()) return scene.robot(robot).basePose;
   if (!scene.robots().empty()) return scene.robots().front().basePose;
@@ -158,6 +176,7 @@ std::vector<ObjectDescriptor> describeObjects(const Scene& scene, const std::str
     descriptor.role = object.role;
     descriptors.push_back(std::move(descriptor));
   }
+  classifySizes(descriptors);
   return descriptors;
 }
 

@@ -22,6 +22,10 @@ struct ObjectDescriptor {
   std::vector<std::string> colours;
   /// Volume of its bounding box, m^3; size words compare it among candidates.
   double volume = 0.0;
+  /// "small", "medium" or "large" by volume among the scene's movable objects (thirds of their
+  /// ranking); "large" for an unmovable object bigger than all of them. Size words in
+  /// instructions ("the big cup") compare volumes among the candidates instead.
+  std::string sizeClass;
   /// Bounding-box extent along x, y, z of the object frame, metres.
   Vector3 dimensions = Vector3::Zero();
   /// Centre of its world bounds in the robot's base frame (x forward, y left), metres.
