@@ -7,11 +7,15 @@
 
 #include "lang2manip/language/instruction.hpp"
 #include "lang2manip/language/object_descriptor.hpp"
+#include "lang2manip/language/offline_task_planner.hpp"
+#include "lang2manip/language/sequencer.hpp"
+#include "lang2manip/symbolic/symbolic_state.hpp"
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/model/kautham_problem.hpp"
 #include "lang2manip/symbolic/task_planner.hpp"
 #include "language/language_test_scenes.hpp"
 #include "language/language_test_support.hpp"
+#include "language/plan_check.hpp"
 
 namespace lang2manip {
 namespace {
@@ -265,6 +269,24 @@ TEST(InstructionCorpusTest, EveryInstructionIsUnderstoodAsItsGoals) {
     ++checked;
   }
   EXPECT_GE(checked, 100);
+}
+
+TEST(InstructionCorpusTest, EveryInstructionGetsAValidPlan) {
+  const Scene desk = test::deskScene();
+  const Scene workbench = test::workbenchScene();
+  for (const CorpusEntry& entry : kCorpus) {
+    SCOPED_TRACE(entry.instruction);
+    const Scene& scene = entry.scene == SceneId::kDesk ? desk : workbench;
+    try {
+      const TaskSpecification specification =
+          understandInstruction(entry.instruction, describeObjects(scene));
+      const SymbolicState state = observeSymbolicState(scene);
+      const Plan plan = sequenceGoals(specification, state, sequencingOptionsFor(scene));
+      EXPECT_EQ(test::checkPlan(plan, state, specification), "");
+    } catch (const PlanningError& error) {
+      ADD_FAILURE() << "no plan: " << error.what();
+    }
+  }
 }
 
 TEST(InstructionCorpusTest, DeskInstructionsMeanTheSameOnEveryBuiltInDesk) {

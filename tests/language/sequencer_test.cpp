@@ -7,6 +7,7 @@
 #include "lang2manip/symbolic/symbolic_state.hpp"
 #include "lang2manip/symbolic/task_planner.hpp"
 #include "language/language_test_scenes.hpp"
+#include "language/plan_check.hpp"
 
 namespace lang2manip {
 namespace {
@@ -194,6 +195,27 @@ TEST(SequencerTest, ContradictoryGoalsAreAnError) {
               std::string::npos)
         << error.what();
   }
+}
+
+TEST(SequencerTest, PlanCheckerCatchesBrokenPlans) {
+  const Scene scene = test::deskScene();
+  const TaskSpecification specification =
+      understandInstruction("put the marker and eraser in the holder", describeObjects(scene));
+  const SymbolicState state = observeSymbolicState(scene);
+  Plan plan = sequenceGoals(specification, state, sequencingOptionsFor(scene));
+  ASSERT_EQ(test::checkPlan(plan, state, specification), "");
+  Plan swapped = plan;
+  std::swap(swapped.actions[0], swapped.actions[1]);
+  EXPECT_EQ(test::checkPlan(swapped, state, specification),
+            "action 1 (place marker): not holding marker");
+  Plan doublePick = plan;
+  doublePick.actions.erase(doublePick.actions.begin() + 1);
+  EXPECT_EQ(test::checkPlan(doublePick, state, specification),
+            "action 2 (pick eraser): gripper holds marker");
+  Plan shortPlan = plan;
+  shortPlan.actions.resize(2);
+  EXPECT_EQ(test::checkPlan(shortPlan, state, specification),
+            "eraser in holder does not hold at the end");
 }
 
 TEST(SequencerTest, SamePlanEveryTime) {
