@@ -236,6 +236,13 @@ const CorpusEntry kCorpus[] = {
     {D, "put the marker back in the holder", "marker in holder"},
     {D, "pick the marker up and put it down next to the eraser",
      "holding marker; marker next_to eraser"},
+    {D, "put the marker into the holder and do the same with the eraser",
+     "marker in holder; eraser in holder"},
+    {D, "put the eraser next to the holder. Same for the marker.",
+     "eraser next_to holder; marker next_to holder"},
+    {D, "move the eraser closer to the holder", "eraser next_to holder"},
+    {W, "put the red block in the box, then repeat with the other blocks",
+     "red_block in box; blue_block in box; green_block in box"},
     {W, "nudge both markers to the left",
      "marker_1 displaced by (0, 0.02, 0); marker_2 displaced by (0, 0.02, 0)"},
 };

@@ -70,6 +70,10 @@ const Refusal kRefusals[] = {
     {D, "put the eraser in", "expected an object after \"in\""},
     {W, "put the red block on the blue block, then put the green block on the other one",
      "could not ground \"the other one\": there is no other one: already mentioned"},
+    {D, "pick up the marker and do the same with the eraser",
+     "could not ground \"do the same with\": the previous step has no place to repeat"},
+    {D, "put the marker in the holder and do the same with the holder",
+     "cannot relate holder to itself"},
     {W, "put the marker_1 in the cups", "a relation needs one target object"},
 };
 

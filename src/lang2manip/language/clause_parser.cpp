@@ -51,6 +51,21 @@ void StepParser::parse(const Words& words, const StepModifiers& modifiers) {
     finish(step, modifiers);
     return;
   }
+  if (const std::size_t same = sameAs(words, 0)) {
+    parseSameAs(step, same);
+  } else {
+    readVerb(step);
+    parsePredicate(step);
+  }
+  if (!step.atEnd()) {
+    throwGroundingError(joinWords(words, step.at, words.size()),
+                        "not understood in \"" + joinWords(words) + "\"");
+  }
+  finish(step, modifiers);
+}
+
+void StepParser::readVerb(Step& step) {
+  const Words& words = step.words;
   if (auto verb = vocabulary::matchVerb(words, 0)) {
     step.verb = verb->verb;
     step.at = verb->length;
@@ -64,21 +79,51 @@ void StepParser::parse(const Words& words, const StepModifiers& modifiers) {
   }
   lastVerb_ = step.verb;
   step.putsDown = step.verb.putsDown;
-  if (step.verb.goesHome && vocabulary::matchHome(words, step.at)) {
+}
+
+void StepParser::parsePredicate(Step& step) {
+  if (step.verb.goesHome && vocabulary::matchHome(step.words, step.at)) {
     parseHome(step);
-  } else if (!step.verb.places && !step.verb.picks && !step.verb.pushes) {
+    return;
+  }
+  if (!step.verb.places && !step.verb.picks && !step.verb.pushes) {
     failStep(step, "the only place to " + step.verb.lemma + " is home");
-  } else {
-    parseObjects(step);
-    if (!parseRelations(step) && !parseDisplacement(step)) parseWithoutPlace(step);
-    parseGappedRelations(step);
-    skipSource(step);
   }
-  if (!step.atEnd()) {
-    throwGroundingError(joinWords(words, step.at, words.size()),
-                        "not understood in \"" + joinWords(words) + "\"");
+  parseObjects(step);
+  if (!parseRelations(step) && !parseDisplacement(step)) parseWithoutPlace(step);
+  parseGappedRelations(step);
+  skipSource(step);
+}
+
+std::size_t StepParser::sameAs(const Words& words, std::size_t at) {
+  static const std::vector<Words> phrases{
+      tokenize("do the same with"), tokenize("do the same for"), tokenize("do the same to"),
+      tokenize("do the same thing with"), tokenize("do the same thing for"),
+      tokenize("do likewise with"), tokenize("same for"), tokenize("same with"),
+      tokenize("repeat with"), tokenize("repeat for"), tokenize("repeat that with"),
+      tokenize("repeat that for")};
+  std::size_t best = 0;
+  for (const Words& phrase : phrases) {
+    if (phrase.size() > best && matchesAt(words, at, phrase)) best = phrase.size();
   }
-  finish(step, modifiers);
+  return best;
+}
+
+void StepParser::parseSameAs(Step& step, std::size_t length) {
+  if (!lastStepRelation_) {
+    throwGroundingError(joinWords(step.words, 0, length),
+                        "the previous step has no place to repeat");
+  }
+  step.at = length;
+  const std::vector<NounPhrase> list = reader_.readList(step.words, step.at);
+  if (list.empty()) failStep(step, "expected the object(s) to do the same with");
+  step.at = list.back().end;
+  step.objects = groundList(step, list);
+  const RelationSpec relation = *lastStepRelation_;
+  if (contains(step.objects, relation.target)) {
+    throwGroundingError(joinWords(step.words), "cannot relate " + relation.target + " to itself");
+  }
+  addRelationGoals(step, relation);
 }
 
 void StepParser::parseHome(Step& step) {

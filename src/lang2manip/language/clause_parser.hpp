@@ -40,9 +40,17 @@ class StepParser {
   /// Parses one step (words without fillers, sequencing words and modifiers).
   void parse(const Words& words, const StepModifiers& modifiers);
 
+  /// Length of "do the same with" / "same for" / "repeat with" at words[at]; 0 when absent.
+  static std::size_t sameAs(const Words& words, std::size_t at);
+
  private:
   struct Step;
 
+  /// The verb at the start, or the previous step's verb for a step that starts with an object.
+  void readVerb(Step& step);
+  /// What follows the verb: home, or objects and where they go.
+  void parsePredicate(Step& step);
+  void parseSameAs(Step& step, std::size_t length);
   void parseHome(Step& step);
   void parseObjects(Step& step);
   /// One or more relation phrases in a row; false when none.

@@ -43,7 +43,8 @@ Words withoutFillers(const Words& words) {
 bool startsStep(const Words& words, std::size_t at) {
   return at < words.size() &&
          (vocabulary::matchVerb(words, at) || vocabulary::matchSequenceWord(words, at) ||
-          vocabulary::matchStepOrdinal(words, at));
+          vocabulary::matchStepOrdinal(words, at) ||
+          language_detail::StepParser::sameAs(words, at) > 0);
 }
 
 bool endsStep(const Words& words, std::size_t at) {

@@ -96,7 +96,7 @@ const PhraseTable<RelationValue>& relationTable() {
       {"upon", {R::kOn}}, {"atop", {R::kOn}}, {"on the top of", {R::kOn}},
       {"next to", {R::kNextTo}}, {"beside", {R::kNextTo}}, {"besides", {R::kNextTo}},
       {"by", {R::kNextTo}}, {"near", {R::kNextTo}}, {"close to", {R::kNextTo}},
-      {"alongside", {R::kNextTo}}, {"by the side of", {R::kNextTo}},
+      {"alongside", {R::kNextTo}}, {"closer to", {R::kNextTo}}, {"nearer to", {R::kNextTo}}, {"by the side of", {R::kNextTo}},
       {"away from", {R::kNextTo}},
       {"left of", {R::kLeftOf}}, {"to the left of", {R::kLeftOf}},
       {"on the left of", {R::kLeftOf}}, {"on the left side of", {R::kLeftOf}},
