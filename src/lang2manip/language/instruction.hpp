@@ -37,7 +37,10 @@ struct TaskSpecification {
 /// "to" (in a container, on a support, next to anything else), "there". Displacements: "N cm to
 /// the left/right/forward/back", "a bit to the left" (2 cm), nudge (2 cm unless told).
 /// Steps joined by "and", commas, "then", "after that", "first ... then", "finally"; a step
-/// without a verb repeats the previous one ("put the marker in the holder, then the eraser").
+/// without a verb repeats the previous one ("put the marker in the holder, then the eraser"), as
+/// do "do the same with", "same for" and "repeat with"; a stranded "in"/"on" ("then put the
+/// eraser in") means the latest target. Sources ("from the desk", "out of the holder") must name
+/// an object and are otherwise implied by the scene.
 /// Politeness and filler ("could you please", "kindly", "I'd like you to") are ignored.
 /// "Stack the blocks" stacks the largest at the bottom; "stack A, B and C" puts A at the bottom.
 ///
