@@ -1,0 +1,461 @@
+#include "lang2manip/language/clause_parser.hpp"
+
+#include <algorithm>
+
+namespace lang2manip::language_detail {
+namespace {
+
+bool contains(const std::vector<std::string>& list, const std::string& item) {
+  return std::find(list.begin(), list.end(), item) != list.end();
+}
+
+bool isDirectional(SpatialRelation relation) {
+  return relation != SpatialRelation::kIn && relation != SpatialRelation::kOn;
+}
+
+std::string verbList() {
+  std::string text;
+  for (const std::string& lemma : vocabulary::verbLemmas()) {
+    if (!text.empty()) text += ", ";
+    text += lemma;
+  }
+  return text;
+}
+
+}  // namespace
+
+struct StepParser::Step {
+  explicit Step(const Words& stepWords) : words(stepWords) {}
+
+  const Words& words;
+  std::size_t at = 0;
+  vocabulary::Verb verb;
+  std::vector<std::string> objects;
+  /// Objects that came from plural phrases ("all the cups"): a target among them is left out.
+  std::vector<std::string> groupObjects;
+  bool listedExplicitly = true;
+  bool putsDown = false;
+  /// No verb: the step repeats the previous verb (and its place, when it names none).
+  bool elliptical = false;
+  std::string target;
+  std::size_t firstGoal = 0;
+
+  [[nodiscard]] bool atEnd() const { return at >= words.size(); }
+  [[nodiscard]] bool next(const char* word) const { return !atEnd() && words[at] == word; }
+};
+
+void StepParser::parse(const Words& words, const StepModifiers& modifiers) {
+  Step step(words);
+  step.firstGoal = specification_.goals.size();
+  if (words.empty()) {
+    finish(step, modifiers);
+    return;
+  }
+  if (const std::size_t same = sameAs(words, 0)) {
+    parseSameAs(step, same);
+  } else {
+    readVerb(step);
+    parsePredicate(step);
+  }
+  if (!step.atEnd()) {
+    throwGroundingError(joinWords(words, step.at, words.size()),
+                        "not understood in \"" + joinWords(words) + "\"");
+  }
+  finish(step, modifiers);
+}
+
+void StepParser::readVerb(Step& step) {
+  const Words& words = step.words;
+  if (auto verb = vocabulary::matchVerb(words, 0)) {
+    step.verb = verb->verb;
+    step.at = verb->length;
+  } else if (lastVerb_ && reader_.read(words, 0)) {
+    step.verb = *lastVerb_;  // "..., then the eraser"
+    step.elliptical = true;
+  } else {
+    throwGroundingError(joinWords(words), "\"" + words.front() +
+                                              "\" is not an action the offline planner knows "
+                                              "(actions: " + verbList() + ")");
+  }
+  lastVerb_ = step.verb;
+  step.putsDown = step.verb.putsDown;
+}
+
+void StepParser::parsePredicate(Step& step) {
+  if (step.verb.goesHome && vocabulary::matchHome(step.words, step.at)) {
+    parseHome(step);
+    return;
+  }
+  if (!step.verb.places && !step.verb.picks && !step.verb.pushes) {
+    failStep(step, "the only place to " + step.verb.lemma + " is home");
+  }
+  parseObjects(step);
+  if (!parseRelations(step) && !parseDisplacement(step)) parseWithoutPlace(step);
+  parseGappedRelations(step);
+  skipSource(step);
+}
+
+std::size_t StepParser::sameAs(const Words& words, std::size_t at) {
+  static const std::vector<Words> phrases{
+      tokenize("do the same with"), tokenize("do the same for"), tokenize("do the same to"),
+      tokenize("do the same thing with"), tokenize("do the same thing for"),
+      tokenize("do likewise with"), tokenize("same for"), tokenize("same with"),
+      tokenize("repeat with"), tokenize("repeat for"), tokenize("repeat that with"),
+      tokenize("repeat that for")};
+  std::size_t best = 0;
+  for (const Words& phrase : phrases) {
+    if (phrase.size() > best && matchesAt(words, at, phrase)) best = phrase.size();
+  }
+  return best;
+}
+
+void StepParser::parseSameAs(Step& step, std::size_t length) {
+  if (!lastStepRelation_) {
+    throwGroundingError(joinWords(step.words, 0, length),
+                        "the previous step has no place to repeat");
+  }
+  step.at = length;
+  const std::vector<NounPhrase> list = reader_.readList(step.words, step.at);
+  if (list.empty()) failStep(step, "expected the object(s) to do the same with");
+  step.at = list.back().end;
+  step.objects = groundList(step, list);
+  const RelationSpec relation = *lastStepRelation_;
+  if (contains(step.objects, relation.target)) {
+    throwGroundingError(joinWords(step.words), "cannot relate " + relation.target + " to itself");
+  }
+  addRelationGoals(step, relation);
+}
+
+void StepParser::parseHome(Step& step) {
+  step.at += *vocabulary::matchHome(step.words, step.at);
+  Goal goal;
+  goal.kind = GoalKind::kAtConfiguration;
+  goal.configuration = "home";
+  specification_.goals.push_back(goal);
+}
+
+void StepParser::parseObjects(Step& step) {
+  const std::vector<NounPhrase> list = reader_.readList(step.words, step.at);
+  if (list.empty()) {
+    failStep(step, "expected the object(s) to " + step.verb.lemma + " after \"" +
+                       joinWords(step.words, 0, step.at) + "\"");
+  }
+  step.at = list.back().end;
+  step.objects = groundList(step, list);
+  for (const NounPhrase& phrase : list) {
+    if (phrase.noun) discourse_.lastObjectNoun = phrase.noun->objects;
+  }
+  // Particles: "pick it up", "put it down", "put it back in the holder" (but "push it back
+  // 3 cm" and "move it away" are directions).
+  while (step.next("up") || step.next("down") ||
+         ((step.next("back") || step.next("away")) &&
+          vocabulary::matchRelation(step.words, step.at + 1))) {
+    if (step.next("down")) step.putsDown = true;
+    ++step.at;
+  }
+  skipSource(step);
+}
+
+std::vector<std::string> StepParser::groundList(Step& step, const std::vector<NounPhrase>& list) {
+  std::vector<std::string> objects;
+  for (const NounPhrase& phrase : list) {
+    const std::vector<std::string> grounded = reader_.ground(phrase, discourse_, false, {});
+    const bool group = phrase.isPlural() && phrase.pronoun == Pronoun::kNone;
+    if (group && list.size() == 1) step.listedExplicitly = false;
+    for (const std::string& object : grounded) {
+      if (contains(objects, object)) continue;
+      objects.push_back(object);
+      if (group) step.groupObjects.push_back(object);
+    }
+  }
+  discourse_.mention(objects);
+  return objects;
+}
+
+void StepParser::skipSource(Step& step) {
+  std::size_t length = 0;
+  if (step.next("from")) length = 1;
+  else if (matchesAt(step.words, step.at, {"out", "of"})) length = 2;
+  else if (matchesAt(step.words, step.at, {"off", "of"})) length = 2;
+  else if (step.next("off")) length = 1;
+  if (length == 0) return;
+  const std::optional<NounPhrase> source = reader_.read(step.words, step.at + length);
+  if (!source) return;
+  // The source only has to name an object; where things are comes from the scene.
+  (void)reader_.ground(*source, discourse_, true, step.objects);
+  step.at = source->end;
+}
+
+bool StepParser::parseRelations(Step& step) {
+  bool any = false;
+  while (parseRelation(step)) any = true;  // "on the desk next to the holder"
+  return any;
+}
+
+bool StepParser::parseRelation(Step& step) {
+  const Words& words = step.words;
+  std::size_t at = step.at;
+  std::optional<double> distance;
+  if (auto length = vocabulary::matchLength(words, at)) {
+    distance = length->metres;
+    at += length->length;
+  }
+  if (matchesAt(words, at, {"there"}) && lastRelation_) {
+    RelationSpec relation = *lastRelation_;
+    if (distance) relation.distance = distance;
+    step.at = at + 1;
+    addRelationGoals(step, relation);
+    return true;
+  }
+  std::optional<vocabulary::RelationMatch> relation = vocabulary::matchRelation(words, at);
+  if (!relation && distance && words.size() > at && words[at] == "from") {
+    relation = vocabulary::RelationMatch{SpatialRelation::kNextTo, false, 1};
+  }
+  if (!relation) return false;
+  const auto direction = vocabulary::matchDirection(words, at);
+  if (direction && direction->length >= relation->length) return false;
+  const std::optional<NounPhrase> targetPhrase = reader_.read(words, at + relation->length);
+  const bool stranded = at + relation->length == words.size();
+  const bool inOrOn = relation->relation && !isDirectional(*relation->relation);
+  if (!targetPhrase && stranded && inOrOn && !discourse_.lastTarget.empty()) {
+    // "..., then put the eraser in": the latest target
+    step.at = words.size();
+    addRelationGoals(step, RelationSpec{*relation->relation, discourse_.lastTarget, distance});
+    return true;
+  }
+  if (!targetPhrase) {
+    throwGroundingError(joinWords(words, at, words.size()),
+                        "expected an object after \"" +
+                            joinWords(words, at, at + relation->length) + "\"");
+  }
+  step.at = targetPhrase->end;
+  const bool intoSomething = relation->byTargetRole || relation->relation == SpatialRelation::kIn;
+  const std::string target = groundTarget(step, *targetPhrase, intoSomething);
+  RelationSpec spec;
+  spec.target = target;
+  spec.relation = relation->relation ? *relation->relation : relationByRole(target);
+  if (distance) {
+    if (!isDirectional(spec.relation)) {
+      throwGroundingError(joinWords(words, 0, step.at),
+                          "a distance cannot go with \"" + spatialRelationName(spec.relation) +
+                              "\"");
+    }
+    spec.distance = distance;
+  }
+  addRelationGoals(step, spec);
+  return true;
+}
+
+std::string StepParser::groundTarget(Step& step, const NounPhrase& phrase, bool intoSomething) {
+  const std::vector<std::string> targets =
+      reader_.ground(phrase, discourse_, true, step.objects, intoSomething);
+  if (targets.size() != 1) {
+    throwGroundingError(phrase.text, "a relation needs one target object, but it names " +
+                                         std::to_string(targets.size()));
+  }
+  if (phrase.noun) discourse_.lastTargetNoun = phrase.noun->objects;
+  const std::string& target = targets.front();
+  discourse_.lastTarget = target;
+  discourse_.mention({target});
+  const bool inGroup = contains(step.groupObjects, target);
+  std::erase(step.groupObjects, target);
+  if (contains(step.objects, target)) {
+    if (!inGroup) {
+      throwGroundingError(joinWords(step.words), "cannot relate " + target + " to itself");
+    }
+    std::erase(step.objects, target);
+    if (step.objects.empty()) {
+      throwGroundingError(joinWords(step.words), "no object is left once " + target +
+                                                     " (the target) is left out");
+    }
+  }
+  return target;
+}
+
+SpatialRelation StepParser::relationByRole(const std::string& target) const {
+  switch (reader_.descriptor(target).role) {
+    case ObjectRole::kContainer: return SpatialRelation::kIn;
+    case ObjectRole::kSupport: return SpatialRelation::kOn;
+    case ObjectRole::kNone: break;
+  }
+  return SpatialRelation::kNextTo;
+}
+
+void StepParser::addRelationGoals(Step& step, const RelationSpec& relation) {
+  if (relation.relation == SpatialRelation::kIn &&
+      reader_.descriptor(relation.target).role != ObjectRole::kContainer) {
+    throwGroundingError(joinWords(step.words), relation.target + " is not a container");
+  }
+  step.target = relation.target;
+  lastRelation_ = relation;
+  if (step.verb.stacks) {
+    addStackGoals(step, relation.target);
+    return;
+  }
+  for (const std::string& object : step.objects) {
+    Goal goal;
+    goal.kind = GoalKind::kRelation;
+    goal.object = object;
+    goal.relation = relation.relation;
+    goal.target = relation.target;
+    goal.distance = relation.distance;
+    specification_.goals.push_back(goal);
+  }
+}
+
+void StepParser::addStackGoals(Step& step, const std::optional<std::string>& base) {
+  std::vector<std::string> order = step.objects;
+  if (!step.listedExplicitly) {
+    std::stable_sort(order.begin(), order.end(), [this](const std::string& a, const std::string& b) {
+      return reader_.descriptor(a).volume > reader_.descriptor(b).volume;
+    });
+  }
+  if (base) order.insert(order.begin(), *base);
+  if (order.size() < 2) failStep(step, "stacking needs at least two objects");
+  for (std::size_t i = 1; i < order.size(); ++i) {
+    Goal goal;
+    goal.kind = GoalKind::kRelation;
+    goal.object = order[i];
+    goal.relation = SpatialRelation::kOn;
+    goal.target = order[i - 1];
+    specification_.goals.push_back(goal);
+  }
+}
+
+bool StepParser::parseDisplacement(Step& step) {
+  const Words& words = step.words;
+  std::size_t at = step.at;
+  if (words.size() > at && words[at] == "by") ++at;
+  std::optional<double> distance;
+  if (auto length = vocabulary::matchLength(words, at)) {
+    distance = length->metres;
+    at += length->length;
+  } else if (auto small = vocabulary::matchSmallAmount(words, at)) {
+    distance = vocabulary::kSmallAmount;
+    at += *small;
+  }
+  const auto direction = vocabulary::matchDirection(words, at);
+  if (!direction) return false;
+  at += direction->length;
+  if (!distance) {
+    std::size_t after = at;
+    if (words.size() > after && words[after] == "by") ++after;
+    if (auto length = vocabulary::matchLength(words, after)) {
+      distance = length->metres;
+      at = after + length->length;
+    } else if (auto small = vocabulary::matchSmallAmount(words, after)) {
+      distance = vocabulary::kSmallAmount;
+      at = after + *small;
+    } else if (step.verb.nudges) {
+      distance = vocabulary::kSmallAmount;
+    }
+  }
+  if (!distance) {
+    throwGroundingError(joinWords(words, 0, at),
+                        "say how far (e.g. \"5 cm " + joinWords(words, at - direction->length, at) +
+                            "\")");
+  }
+  if (!step.verb.pushes && !step.verb.places) {
+    failStep(step, "\"" + step.verb.lemma + "\" cannot move an object by a distance");
+  }
+  step.at = at;
+  for (const std::string& object : step.objects) {
+    Goal goal;
+    goal.kind = GoalKind::kDisplaced;
+    goal.object = object;
+    goal.displacement = direction->direction * *distance;
+    specification_.goals.push_back(goal);
+  }
+  return true;
+}
+
+void StepParser::parseWithoutPlace(Step& step) {
+  if (step.verb.stacks) {
+    addStackGoals(step, std::nullopt);
+    return;
+  }
+  if (step.elliptical && lastStepRelation_) {
+    addRelationGoals(step, *lastStepRelation_);
+    return;
+  }
+  if (step.putsDown) {
+    std::vector<std::string> supports;
+    for (const ObjectDescriptor& object : reader_.objects()) {
+      if (object.role == ObjectRole::kSupport) supports.push_back(object.name);
+    }
+    if (supports.size() != 1) failStep(step, "say where to put it down");
+    addRelationGoals(step, RelationSpec{SpatialRelation::kOn, supports.front(), std::nullopt});
+    return;
+  }
+  if (!step.verb.picks) {
+    failStep(step, "say where to " + step.verb.lemma + " it (e.g. \"in the holder\")");
+  }
+  for (const std::string& object : step.objects) {
+    Goal goal;
+    goal.kind = GoalKind::kHolding;
+    goal.object = object;
+    specification_.goals.push_back(goal);
+  }
+}
+
+void StepParser::parseGappedRelations(Step& step) {
+  // "put the marker in the holder and the eraser on the desk"
+  while (step.target.size() > 0 && (step.next("and") || step.next(","))) {
+    const std::size_t restart = step.at;
+    std::size_t at = step.at + 1;
+    if (matchesAt(step.words, at, {"and"})) ++at;
+    const std::vector<NounPhrase> list = reader_.readList(step.words, at);
+    if (list.empty()) return;
+    step.at = list.back().end;
+    std::vector<std::string> previous = step.objects;
+    step.objects = groundList(step, list);
+    if (step.atEnd() && lastRelation_) {
+      addRelationGoals(step, *lastRelation_);  // "..., and the eraser too"
+      return;
+    }
+    if (!parseRelation(step)) {
+      step.at = restart;
+      step.objects = previous;
+      return;
+    }
+  }
+}
+
+void StepParser::finish(Step& step, const StepModifiers& modifiers) {
+  const bool modifiersOnly = step.words.empty();
+  std::vector<std::string> acted = step.objects;
+  if (modifiersOnly) acted = discourse_.lastObjects;
+  bool home = false;
+  for (std::size_t i = step.firstGoal; i < specification_.goals.size(); ++i) {
+    home = home || specification_.goals[i].kind == GoalKind::kAtConfiguration;
+  }
+  if (modifiers.grasp) {
+    if (acted.empty()) throwGroundingError("grasp", "no object was named to grasp that way");
+    for (const std::string& object : acted) specification_.grasps[object] = *modifiers.grasp;
+  }
+  if (!modifiers.planner.empty()) {
+    if (modifiers.plannerForAll || (modifiersOnly && !modifiers.grasp)) {
+      specification_.defaultPlanner = modifiers.planner;
+    } else {
+      for (const std::string& object : acted) specification_.planners[object] = modifiers.planner;
+      if (home) specification_.planners[""] = modifiers.planner;
+    }
+  }
+  if (modifiersOnly) return;
+  lastStepRelation_.reset();
+  if (!step.target.empty()) lastStepRelation_ = lastRelation_;
+  if (!step.objects.empty()) {
+    discourse_.lastObjects = step.objects;
+    discourse_.mention(step.objects);
+  }
+  if (!step.target.empty()) {
+    discourse_.lastTarget = step.target;
+    discourse_.mention({step.target});
+  }
+}
+
+void StepParser::failStep(const Step& step, const std::string& why) const {
+  throwGroundingError(joinWords(step.words), why);
+}
+
+}  // namespace lang2manip::language_detail

@@ -1,0 +1,82 @@
+#pragma once
+/// @file One step of an instruction ("put the marker and the eraser in the holder with a side
+/// grasp") into goals (internal to the language module).
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lang2manip/language/instruction.hpp"
+#include "lang2manip/language/noun_phrase.hpp"
+#include "lang2manip/language/vocabulary.hpp"
+
+namespace lang2manip::language_detail {
+
+/// Grasp and planner phrases found in a step, removed from its words before parsing.
+struct StepModifiers {
+  std::optional<GraspDirection> grasp;
+  std::string planner;
+  /// "for everything", or a step that only names a planner ("use PRM").
+  bool plannerForAll = false;
+};
+
+/// Removes grasp and planner phrases from `words`; throws PlanningError for a planner phrase
+/// naming an unknown planner.
+StepModifiers extractModifiers(Words& words);
+
+/// A relation with its target, remembered for "there".
+struct RelationSpec {
+  SpatialRelation relation = SpatialRelation::kOn;
+  std::string target;
+  std::optional<double> distance;
+};
+
+/// Parses the steps of one instruction in order, adding goals to a TaskSpecification.
+class StepParser {
+ public:
+  StepParser(const NounPhraseReader& reader, TaskSpecification& specification)
+      : reader_(reader), specification_(specification) {}
+
+  /// Parses one step (words without fillers, sequencing words and modifiers).
+  void parse(const Words& words, const StepModifiers& modifiers);
+
+  /// Length of "do the same with" / "same for" / "repeat with" at words[at]; 0 when absent.
+  static std::size_t sameAs(const Words& words, std::size_t at);
+
+ private:
+  struct Step;
+
+  /// The verb at the start, or the previous step's verb for a step that starts with an object.
+  void readVerb(Step& step);
+  /// What follows the verb: home, or objects and where they go.
+  void parsePredicate(Step& step);
+  void parseSameAs(Step& step, std::size_t length);
+  void parseHome(Step& step);
+  void parseObjects(Step& step);
+  /// One or more relation phrases in a row; false when none.
+  bool parseRelations(Step& step);
+  bool parseRelation(Step& step);
+  bool parseDisplacement(Step& step);
+  void parseWithoutPlace(Step& step);
+  void parseGappedRelations(Step& step);
+  void skipSource(Step& step);
+  void finish(Step& step, const StepModifiers& modifiers);
+
+  std::vector<std::string> groundList(Step& step, const std::vector<NounPhrase>& list);
+  /// `intoSomething`: "in" or "to", where "it" prefers a container.
+  std::string groundTarget(Step& step, const NounPhrase& phrase, bool intoSomething);
+  SpatialRelation relationByRole(const std::string& target) const;
+  void addRelationGoals(Step& step, const RelationSpec& relation);
+  void addStackGoals(Step& step, const std::optional<std::string>& base);
+  [[noreturn]] void failStep(const Step& step, const std::string& why) const;
+
+  const NounPhraseReader& reader_;
+  TaskSpecification& specification_;
+  Discourse discourse_;
+  std::optional<vocabulary::Verb> lastVerb_;
+  std::optional<RelationSpec> lastRelation_;
+  /// The relation of the previous step, repeated by a step without verb and place.
+  std::optional<RelationSpec> lastStepRelation_;
+};
+
+}  // namespace lang2manip::language_detail

@@ -1,0 +1,129 @@
+#include "lang2manip/language/instruction.hpp"
+
+#include <algorithm>
+
+#include "lang2manip/language/clause_parser.hpp"
+#include "lang2manip/language/noun_phrase.hpp"
+#include "lang2manip/language/vocabulary.hpp"
+#include "lang2manip/symbolic/task_planner.hpp"
+
+namespace lang2manip {
+namespace {
+
+using language_detail::throwGroundingError;
+
+void refuseWhatCannotBeGrounded(const Words& words) {
+  if (words.empty()) {
+    throw PlanningError("the task is empty; say what to do, e.g. \"put the marker in the holder\"");
+  }
+  if (vocabulary::isQuestionWord(words.front())) {
+    throwGroundingError(joinWords(words), "it is a question, not an instruction");
+  }
+  for (std::size_t at = 0; at < words.size(); ++at) {
+    if (vocabulary::isRefusedWord(words[at]) ||
+        (words[at] == "do" && at + 1 < words.size() && words[at + 1] == "not")) {
+      throwGroundingError(words[at], "the offline planner does not follow negation, exceptions, "
+                                     "alternatives or conditions");
+    }
+  }
+}
+
+Words withoutFillers(const Words& words) {
+  Words kept;
+  for (std::size_t at = 0; at < words.size();) {
+    if (auto filler = vocabulary::matchFiller(words, at)) {
+      at += *filler;
+    } else {
+      kept.push_back(words[at++]);
+    }
+  }
+  return kept;
+}
+
+bool startsStep(const Words& words, std::size_t at) {
+  return at < words.size() &&
+         (vocabulary::matchVerb(words, at) || vocabulary::matchSequenceWord(words, at) ||
+          vocabulary::matchStepOrdinal(words, at) ||
+          language_detail::StepParser::sameAs(words, at) > 0);
+}
+
+bool endsStep(const Words& words, std::size_t at) {
+  return at >= words.size() || isPunctuation(words[at]) ||
+         vocabulary::matchSequenceWord(words, at);
+}
+
+/// Splits at sentence punctuation, sequencing words, and at "and" or "," before a verb.
+std::vector<Words> splitSteps(const Words& words) {
+  std::vector<Words> steps(1);
+  auto split = [&steps] {
+    if (!steps.back().empty()) steps.emplace_back();
+  };
+  for (std::size_t at = 0; at < words.size();) {
+    const std::string& word = words[at];
+    if (auto sequence = vocabulary::matchSequenceWord(words, at)) {
+      split();
+      at += *sequence;
+    } else if (auto ordinal = vocabulary::matchStepOrdinal(words, at);
+               ordinal && (steps.back().empty() || endsStep(words, at + *ordinal))) {
+      split();
+      at += *ordinal;
+    } else if (word == "," || word == "and") {
+      if (startsStep(words, at + 1) || endsStep(words, at + 1)) split();
+      else steps.back().push_back(word);
+      ++at;
+    } else if (isPunctuation(word)) {
+      split();
+      ++at;
+    } else {
+      steps.back().push_back(words[at++]);
+    }
+  }
+  if (steps.back().empty()) steps.pop_back();
+  return steps;
+}
+
+bool involves(const Goal& goal, const std::string& object) {
+  return !object.empty() && goal.object == object;
+}
+
+void checkHoldingGoals(const TaskSpecification& specification) {
+  std::vector<std::string> held;
+  for (std::size_t i = 0; i < specification.goals.size(); ++i) {
+    const Goal& goal = specification.goals[i];
+    if (goal.kind != GoalKind::kHolding) continue;
+    const bool superseded = std::any_of(specification.goals.begin() + static_cast<std::ptrdiff_t>(i) + 1,
+                                        specification.goals.end(),
+                                        [&goal](const Goal& later) { return involves(later, goal.object); });
+    if (!superseded && std::find(held.begin(), held.end(), goal.object) == held.end()) {
+      held.push_back(goal.object);
+    }
+  }
+  if (held.size() > 1) {
+    std::string names;
+    for (const std::string& name : held) names += (names.empty() ? "" : " and ") + name;
+    throw PlanningError("could not ground the task: the robot has one gripper and cannot hold " +
+                        names + " at once; say where to put all but one");
+  }
+}
+
+}  // namespace
+
+TaskSpecification understandInstruction(const std::string& text,
+                                        const std::vector<ObjectDescriptor>& objects) {
+  const Words words = tokenize(text);
+  refuseWhatCannotBeGrounded(words);
+  const language_detail::NounPhraseReader reader(objects);
+  TaskSpecification specification;
+  language_detail::StepParser parser(reader, specification);
+  for (Words& step : splitSteps(withoutFillers(words))) {
+    const language_detail::StepModifiers modifiers = language_detail::extractModifiers(step);
+    parser.parse(step, modifiers);
+  }
+  if (specification.goals.empty()) {
+    throwGroundingError(text, "it asks for nothing the robot could do");
+  }
+  checkHoldingGoals(specification);
+  return specification;
+}
+
+}  // namespace lang2manip

@@ -1,0 +1,390 @@
+#include "lang2manip/language/noun_phrase.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <numeric>
+
+#include "lang2manip/language/vocabulary.hpp"
+#include "lang2manip/symbolic/task_planner.hpp"
+
+namespace lang2manip::language_detail {
+namespace {
+
+constexpr int kNameTier = 0;
+constexpr int kKindTier = 1;
+constexpr int kSynonymTier = 2;
+constexpr int kGenericTier = 3;
+
+bool contains(const std::vector<std::string>& list, const std::string& item) {
+  return std::find(list.begin(), list.end(), item) != list.end();
+}
+
+std::string joinNames(const std::vector<std::string>& names, const char* separator = ", ") {
+  std::string text;
+  for (const std::string& name : names) {
+    if (!text.empty()) text += separator;
+    text += name;
+  }
+  return text;
+}
+
+/// Colour words and the colour name they mean.
+std::optional<std::string> colourWord(const std::string& word) {
+  static const std::vector<std::pair<std::string, std::string>> aliases{
+      {"gray", "grey"}, {"violet", "purple"}, {"magenta", "pink"}, {"navy", "blue"},
+      {"gold", "yellow"}, {"golden", "yellow"}, {"turquoise", "cyan"}, {"teal", "cyan"}};
+  if (contains(colourNames(), word)) return word;
+  for (const auto& [alias, name] : aliases) {
+    if (word == alias) return name;
+  }
+  return std::nullopt;
+}
+
+std::optional<SizeWord> sizeWord(const std::string& word) {
+  static const std::vector<std::string> big{"big", "bigger", "biggest", "large", "larger",
+                                            "largest", "huge", "giant"};
+  static const std::vector<std::string> small{"small", "smaller", "smallest", "little", "tiny",
+                                              "mini"};
+  if (contains(big, word)) return SizeWord::kBig;
+  if (contains(small, word)) return SizeWord::kSmall;
+  return std::nullopt;
+}
+
+std::optional<PlaceWord> placeWord(const std::string& word) {
+  if (word == "left" || word == "leftmost") return PlaceWord::kLeft;
+  if (word == "right" || word == "rightmost") return PlaceWord::kRight;
+  if (word == "nearest" || word == "closest" || word == "near" || word == "closer") {
+    return PlaceWord::kNear;
+  }
+  if (word == "farthest" || word == "furthest" || word == "far" || word == "farther") {
+    return PlaceWord::kFar;
+  }
+  return std::nullopt;
+}
+
+bool isShadeWord(const std::string& word) {
+  return word == "dark" || word == "light" || word == "bright" || word == "pale";
+}
+
+/// Words that end an unknown noun's span in an error message.
+bool endsPhrase(const Words& words, std::size_t at) {
+  const std::string& word = words[at];
+  return isPunctuation(word) || word == "and" || word == "then" || word == "up" ||
+         word == "down" || vocabulary::matchRelation(words, at) ||
+         vocabulary::matchDirection(words, at) || vocabulary::matchLength(words, at) ||
+         vocabulary::matchVerb(words, at);
+}
+
+}  // namespace
+
+void throwGroundingError(const std::string& words, const std::string& why) {
+  throw PlanningError("could not ground \"" + words + "\": " + why +
+                      "; try an LLM backend with --llm");
+}
+
+bool NounPhrase::isPlural() const {
+  if (pronoun != Pronoun::kNone) return pronoun == Pronoun::kThem;
+  if (everything || quantity == Quantity::kAll) return true;
+  if (quantity == Quantity::kExactly) return count != 1;
+  return noun && noun->plural && !noun->borrowed;
+}
+
+void Discourse::mention(const std::vector<std::string>& objects) {
+  for (const std::string& object : objects) {
+    if (!contains(mentioned, object)) mentioned.push_back(object);
+  }
+}
+
+NounPhraseReader::NounPhraseReader(const std::vector<ObjectDescriptor>& objects)
+    : objects_(objects) {
+  for (const ObjectDescriptor& object : objects_) {
+    const Words name = tokenize(object.name);
+    nouns_.push_back({name, object.name, kNameTier});
+    const bool adjective = !name.empty() && (colourWord(name.back()) || sizeWord(name.back()) ||
+                                             placeWord(name.back()));
+    if (!name.empty() && !numberValue(name.back()) && !adjective) {
+      nouns_.push_back({{name.back()}, object.name, kKindTier});
+    }
+    const Words kind = tokenize(object.kind);
+    if (!kind.empty()) {
+      nouns_.push_back({kind, object.name, kKindTier});
+      nouns_.push_back({{kind.back()}, object.name, kKindTier});
+    }
+    for (const std::string& synonym : object.synonyms) {
+      nouns_.push_back({tokenize(synonym), object.name, kSynonymTier});
+    }
+    if (object.role == ObjectRole::kContainer) {
+      nouns_.push_back({{"container"}, object.name, kSynonymTier});
+    }
+    if (object.role == ObjectRole::kSupport) {
+      nouns_.push_back({{"surface"}, object.name, kSynonymTier});
+    }
+    if (object.movable) {
+      for (const char* generic : {"object", "thing", "item"}) {
+        nouns_.push_back({{generic}, object.name, kGenericTier});
+      }
+    }
+  }
+}
+
+std::optional<NounMatch> NounPhraseReader::matchNoun(const Words& words, std::size_t at,
+                                                     std::size_t& length) const {
+  std::size_t bestLength = 0;
+  int bestTier = kGenericTier + 1;
+  NounMatch match;
+  for (const NounEntry& entry : nouns_) {
+    const std::size_t size = entry.words.size();
+    if (size == 0 || at + size > words.size()) continue;
+    const bool prefix = std::equal(entry.words.begin(), entry.words.end() - 1, words.begin() + static_cast<std::ptrdiff_t>(at));
+    if (!prefix) continue;
+    const std::string& last = words[at + size - 1];
+    const bool singular = last == entry.words.back();
+    const bool plural = !singular && contains(singularCandidates(last), entry.words.back());
+    if (!singular && !plural) continue;
+    const bool better = size > bestLength || (size == bestLength && entry.tier < bestTier);
+    if (better) {
+      bestLength = size;
+      bestTier = entry.tier;
+      match = NounMatch{};
+    }
+    if (size == bestLength && entry.tier == bestTier && !contains(match.objects, entry.object)) {
+      match.objects.push_back(entry.object);
+      match.plural = plural;
+    }
+  }
+  if (bestLength == 0) return std::nullopt;
+  // Keep scene order whatever order the entries matched in.
+  std::vector<std::string> ordered;
+  for (const ObjectDescriptor& object : objects_) {
+    if (contains(match.objects, object.name)) ordered.push_back(object.name);
+  }
+  match.objects = ordered;
+  length = bestLength;
+  return match;
+}
+
+std::size_t NounPhraseReader::readDeterminer(const Words& words, std::size_t at,
+                                             NounPhrase& phrase) const {
+  struct Determiner {
+    Words words;
+    Quantity quantity;
+    int count;
+    bool other;
+  };
+  static const std::vector<Determiner> determiners = [] {
+    std::vector<Determiner> list;
+    auto add = [&list](const char* text, Quantity quantity, int count = 0, bool other = false) {
+      list.push_back({tokenize(text), quantity, count, other});
+    };
+    for (const char* text : {"the", "this", "that", "these", "those", "my", "your"}) {
+      add(text, Quantity::kDefinite);
+    }
+    for (const char* text : {"a", "an", "any", "some", "one of the"}) add(text, Quantity::kIndefinite);
+    for (const char* text : {"all", "all the", "all of the", "all of", "every", "each",
+                             "each of the", "all those", "all these"}) {
+      add(text, Quantity::kAll);
+    }
+    for (const char* text : {"both", "both the", "both of the"}) add(text, Quantity::kExactly, 2);
+    add("the other", Quantity::kDefinite, 0, true);
+    add("another", Quantity::kIndefinite, 0, true);
+    add("the other two", Quantity::kExactly, 2, true);
+    return list;
+  }();
+  const Determiner* best = nullptr;
+  for (const Determiner& determiner : determiners) {
+    if (matchesAt(words, at, determiner.words) &&
+        (!best || determiner.words.size() > best->words.size())) {
+      best = &determiner;
+    }
+  }
+  std::size_t length = 0;
+  if (best) {
+    phrase.quantity = best->quantity;
+    phrase.count = best->count;
+    phrase.other = best->other;
+    length = best->words.size();
+  }
+  // "the two markers", "three blocks"
+  if (at + length < words.size() && phrase.quantity != Quantity::kExactly) {
+    const std::optional<double> number = numberValue(words[at + length]);
+    const bool unit = vocabulary::matchLength(words, at + length).has_value();
+    if (number && !unit && *number == 1) {
+      phrase.quantity = Quantity::kIndefinite;  // "one marker", "one of them"
+      phrase.one = true;
+      ++length;
+    } else if (number && !unit && *number > 1 && std::floor(*number) == *number) {
+      phrase.quantity = Quantity::kExactly;
+      phrase.count = static_cast<int>(*number);
+      ++length;
+    }
+  }
+  return length;
+}
+
+bool NounPhraseReader::adjectiveBeforeNoun(const Words& words, std::size_t at) const {
+  NounPhrase scratch;
+  std::size_t position = at;
+  if (!readAdjective(words, position, scratch)) return false;
+  while (position < words.size()) {
+    std::size_t length = 0;
+    if (words[position] == "one" || words[position] == "ones" || matchNoun(words, position, length)) {
+      return true;
+    }
+    if (!readAdjective(words, position, scratch)) return false;
+  }
+  return false;
+}
+
+bool NounPhraseReader::readAdjective(const Words& words, std::size_t& at, NounPhrase& phrase) const {
+  const std::string& word = words[at];
+  if (auto colour = colourWord(word)) {
+    phrase.colours.push_back(*colour);
+  } else if (auto size = sizeWord(word)) {
+    phrase.size = *size;
+  } else if (auto place = placeWord(word)) {
+    phrase.place = *place;
+  } else if (!(isShadeWord(word) && at + 1 < words.size() && colourWord(words[at + 1]))) {
+    return false;
+  }
+  ++at;
+  return true;
+}
+
+std::optional<NounPhrase> NounPhraseReader::read(const Words& words, std::size_t at) const {
+  if (at >= words.size()) return std::nullopt;
+  NounPhrase phrase;
+  phrase.begin = at;
+  std::size_t position = at;
+  const std::string& first = words[at];
+  if (first == "it" || first == "them" || first == "they") {
+    phrase.pronoun = first == "it" ? Pronoun::kIt : Pronoun::kThem;
+    ++position;
+    if (position < words.size() && (words[position] == "both" || words[position] == "all")) {
+      ++position;
+    }
+  } else if (first == "everything" || matchesAt(words, at, {"all", "of", "them"}) ||
+             matchesAt(words, at, {"both", "of", "them"})) {
+    if (first == "everything") {
+      phrase.everything = true;
+      phrase.quantity = Quantity::kAll;
+      position += 1;
+    } else {
+      phrase.pronoun = Pronoun::kThem;
+      if (first == "both") phrase.quantity = Quantity::kExactly, phrase.count = 2;
+      position += 3;
+    }
+  } else {
+    position += readDeterminer(words, position, phrase);
+    bool adjectives = false;
+    std::size_t length = 0;
+    while (position < words.size()) {
+      if (words[position] == "one" || words[position] == "ones") {
+        phrase.one = true;
+        ++position;
+        break;
+      }
+      if (adjectiveBeforeNoun(words, position)) {
+        (void)readAdjective(words, position, phrase);
+        adjectives = true;
+        continue;
+      }
+      if (auto noun = matchNoun(words, position, length)) {
+        phrase.noun = std::move(noun);
+        position += length;
+        break;
+      }
+      if (!readAdjective(words, position, phrase)) break;
+      adjectives = true;
+    }
+    const bool determiner = position > at;
+    if (first == "both" && phrase.noun && !phrase.noun->plural) {
+      phrase.quantity = Quantity::kDefinite;  // "both the marker and the eraser"
+      phrase.count = 0;
+    }
+    if (!phrase.noun && !phrase.one && phrase.other && !adjectives) {
+      phrase.one = true;  // "the other", "another"
+    }
+    if (!phrase.noun && !phrase.one) {
+      if (!determiner) return std::nullopt;
+      const bool demonstrative = first == "this" || first == "that" || first == "these" ||
+                                 first == "those";
+      if (demonstrative && position == at + 1 &&
+          (position >= words.size() || endsPhrase(words, position))) {
+        phrase.pronoun = (first == "this" || first == "that") ? Pronoun::kIt : Pronoun::kThem;
+        phrase.end = position;
+        phrase.text = first;
+        return phrase;
+      }
+      if (phrase.quantity == Quantity::kAll && !adjectives &&
+          (position >= words.size() || endsPhrase(words, position))) {
+        phrase.everything = true;  // "put all in the box"
+      } else if (position < words.size() && !endsPhrase(words, position)) {
+        phrase.unknownNoun = true;
+        for (int extra = 0; extra < 3 && position < words.size() && !endsPhrase(words, position);
+             ++extra) {
+          ++position;
+        }
+      } else if (!adjectives && phrase.count == 0) {
+        return std::nullopt;
+      }
+    }
+  }
+  phrase.end = position;
+  phrase.text = joinWords(words, phrase.begin, phrase.end);
+  return phrase;
+}
+
+std::vector<NounPhrase> NounPhraseReader::readList(const Words& words, std::size_t at) const {
+  std::vector<NounPhrase> list;
+  std::optional<NounPhrase> phrase = read(words, at);
+  while (phrase) {
+    list.push_back(*phrase);
+    std::size_t next = phrase->end;
+    if (next < words.size() && words[next] == ",") ++next;
+    if (matchesAt(words, next, {"as", "well", "as"})) next += 3;
+    else if (next < words.size() && (words[next] == "and" || words[next] == "plus")) ++next;
+    if (next == phrase->end) break;
+    phrase = read(words, next);
+  }
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    NounPhrase& item = list[i];
+    const bool elided = !item.noun && !item.one && !item.everything && !item.unknownNoun &&
+                        item.pronoun == Pronoun::kNone;
+    if (!elided) continue;
+    for (std::size_t j = i + 1; j < list.size() && !item.noun; ++j) {
+      if (list[j].noun) item.noun = list[j].noun;
+    }
+    for (std::size_t j = i; j-- > 0 && !item.noun;) {
+      if (list[j].noun) item.noun = list[j].noun;
+    }
+    if (item.noun) item.noun->borrowed = true;
+  }
+  return list;
+}
+
+const ObjectDescriptor& NounPhraseReader::descriptor(const std::string& name) const {
+  for (const ObjectDescriptor& object : objects_) {
+    if (object.name == name) return object;
+  }
+  throw PlanningError("unknown object \"" + name + "\" (objects: " + objectList() + ")");
+}
+
+std::string NounPhraseReader::objectList() const {
+  std::vector<std::string> names;
+  for (const ObjectDescriptor& object : objects_) names.push_back(object.name);
+  return joinNames(names);
+}
+
+std::string NounPhraseReader::describe(const std::vector<std::string>& names) const {
+  std::vector<std::string> described;
+  for (const std::string& name : names) {
+    const ObjectDescriptor& object = descriptor(name);
+    std::string text = name;
+    if (!object.colours.empty()) text += " (" + joinNames(object.colours, "/") + ")";
+    described.push_back(text);
+  }
+  return joinNames(described);
+}
+
+}  // namespace lang2manip::language_detail

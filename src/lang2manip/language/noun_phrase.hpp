@@ -1,0 +1,123 @@
+#pragma once
+/// @file Noun phrases of an instruction (internal to the language module): reading them from
+/// words ("the two small red blocks", "it", "the other one", "all the markers") and grounding
+/// them to scene objects through their descriptors, with what was said before (the discourse).
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lang2manip/language/object_descriptor.hpp"
+#include "lang2manip/language/words.hpp"
+
+namespace lang2manip::language_detail {
+
+/// Throws PlanningError: could not ground "<words>": <why>; try an LLM backend with --llm.
+[[noreturn]] void throwGroundingError(const std::string& words, const std::string& why);
+
+enum class Quantity { kDefinite, kIndefinite, kAll, kExactly };
+enum class Pronoun { kNone, kIt, kThem };
+enum class SizeWord { kNone, kBig, kSmall };
+enum class PlaceWord { kNone, kLeft, kRight, kNear, kFar };
+
+/// The objects a noun names ("markers" -> every marker) and whether it was plural.
+struct NounMatch {
+  std::vector<std::string> objects;
+  bool plural = false;
+  /// True when the noun came from a neighbour in a list ("the red [block] and the blue block").
+  bool borrowed = false;
+};
+
+/// A noun phrase as read, before grounding.
+struct NounPhrase {
+  std::size_t begin = 0;
+  std::size_t end = 0;
+  std::string text;
+  Quantity quantity = Quantity::kDefinite;
+  int count = 0;
+  bool other = false;
+  bool everything = false;
+  Pronoun pronoun = Pronoun::kNone;
+  std::vector<std::string> colours;
+  SizeWord size = SizeWord::kNone;
+  PlaceWord place = PlaceWord::kNone;
+  std::optional<NounMatch> noun;
+  /// "one"/"ones" stands for the noun said last.
+  bool one = false;
+  /// A determiner or adjectives followed by words that name no object ("the cup").
+  bool unknownNoun = false;
+
+  [[nodiscard]] bool isPlural() const;
+};
+
+/// What was said before, for pronouns and "the other one".
+struct Discourse {
+  /// The objects acted on by the latest step.
+  std::vector<std::string> lastObjects;
+  /// The target of the latest relation.
+  std::string lastTarget;
+  /// Every object mentioned so far, in order.
+  std::vector<std::string> mentioned;
+  /// The objects the latest noun of an object acted on, and of a target, named before
+  /// adjectives narrowed them: "one" stands for the noun said last in the same role.
+  std::vector<std::string> lastObjectNoun;
+  std::vector<std::string> lastTargetNoun;
+
+  void mention(const std::vector<std::string>& objects);
+};
+
+class NounPhraseReader {
+ public:
+  explicit NounPhraseReader(const std::vector<ObjectDescriptor>& objects);
+
+  /// The noun phrase starting at words[at], or nullopt when none starts there.
+  [[nodiscard]] std::optional<NounPhrase> read(const Words& words, std::size_t at) const;
+  /// A list "A, B and C" starting at words[at] (empty when none); nouns left out are borrowed
+  /// from a neighbour ("the red and the blue block").
+  [[nodiscard]] std::vector<NounPhrase> readList(const Words& words, std::size_t at) const;
+
+  /// The objects `phrase` names. `asTarget`: it is the target of a relation (pronouns then
+  /// prefer the latest target); `actedOn`: the objects of the same step, which a target pronoun
+  /// does not refer to. Throws PlanningError when it names no object or is ambiguous.
+  [[nodiscard]] std::vector<std::string> ground(const NounPhrase& phrase, const Discourse& discourse,
+                                                bool asTarget,
+                                                const std::vector<std::string>& actedOn,
+                                                bool preferContainer = false) const;
+
+  [[nodiscard]] const ObjectDescriptor& descriptor(const std::string& name) const;
+  [[nodiscard]] const std::vector<ObjectDescriptor>& objects() const { return objects_; }
+  /// "marker, eraser, holder, desk".
+  [[nodiscard]] std::string objectList() const;
+
+ private:
+  struct NounEntry {
+    Words words;
+    std::string object;
+    int tier = 0;
+  };
+
+  [[nodiscard]] std::optional<NounMatch> matchNoun(const Words& words, std::size_t at,
+                                                   std::size_t& length) const;
+  [[nodiscard]] std::size_t readDeterminer(const Words& words, std::size_t at,
+                                           NounPhrase& phrase) const;
+  /// True when words[at] is an adjective and a noun follows the adjectives there ("red block"
+  /// reads as colour + noun even when an object is named "red_block").
+  [[nodiscard]] bool adjectiveBeforeNoun(const Words& words, std::size_t at) const;
+  [[nodiscard]] bool readAdjective(const Words& words, std::size_t& at, NounPhrase& phrase) const;
+  [[nodiscard]] std::vector<std::string> candidates(const NounPhrase& phrase,
+                                                    const Discourse& discourse,
+                                                    bool asTarget) const;
+  [[nodiscard]] std::vector<std::string> groundPronoun(const NounPhrase& phrase,
+                                                       const Discourse& discourse, bool asTarget,
+                                                       const std::vector<std::string>& actedOn,
+                                                       bool preferContainer) const;
+  [[nodiscard]] std::vector<std::string> narrow(const NounPhrase& phrase,
+                                                std::vector<std::string> names) const;
+  [[nodiscard]] std::string describe(const std::vector<std::string>& names) const;
+
+  std::vector<ObjectDescriptor> objects_;
+  std::vector<NounEntry> nouns_;
+};
+
+}  // namespace lang2manip::language_detail

@@ -1,0 +1,52 @@
+#pragma once
+/// @file What an instruction can say about an object: its name, kind, the nouns it answers to,
+/// its colour, size and place. Built from a Scene; the instruction parser grounds noun phrases
+/// against these descriptors only.
+
+#include <string>
+#include <vector>
+
+#include "lang2manip/core/types.hpp"
+#include "lang2manip/model/scene.hpp"
+
+namespace lang2manip {
+
+struct ObjectDescriptor {
+  std::string name;
+  /// The object's category ("marker", "pen_holder", "desk").
+  std::string kind;
+  /// Other nouns for it, from its kind: "pen" and "felt tip" for a marker, "rubber" for an
+  /// eraser, "cup" and "pot" for a pen holder, "table" for a desk (see kindSynonyms()).
+  std::vector<std::string> synonyms;
+  /// Colour names: the nearest named colour of its largest visual, and colour words in its name.
+  std::vector<std::string> colours;
+  /// Volume of its bounding box, m^3; size words compare it among candidates.
+  double volume = 0.0;
+  /// "small", "medium" or "large" by volume among the scene's movable objects (thirds of their
+  /// ranking); "large" for an unmovable object bigger than all of them. Size words in
+  /// instructions ("the big cup") compare volumes among the candidates instead.
+  std::string sizeClass;
+  /// Bounding-box extent along x, y, z of the object frame, metres.
+  Vector3 dimensions = Vector3::Zero();
+  /// Centre of its world bounds in the robot's base frame (x forward, y left), metres.
+  Vector3 position = Vector3::Zero();
+  bool movable = false;
+  ObjectRole role = ObjectRole::kNone;
+};
+
+/// Descriptors of every object of `scene`, in scene order. Positions are in the base frame of
+/// `robot` (the first robot when empty; the world frame when the scene has no robot). Throws
+/// InputError when `robot` is given but not in the scene.
+std::vector<ObjectDescriptor> describeObjects(const Scene& scene, const std::string& robot = "");
+
+/// The nearest named colour of an RGB colour (components 0..1): one of colourNames().
+std::string nearestColourName(const Vector3& rgb);
+
+/// The colour names descriptors use: "red", "green", "blue", ...
+std::vector<std::string> colourNames();
+
+/// Nouns that also name an object of `kind` (the kind's words are matched separately); empty
+/// for an unfamiliar kind.
+std::vector<std::string> kindSynonyms(const std::string& kind);
+
+}  // namespace lang2manip

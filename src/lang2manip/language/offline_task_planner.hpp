@@ -1,0 +1,35 @@
+#pragma once
+/// @file The offline task planner (the default, deterministic, no network): understands the
+/// instruction over the scene's objects, observes the symbolic state from geometry and
+/// sequences the goals into a plan. After grounding failures reported in earlier attempts it
+/// tries other grasp directions instead of repeating a plan.
+
+#include <string>
+
+#include "lang2manip/language/sequencer.hpp"
+#include "lang2manip/symbolic/task_planner.hpp"
+
+namespace lang2manip {
+
+/// Container room and object footprints of `scene` for the sequencer: a container's room is the
+/// floor area of its cavity; an object's footprint is the product of its two smallest extents
+/// (it may go in standing up).
+SequencingOptions sequencingOptionsFor(const Scene& scene);
+
+/// The grasp directions the offline planner tries in turn after grasp failures of an object.
+std::vector<GraspDirection> graspRetryOrder();
+
+class OfflineTaskPlanner final : public TaskPlanner {
+ public:
+  /// "offline".
+  [[nodiscard]] std::string name() const override { return "offline"; }
+
+  /// A plan for `request`. Throws PlanningError when the request has no scene, the stop
+  /// condition has fired, the instruction cannot be grounded, no order of actions works, or
+  /// the earlier attempts failed in ways it has no new answer to (the message says which).
+  /// Thread-safe: the planner holds no state.
+  Plan plan(const PlanningRequest& request, const StopCondition& stop,
+            PlanningStatistics& statistics) override;
+};
+
+}  // namespace lang2manip

@@ -1,0 +1,101 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "lang2manip/language/object_descriptor.hpp"
+#include "lang2manip/language/planner_names.hpp"
+#include "language/language_test_scenes.hpp"
+
+namespace lang2manip {
+namespace {
+
+const ObjectDescriptor& find(const std::vector<ObjectDescriptor>& all, const std::string& name) {
+  const auto found = std::find_if(all.begin(), all.end(),
+                                  [&name](const ObjectDescriptor& item) { return item.name == name; });
+  if (found == all.end()) throw std::runtime_error("no descriptor " + name);
+  return *found;
+}
+
+bool has(const std::vector<std::string>& list, const std::string& item) {
+  return std::find(list.begin(), list.end(), item) != list.end();
+}
+
+TEST(ObjectDescriptorTest, DeskSceneObjectsHaveTheirColoursAndSynonyms) {
+  const std::vector<ObjectDescriptor> all = describeObjects(test::deskScene());
+  ASSERT_EQ(all.size(), 4u);
+  EXPECT_EQ(find(all, "marker").colours, std::vector<std::string>{"blue"});
+  EXPECT_EQ(find(all, "eraser").colours, std::vector<std::string>{"pink"});
+  EXPECT_EQ(find(all, "holder").colours, std::vector<std::string>{"grey"});
+  EXPECT_EQ(find(all, "desk").colours, std::vector<std::string>{"brown"});
+  EXPECT_TRUE(has(find(all, "marker").synonyms, "pen"));
+  EXPECT_TRUE(has(find(all, "eraser").synonyms, "rubber"));
+  EXPECT_TRUE(has(find(all, "holder").synonyms, "cup"));
+  EXPECT_TRUE(has(find(all, "desk").synonyms, "table"));
+  EXPECT_EQ(find(all, "holder").role, ObjectRole::kContainer);
+  EXPECT_FALSE(find(all, "desk").movable);
+  EXPECT_GT(find(all, "holder").volume, find(all, "eraser").volume);
+}
+
+TEST(ObjectDescriptorTest, PositionsAreInTheRobotBaseFrame) {
+  const Scene scene = test::deskScene();
+  const std::vector<ObjectDescriptor> all = describeObjects(scene);
+  const Pose base = scene.robots().front().basePose;
+  const Vector3 expected = base.inverse() * scene.object("eraser").worldBounds().center();
+  EXPECT_TRUE(find(all, "eraser").position.isApprox(expected));
+  EXPECT_GT(find(all, "eraser").position.y(), find(all, "marker").position.y());
+  EXPECT_THROW((void)describeObjects(scene, "no_such_robot"), std::exception);
+}
+
+TEST(ObjectDescriptorTest, NearestColourNames) {
+  EXPECT_EQ(nearestColourName(Vector3(1, 0, 0)), "red");
+  EXPECT_EQ(nearestColourName(Vector3(0.1, 0.1, 0.6)), "blue");
+  EXPECT_EQ(nearestColourName(Vector3(0, 0.5, 0)), "green");
+  EXPECT_EQ(nearestColourName(Vector3(1, 1, 1)), "white");
+  EXPECT_EQ(nearestColourName(Vector3(0, 0, 0)), "black");
+  EXPECT_EQ(nearestColourName(Vector3(0.45, 0.45, 0.47)), "grey");
+  EXPECT_EQ(nearestColourName(Vector3(1, 0.85, 0.1)), "yellow");
+  EXPECT_EQ(nearestColourName(Vector3(1, 0.5, 0)), "orange");
+}
+
+TEST(ObjectDescriptorTest, SizeClassesRankVolumesAmongMovableObjects) {
+  const std::vector<ObjectDescriptor> desk = describeObjects(test::deskScene());
+  EXPECT_EQ(find(desk, "eraser").sizeClass, "small");
+  EXPECT_EQ(find(desk, "marker").sizeClass, "medium");
+  EXPECT_EQ(find(desk, "holder").sizeClass, "large");
+  EXPECT_EQ(find(desk, "desk").sizeClass, "large");
+  const std::vector<ObjectDescriptor> bench = describeObjects(test::workbenchScene());
+  EXPECT_EQ(find(bench, "red_block").sizeClass, "small");
+  EXPECT_EQ(find(bench, "box").sizeClass, "large");
+}
+
+TEST(ObjectDescriptorTest, ColourWordsInTheNameCount) {
+  const std::vector<ObjectDescriptor> all = describeObjects(test::workbenchScene());
+  EXPECT_TRUE(has(find(all, "yellow_cup").colours, "yellow"));
+  EXPECT_EQ(find(all, "marker_2").colours, std::vector<std::string>{"black"});
+}
+
+TEST(PlannerNamesTest, OmplKauthamAndSpokenNames) {
+  EXPECT_EQ(plannerNameFromWords("RRTConnect"), "RRTConnect");
+  EXPECT_EQ(plannerNameFromWords("omplRRTConnect"), "RRTConnect");
+  EXPECT_EQ(plannerNameFromWords("rrt connect"), "RRTConnect");
+  EXPECT_EQ(plannerNameFromWords("RRT-Connect"), "RRTConnect");
+  EXPECT_EQ(plannerNameFromWords("RRT*"), "RRTstar");
+  EXPECT_EQ(plannerNameFromWords("omplRRTStar"), "RRTstar");
+  EXPECT_EQ(plannerNameFromWords("RRT"), "RRT");
+  EXPECT_EQ(plannerNameFromWords("prm star"), "PRMstar");
+  EXPECT_EQ(plannerNameFromWords("omplPRM"), "PRM");
+  EXPECT_EQ(plannerNameFromWords("KPIECE"), "KPIECE1");
+  EXPECT_EQ(plannerNameFromWords("omplKPIECE"), "KPIECE1");
+  EXPECT_EQ(plannerNameFromWords("omplTRRTConnect"), "omplTRRTConnect");
+  EXPECT_EQ(plannerNameFromWords("BIT*"), "BITstar");
+  EXPECT_FALSE(plannerNameFromWords("FooPlanner"));
+  EXPECT_FALSE(plannerNameFromWords("RRTConnect please"));
+  EXPECT_FALSE(plannerNameFromWords(""));
+  const std::vector<std::string> names = knownPlannerNames();
+  EXPECT_TRUE(has(names, "RRTConnect"));
+  EXPECT_TRUE(has(names, "PRM"));
+  for (const std::string& name : names) EXPECT_EQ(plannerNameFromWords(name), name);
+}
+
+}  // namespace
+}  // namespace lang2manip
