@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "lang2manip/planning/planner_registry.hpp"
+
 #include <algorithm>
 
 #include "lang2manip/language/object_descriptor.hpp"
@@ -86,12 +88,12 @@ TEST(PlannerNamesTest, OmplKauthamAndSpokenNames) {
   EXPECT_EQ(plannerNameFromWords("omplPRM"), "PRM");
   EXPECT_EQ(plannerNameFromWords("KPIECE"), "KPIECE1");
   EXPECT_EQ(plannerNameFromWords("omplKPIECE"), "KPIECE1");
-  EXPECT_EQ(plannerNameFromWords("omplTRRTConnect"), "omplTRRTConnect");
+  EXPECT_EQ(plannerNameFromWords("omplTRRTConnect"), "BiTRRT");
   EXPECT_EQ(plannerNameFromWords("BIT*"), "BITstar");
   EXPECT_FALSE(plannerNameFromWords("FooPlanner"));
   EXPECT_FALSE(plannerNameFromWords("RRTConnect please"));
   EXPECT_FALSE(plannerNameFromWords(""));
-  const std::vector<std::string> names = knownPlannerNames();
+  const std::vector<std::string> names = plannerNames();
   EXPECT_TRUE(has(names, "RRTConnect"));
   EXPECT_TRUE(has(names, "PRM"));
   for (const std::string& name : names) EXPECT_EQ(plannerNameFromWords(name), name);
