@@ -8,6 +8,7 @@ void addBenchCommand(CLI::App& app, std::ostream& out) {
       "bench", "Benchmarks: programs that print figures (baselines run in the same process)");
   bench->require_subcommand(1);
   addBenchIkCommand(*bench, out);
+  addBenchMbmCommand(*bench, out);
 }
 
 }  // namespace lang2manip

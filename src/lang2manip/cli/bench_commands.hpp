@@ -11,4 +11,8 @@ namespace lang2manip {
 /// TRAC-IK protocol (docs/benchmarks.md) for every registered IK solver in one run.
 void addBenchIkCommand(CLI::App& bench, std::ostream& out);
 
+/// `lang2manip bench mbm DIR [--family NAME] [--limit N] [--planner NAME] [--time-limit S]
+/// [--json] [--log FILE]`: the MotionBenchMaker Panda problems (docs/benchmarks.md).
+void addBenchMbmCommand(CLI::App& bench, std::ostream& out);
+
 }  // namespace lang2manip

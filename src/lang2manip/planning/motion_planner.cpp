@@ -244,7 +244,6 @@ MotionPlan MotionPlanner::solve(const VectorX& start, const std::vector<VectorX>
     checkEndpoint(goals[g], goals.size() == 1 ? "goal" : "goal " + std::to_string(g));
   }
   preparePlanner(settings);
-  ob::Planner& planner = *ompl_->planner;
   MotionPlan plan;
   ompl_->counters->states = 0;
   ompl_->counters->motions = 0;
@@ -252,7 +251,11 @@ MotionPlan MotionPlanner::solve(const VectorX& start, const std::vector<VectorX>
   std::string rejected;
   for (int attempt = 1;; ++attempt) {
     const auto problem = makeProblem(start, goals, settings);
-    if (attempt > 1) planner.clear();
+    if (attempt > 1) {  // a fresh planner: OMPL planners warn when set up twice
+      ompl_->planner.reset();
+      preparePlanner(settings);
+    }
+    ob::Planner& planner = *ompl_->planner;
     planner.setProblemDefinition(problem);
     planner.setup();
     const auto planningStart = Clock::now();

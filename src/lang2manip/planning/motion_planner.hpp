@@ -18,8 +18,9 @@
 namespace lang2manip {
 
 struct MotionPlanningOptions {
-  /// Largest joint step (rad or m) between checked states of a motion while planning.
-  double resolution = 0.01;
+  /// Largest joint step (rad or m) between checked states of a motion while planning (about
+  /// what MoveIt uses for a 7-DOF arm); paths are re-verified at verificationResolution.
+  double resolution = 0.05;
   /// Largest joint step when the final path is re-verified.
   double verificationResolution = 0.002;
   TimeParameterizationOptions timing;

@@ -42,6 +42,7 @@
 #include <ompl/geometric/planners/stride/STRIDE.h>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/planning/motion_planner.hpp"
 
 namespace lang2manip {
 namespace {
@@ -185,6 +186,7 @@ std::string canonicalPlannerName(const std::string& name) {
 
 ompl::base::PlannerPtr createOmplPlanner(const std::string& canonicalName,
                                          const ompl::base::SpaceInformationPtr& si) {
+  routeOmplMessagesToLog();
   const RegisteredPlanner* planner = findPlanner(canonicalPlannerName(canonicalName), true);
   return planner->create(si);
 }

@@ -8,6 +8,7 @@
 
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/core/text_parsing.hpp"
+#include "lang2manip/planning/motion_planner.hpp"
 #include "lang2manip/planning/planner_registry.hpp"
 
 namespace lang2manip {
@@ -64,6 +65,7 @@ struct OmplParameterInfo {
 // Sets the parameter on a throwaway planner to learn whether OMPL accepts the value.
 OmplParameterInfo trySetOnPlanner(const std::string& planner, const std::string& name,
                                   const std::string& value, bool& accepted) {
+  routeOmplMessagesToLog();
   auto space = std::make_shared<ompl::base::RealVectorStateSpace>(2);
   space->setBounds(0.0, 1.0);
   auto si = std::make_shared<ompl::base::SpaceInformation>(space);

@@ -22,7 +22,9 @@ Pose kauthamPose(const std::vector<double>& values) {
                   quaternionFromKauthamAxisAngle(Vector3(values[3], values[4], values[5]), values[6]));
 }
 
-PlanningSession::PlanningSession(const MotionPlanningOptions& options) : options_(options) {}
+PlanningSession::PlanningSession(const MotionPlanningOptions& options,
+                                 const FclCheckerSettings& checkerSettings)
+    : options_(options), checkerSettings_(checkerSettings) {}
 PlanningSession::~PlanningSession() = default;
 
 void PlanningSession::openProblem(const std::filesystem::path& file) {
@@ -92,7 +94,7 @@ void PlanningSession::worldChanged() {
   checker_.reset();
   lastPlan_.reset();
   if (!matrices.empty()) {
-    FclCheckerSettings settings;
+    FclCheckerSettings settings = checkerSettings_;
     settings.precomputedMatrices = matrices;
     checker_ = std::make_shared<FclCollisionChecker>(openedProblem().scene, settings);
   }
@@ -100,7 +102,7 @@ void PlanningSession::worldChanged() {
 
 std::shared_ptr<const PlanningSpace> PlanningSession::planningSpace() {
   if (!space_) {
-    if (!checker_) checker_ = std::make_shared<FclCollisionChecker>(openedProblem().scene);
+    if (!checker_) checker_ = std::make_shared<FclCollisionChecker>(openedProblem().scene, checkerSettings_);
     space_ = std::make_shared<KauthamControlSpace>(checker_, openedProblem());
   }
   return space_;

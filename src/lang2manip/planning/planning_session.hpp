@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "lang2manip/collision/collision_checker.hpp"
+#include "lang2manip/collision/fcl_collision_checker.hpp"
 #include "lang2manip/core/stop_condition.hpp"
 #include "lang2manip/model/kautham_problem.hpp"
 #include "lang2manip/planning/motion_planner.hpp"
@@ -23,7 +24,9 @@ Pose kauthamPose(const std::vector<double>& values);
 
 class PlanningSession {
  public:
-  explicit PlanningSession(const MotionPlanningOptions& options = {});
+  /// `checkerSettings` configure the FCL checkers built for the problem's worlds.
+  explicit PlanningSession(const MotionPlanningOptions& options = {},
+                           const FclCheckerSettings& checkerSettings = {});
   ~PlanningSession();
   PlanningSession(const PlanningSession&) = delete;
   PlanningSession& operator=(const PlanningSession&) = delete;
@@ -92,6 +95,7 @@ class PlanningSession {
   [[nodiscard]] Pose currentLinkPose(const std::string& robot, const std::string& link) const;
 
   MotionPlanningOptions options_;
+  FclCheckerSettings checkerSettings_;
   std::unique_ptr<KauthamProblem> problem_;
   PlannerSettings settings_;
   std::shared_ptr<const CollisionChecker> checker_;

@@ -1,0 +1,113 @@
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli_test_support.hpp"
+#include "test_paths.hpp"
+
+namespace lang2manip::test {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::string readFile(const std::filesystem::path& file) {
+  std::ifstream stream(file);
+  std::stringstream text;
+  text << stream.rdbuf();
+  return text.str();
+}
+
+TEST(SolveCli, SolvesThePaperSceneAndWritesJsonAndCsv) {
+  const TempDirectory directory;
+  const auto out = directory.path() / "result.json";
+  const CliResult result = runCli("solve panda_desk --seed 3 --out " + out.string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("query 1: solved by RRTConnect"));
+  EXPECT_THAT(result.output, HasSubstr("verified"));
+  const nlohmann::json report = nlohmann::json::parse(readFile(out));
+  EXPECT_TRUE(report["solved"].get<bool>());
+  const nlohmann::json& trajectory = report["queries"][0]["trajectory"];
+  EXPECT_EQ(trajectory["joint_names"][0], "panda/panda_joint1");
+  ASSERT_GE(trajectory["points"].size(), 2u);
+  EXPECT_TRUE(trajectory["points"][0].contains("time_from_start"));
+  const std::string csv = readFile(directory.path() / "result.csv");
+  EXPECT_EQ(csv.rfind("time,panda/panda_joint1,", 0), 0u) << csv.substr(0, 80);
+}
+
+TEST(SolveCli, JsonOutputAndPlannerOverride) {
+  const CliResult result = runCli("solve panda_desk --planner omplKPIECE --param Range=0.3 --json", false);
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  const nlohmann::json report = nlohmann::json::parse(result.output);
+  EXPECT_EQ(report["queries"][0]["planner"], "KPIECE1");
+  EXPECT_EQ(report["queries"][0]["status"], "solved");
+  EXPECT_GT(report["queries"][0]["statistics"]["vertices"].get<long>(), 0);
+}
+
+TEST(SolveCliBadInput, UnknownPlannerParameterAndMalformedArguments) {
+  CliResult result = runCli("solve panda_desk --planner NotAPlanner");
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.output, HasSubstr("unknown planner \"NotAPlanner\"; valid planners: RRTConnect"));
+  result = runCli("solve panda_desk --param Bogus=1");
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.output, HasSubstr("unknown parameter \"Bogus\" for planner RRTConnect"));
+  result = runCli("solve panda_desk --param Range");
+  EXPECT_THAT(result.output, HasSubstr("expected NAME=VALUE"));
+  result = runCli("solve panda_desk --param Range=abc");
+  EXPECT_THAT(result.output, HasSubstr("invalid value \"abc\""));
+  result = runCli("solve panda_desk --query 5");
+  EXPECT_THAT(result.output, HasSubstr("--query 5: the problem has 1 queries"));
+  result = runCli("solve /nonexistent.xml");
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.output, HasSubstr("/nonexistent.xml"));
+  result = runCli("solve panda_desk --time-limit -1");
+  EXPECT_NE(result.exitCode, 0);
+}
+
+TEST(SolveCli, KauthamDemoWithItsOwnPlanner) {
+  LANG2MANIP_REQUIRE_SHARED_DATA(shared);
+  const auto problem = shared / "kautham/OMPL_geo_demos/Cube_Maze_R2/OMPL_RRTconnect_bigcube-maze2D_R2.xml";
+  const CliResult result = runCli("solve " + problem.string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("solved by RRTConnect"));
+  const CliResult constrained =
+      runCli("solve " + (shared / "kautham/OMPL_constr_demos/UR5/ur5_table_constr_box.xml").string());
+  EXPECT_EQ(constrained.exitCode, 1);
+  EXPECT_THAT(constrained.output, HasSubstr("planner \"omplconstr\" is not supported"));
+}
+
+TEST(BenchMbmCli, OneProblemPerFamilyWithJsonAndOmplLog) {
+  LANG2MANIP_REQUIRE_SHARED_DATA(shared);
+  const TempDirectory directory;
+  const auto log = directory.path() / "mbm.log";
+  const CliResult result = runCli("bench mbm " + (shared / "mbm/panda").string() +
+                                      " --family box_panda --limit 2 --time-limit 5 --json --log " + log.string(),
+                                  false);
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  const nlohmann::json report = nlohmann::json::parse(result.output);
+  ASSERT_EQ(report["families"].size(), 1u);
+  EXPECT_EQ(report["families"][0]["name"], "box_panda");
+  EXPECT_EQ(report["overall"]["problems"], 2);
+  for (const char* key : {"valid", "solved", "median_ms", "mean_ms", "p95_ms", "max_ms", "simplify_median_ms"}) {
+    EXPECT_TRUE(report["overall"].contains(key)) << key;
+  }
+  const std::string text = readFile(log);
+  EXPECT_EQ(text.rfind("OMPL version 1.5.2\nExperiment ", 0), 0u);
+  EXPECT_THAT(text, HasSubstr("1 planners\ngeometric_RRTConnect\n"));
+  EXPECT_THAT(text, HasSubstr("time REAL"));
+  EXPECT_THAT(text, HasSubstr("\n.\n"));
+}
+
+TEST(BenchMbmCli, BadDirectoryAndFamily) {
+  CliResult result = runCli("bench mbm /nonexistent");
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.output, HasSubstr("/nonexistent: not a directory"));
+  LANG2MANIP_REQUIRE_SHARED_DATA(shared);
+  result = runCli("bench mbm " + (shared / "mbm/panda").string() + " --family nope");
+  EXPECT_THAT(result.output, HasSubstr("--family nope: unknown family; families: bookshelf_small_panda"));
+}
+
+}  // namespace
+}  // namespace lang2manip::test

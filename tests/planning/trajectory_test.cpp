@@ -1,0 +1,87 @@
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/planning/benchmark_log.hpp"
+#include "lang2manip/planning/trajectory.hpp"
+#include "planning_test_support.hpp"
+
+namespace lang2manip::test {
+namespace {
+
+TEST(TimeParameterization, RestToRestSegmentsWithinTheLimits) {
+  const auto space = planarArmSpace();
+  std::vector<VectorX> path{planarStart(), (VectorX(2) << 1.2, 2.0).finished(), planarGoal()};
+  const JointTrajectory trajectory = timeParameterize(*space, path);
+  EXPECT_EQ(checkTrajectoryLimits(*space, trajectory), "");
+  EXPECT_TRUE(trajectory.points.front().positions.isApprox(planarStart()));
+  EXPECT_TRUE(trajectory.points.back().positions.isApprox(planarGoal()));
+  EXPECT_TRUE(trajectory.points.back().velocities.isZero(1e-12));
+  // The first segment moves the elbow 2 rad at 2 rad/s and 4 rad/s^2: 0.5 s ramps, 0.5 s cruise.
+  bool foundWaypoint = false;
+  for (const TrajectoryPoint& point : trajectory.points) {
+    if (std::abs(point.time - 1.5) < 1e-9) {
+      foundWaypoint = true;
+      EXPECT_TRUE(point.positions.isApprox(path[1]));
+      EXPECT_TRUE(point.velocities.isZero(1e-9));
+    }
+  }
+  EXPECT_TRUE(foundWaypoint);
+  double peak = 0.0;
+  for (const TrajectoryPoint& point : trajectory.points) peak = std::max(peak, point.velocities.cwiseAbs().maxCoeff());
+  EXPECT_NEAR(peak, 2.0, 1e-9);
+}
+
+TEST(TimeParameterization, LimitCheckCatchesAViolation) {
+  const auto space = planarArmSpace();
+  JointTrajectory trajectory = timeParameterize(*space, {planarStart(), planarGoal()});
+  trajectory.points[1].velocities[0] = 10.0;
+  EXPECT_NE(checkTrajectoryLimits(*space, trajectory).find("planar/shoulder velocity 10"), std::string::npos);
+  trajectory.points[1].time = -1.0;
+  EXPECT_NE(checkTrajectoryLimits(*space, trajectory).find("time does not increase"), std::string::npos);
+}
+
+TEST(TimeParameterization, BadInput) {
+  const auto space = planarArmSpace();
+  EXPECT_THROW((void)timeParameterize(*space, {}), InputError);
+  EXPECT_THROW((void)timeParameterize(*space, {VectorX::Zero(3)}), InputError);
+  TimeParameterizationOptions options;
+  options.limitScale = 0.0;
+  EXPECT_THROW((void)timeParameterize(*space, {planarStart()}, options), InputError);
+}
+
+TEST(TrajectoryFiles, JointTrajectoryJsonAndCsv) {
+  const auto space = planarArmSpace();
+  const JointTrajectory trajectory = timeParameterize(*space, {planarStart(), planarGoal()});
+  const nlohmann::json json = trajectoryToJson(trajectory);
+  EXPECT_EQ(json["joint_names"], (nlohmann::json{"planar/shoulder", "planar/elbow"}));
+  const nlohmann::json& last = json["points"].back();
+  EXPECT_EQ(last["positions"].size(), 2u);
+  const double seconds = last["time_from_start"]["sec"].get<double>() + last["time_from_start"]["nanosec"].get<double>() * 1e-9;
+  EXPECT_NEAR(seconds, trajectory.duration(), 1e-9);
+  const std::string csv = trajectoryToCsv(trajectory);
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "time,planar/shoulder,planar/elbow,planar/shoulder_velocity,planar/elbow_velocity,"
+            "planar/shoulder_acceleration,planar/elbow_acceleration");
+}
+
+TEST(BenchmarkLog, OmplFormat) {
+  BenchmarkExperiment experiment;
+  experiment.name = "test";
+  experiment.planners.push_back({"geometric_RRTConnect", {{"range", "0.5"}},
+                                 {{{"time REAL", "0.01"}, {"solved BOOLEAN", "1"}}}});
+  std::ostringstream out;
+  writeOmplBenchmarkLog(experiment, out);
+  const std::string text = out.str();
+  EXPECT_EQ(text.rfind("OMPL version 1.5.2\nExperiment test\n", 0), 0u);
+  EXPECT_NE(text.find("status|"), std::string::npos);
+  EXPECT_NE(text.find("geometric_RRTConnect\n1 common properties\nrange = 0.5\n2 properties for each run\n"
+                      "solved BOOLEAN\ntime REAL\n1 runs\n1; 0.01; \n"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(std::find(omplStatusNames().begin(), omplStatusNames().end(), "Exact solution"), omplStatusNames().end());
+}
+
+}  // namespace
+}  // namespace lang2manip::test
