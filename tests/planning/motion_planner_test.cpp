@@ -118,3 +118,36 @@ TEST(MotionPlannerBadInput, EndpointsAreCheckedWithClearMessages) {
 
 }  // namespace
 }  // namespace lang2manip::test
+
+namespace lang2manip::test {
+namespace {
+
+TEST(MultiRobotPlanning, TwoArmsPlannedTogetherAvoidEachOther) {
+  Scene scene = planarArmScene();
+  SceneRobot second = scene.robot("planar");
+  second.name = "planar2";
+  second.basePose.translation() = Vector3(1.4, 0.0, 0.0);
+  second.configuration << 2.0, 0.0;
+  scene.addRobot(second);
+  scene.removeObject("post");
+  auto checker = std::make_shared<FclCollisionChecker>(scene);
+  auto space = std::make_shared<JointPlanningSpace>(checker, std::vector<std::string>{"planar", "planar2"});
+  ASSERT_EQ(space->dimension(), 4);
+  // Both arms swing from pointing up to pointing at each other's base and back again: moved
+  // together in a straight line, their forearms would cross.
+  const VectorX start = (VectorX(4) << 0.0, 0.0, 3.0, 0.0).finished();
+  const VectorX goal = (VectorX(4) << 1.4, 0.0, 1.7, 0.0).finished();
+  ASSERT_TRUE(space->isValid(start.data()));
+  ASSERT_TRUE(space->isValid(goal.data()));
+  MotionPlanner planner(space);
+  const MotionPlan plan = planner.solve(start, {goal}, PlannerSettings{}, StopCondition::never());
+  ASSERT_TRUE(plan.solved()) << plan.message;
+  EXPECT_EQ(planner.verifyPath(plan.path), "");
+  EXPECT_EQ(plan.trajectory.jointNames,
+            (std::vector<std::string>{"planar/shoulder", "planar/elbow", "planar2/shoulder", "planar2/elbow"}));
+  const WorldState world = space->worldState(goal);
+  EXPECT_DOUBLE_EQ(world.configurations[1][0], 1.7);
+}
+
+}  // namespace
+}  // namespace lang2manip::test

@@ -112,6 +112,15 @@ TEST_F(PandaDeskSession, CheckCollisionAndSetRobotsConfig) {
   EXPECT_TRUE(session.checkCollision(query.goal).valid);
 }
 
+TEST(PlanningSessionBadInput, SolveWithoutAQuery) {
+  KauthamProblem problem = readKauthamProblem(resolveProblem("panda_desk"));
+  problem.queries.clear();
+  PlanningSession session;
+  session.openProblem(std::move(problem));
+  EXPECT_NE(errorOf([&] { (void)session.solve(); }).find("no query to solve"), std::string::npos);
+  EXPECT_NE(errorOf([&] { (void)session.getNumVertices(); }).find("call solve first"), std::string::npos);
+}
+
 TEST(KauthamPose, AxisAngleAsKauthamWritesIt) {
   const Pose pose = kauthamPose({1, 2, 3, 0, 0, 1, 1.5707963267948966});
   EXPECT_TRUE(pose.translation().isApprox(Vector3(1, 2, 3)));

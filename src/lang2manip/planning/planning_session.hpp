@@ -41,8 +41,9 @@ class PlanningSession {
   /// The open problem (the scene reflects every edit). Throws InputError when none is open.
   [[nodiscard]] const KauthamProblem& problem() const;
 
-  /// Kautham's setPlanner / setPlannerByName.
+  /// Kautham's setPlanner / setPlannerByName (the same here: any registered name or alias).
   void setPlanner(const std::string& name);
+  void setPlannerByName(const std::string& name) { setPlanner(name); }
   void setPlannerParameter(const std::string& name, const std::string& value);
   [[nodiscard]] const PlannerSettings& plannerSettings() const noexcept { return settings_; }
 
