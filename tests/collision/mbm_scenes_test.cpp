@@ -23,7 +23,6 @@ struct Counts {
 TEST(MotionBenchMaker, MostStartsAndGoalsAreValid) {
   LANG2MANIP_REQUIRE_SHARED_DATA(shared);
   const RobotModelPtr panda = builtinRobot("panda");
-  std::shared_ptr<const AllowedCollisionMatrix> matrix;
   std::map<std::string, Counts> perSet;
   std::set<std::filesystem::path> scenes;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(shared / "mbm/panda")) {
@@ -34,10 +33,8 @@ TEST(MotionBenchMaker, MostStartsAndGoalsAreValid) {
   Counts total;
   for (const std::filesystem::path& file : scenes) {
     const MoveItProblem problem = readMoveItProblem(file, requestFileForScene(file), panda);
-    FclCheckerSettings settings;
-    if (matrix) settings.precomputedMatrices = {matrix};
-    const FclCollisionChecker checker(problem.scene, settings);
-    matrix = checker.sharedAllowedCollisions(0);
+    // Every checker shares the model's cached allowed-collision matrix.
+    const FclCollisionChecker checker(problem.scene);
     const auto context = checker.makeContext();
     Counts& counts = perSet[file.parent_path().filename().string()];
     const bool start = checker.isStateValid(0, problem.start, *context);
