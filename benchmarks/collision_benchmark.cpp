@@ -2,7 +2,11 @@
 // scene (panda_desk) and a mesh scene from ../shared/data/kautham (TX90 + gripper, TwoCan), each
 // with and without the bounding-box pre-check (the in-process baseline), over seeded random
 // configurations and over valid ones only (every pair reaches the end of the list).
-// Counters: median_us and p95_us per check (each check timed alone), valid = fraction valid.
+// Per edge: isMotionValid() at a fixed resolution (kEdgeResolution rad per sample) on short
+// edges from a valid state to a random neighbour (each joint moved up to kEdgeReach rad), like a
+// planner's edges, for the same scenes and the same two variants.
+// Counters: median_us and p95_us per check or edge (each timed alone), valid = fraction valid,
+// states_per_edge = states an edge holds at the resolution.
 //
 //   build/benchmarks/collision_benchmark [--benchmark_filter=Desk]
 
@@ -10,6 +14,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -27,6 +32,8 @@ namespace {
 
 constexpr int kConfigurations = 2000;
 constexpr std::uint64_t kSeed = 42;
+constexpr double kEdgeResolution = 0.01;
+constexpr double kEdgeReach = 0.3;
 
 std::filesystem::path tx90Problem() {
   return std::filesystem::path(LANG2MANIP_SHARED_DIR) /
@@ -52,7 +59,19 @@ struct Fixture {
   std::unique_ptr<FclCollisionChecker> checker;
   std::vector<VectorX> random;
   std::vector<VectorX> valid;
+  /// Edge i runs from valid[i] to edgeEnds[i].
+  std::vector<VectorX> edgeEnds;
 };
+
+void addEdges(const RobotModel& model, Random& random, Fixture& entry) {
+  const VectorX reach = VectorX::Constant(model.variableCount(), kEdgeReach);
+  for (const VectorX& start : entry.valid) {
+    const VectorX end = (start + random.uniformVector(-reach, reach))
+                            .cwiseMax(model.lowerLimits())
+                            .cwiseMin(model.upperLimits());
+    entry.edgeEnds.push_back(end);
+  }
+}
 
 Fixture& fixture(const std::string& scene, bool precheck) {
   static std::map<std::pair<std::string, bool>, Fixture> fixtures;
@@ -73,6 +92,7 @@ Fixture& fixture(const std::string& scene, bool precheck) {
     if (entry.random.size() < kConfigurations) entry.random.push_back(q);
     if (valid && entry.valid.size() < kConfigurations) entry.valid.push_back(q);
   }
+  addEdges(model, random, entry);
   return entry;
 }
 
@@ -106,6 +126,40 @@ void checkStates(benchmark::State& state, const std::string& scene, bool prechec
   state.counters["pairs"] = static_cast<double>(f.checker->pairCount(0));
 }
 
+void checkEdges(benchmark::State& state, const std::string& scene, bool precheck) {
+  if (scene == "tx90" && !std::filesystem::exists(tx90Problem())) {
+    state.SkipWithError(("../shared is absent: " + tx90Problem().string() + " not found").c_str());
+    return;
+  }
+  Fixture& f = fixture(scene, precheck);
+  const auto context = f.checker->makeContext();
+  std::vector<double> times;
+  times.reserve(1 << 20);
+  std::size_t i = 0;
+  int valid = 0;
+  double states = 0.0;
+  for (auto _ : state) {
+    const VectorX& q0 = f.valid[i];
+    const VectorX& q1 = f.edgeEnds[i];
+    const auto start = std::chrono::steady_clock::now();
+    const bool ok = f.checker->isMotionValid(0, q0, q1, kEdgeResolution, *context);
+    const auto end = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(ok);
+    valid += ok ? 1 : 0;
+    states += std::ceil((q1 - q0).cwiseAbs().maxCoeff() / kEdgeResolution) + 1.0;
+    if (times.size() < times.capacity()) times.push_back(std::chrono::duration<double, std::micro>(end - start).count());
+    i = (i + 1) % f.valid.size();
+  }
+  std::sort(times.begin(), times.end());
+  if (!times.empty()) {
+    state.counters["median_us"] = times[times.size() / 2];
+    state.counters["p95_us"] = times[times.size() * 95 / 100];
+  }
+  const double edges = static_cast<double>(std::max<std::int64_t>(state.iterations(), 1));
+  state.counters["valid"] = static_cast<double>(valid) / edges;
+  state.counters["states_per_edge"] = states / edges;
+}
+
 void registerAll() {
   for (const std::string scene : {"self", "desk", "tx90"}) {
     for (const bool validOnly : {false, true}) {
@@ -116,6 +170,13 @@ void registerAll() {
           checkStates(state, scene, precheck, validOnly);
         })->Unit(benchmark::kMicrosecond);
       }
+    }
+    for (const bool precheck : {true, false}) {
+      const std::string name = "EdgeCheck/" + scene + "/resolution_0.01" +
+                               (precheck ? "/aabb_precheck" : "/no_precheck");
+      benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& state) {
+        checkEdges(state, scene, precheck);
+      })->Unit(benchmark::kMicrosecond);
     }
   }
 }

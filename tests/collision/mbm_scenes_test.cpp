@@ -23,7 +23,6 @@ struct Counts {
 TEST(MotionBenchMaker, MostStartsAndGoalsAreValid) {
   LANG2MANIP_REQUIRE_SHARED_DATA(shared);
   const RobotModelPtr panda = builtinRobot("panda");
-  std::shared_ptr<const AllowedCollisionMatrix> matrix;
   std::map<std::string, Counts> perSet;
   std::set<std::filesystem::path> scenes;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(shared / "mbm/panda")) {
@@ -34,10 +33,8 @@ TEST(MotionBenchMaker, MostStartsAndGoalsAreValid) {
   Counts total;
   for (const std::filesystem::path& file : scenes) {
     const MoveItProblem problem = readMoveItProblem(file, requestFileForScene(file), panda);
-    FclCheckerSettings settings;
-    if (matrix) settings.precomputedMatrices = {matrix};
-    const FclCollisionChecker checker(problem.scene, settings);
-    matrix = checker.sharedAllowedCollisions(0);
+    // Every checker shares the model's cached allowed-collision matrix.
+    const FclCollisionChecker checker(problem.scene);
     const auto context = checker.makeContext();
     Counts& counts = perSet[file.parent_path().filename().string()];
     const bool start = checker.isStateValid(0, problem.start, *context);
@@ -59,13 +56,15 @@ TEST(MotionBenchMaker, MostStartsAndGoalsAreValid) {
   }
   std::cout << "total: " << total.problems << " problems, " << total.invalidStarts
             << " invalid starts, " << total.invalidGoals << " invalid goals\n";
-  // Measured (built-in Panda of enclosing capsules, 700 problems): 12 invalid starts and 171
-  // invalid goals. About half of the invalid goals are panda_link5 - panda_link7 capsule
-  // overlaps (up to 16 mm) and most of the rest are millimetre contacts of link5/link6 with
-  // obstacles: the capsules enclose the real links, whose meshes MotionBenchMaker used. Starts
-  // must stay at most 2% invalid, and all states at most 15%.
+  // Measured (built-in Panda of enclosing capsules, 700 problems): 12 invalid starts and 118
+  // invalid goals (171 before panda_link5 was split into a drive capsule and a thinner tube).
+  // Left: 38 panda_link5 - panda_link7 overlaps of at most 4 mm, cage goals whose fingers touch
+  // the cube (MotionBenchMaker opens them to 0.065 m, clamped here to the real 0.04 m), and
+  // millimetre contacts of link6 with obstacles: the capsules enclose the real links, whose
+  // meshes MotionBenchMaker used. Starts must stay at most 2% invalid, goals at
+  // most 18%.
   EXPECT_LE(total.invalidStarts, total.problems / 50);
-  EXPECT_LE(total.invalidStarts + total.invalidGoals, 2 * total.problems * 15 / 100);
+  EXPECT_LE(total.invalidGoals, total.problems * 18 / 100);
 }
 
 }  // namespace

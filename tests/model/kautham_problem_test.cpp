@@ -10,6 +10,8 @@
 #include <numbers>
 
 #include "kautham_test_support.hpp"
+#include "lang2manip/model/kautham_dof_target.hpp"
+#include "lang2manip/model/urdf_reader.hpp"
 
 namespace lang2manip {
 namespace {
@@ -168,6 +170,14 @@ TEST_F(KauthamProblemTest, ContinuousJointsMapOverPlusMinusTwoPi) {
   EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.9}), "spin"), 1.6 * kPi, kTolerance);
   // q = -2 pi + 0.1 * 4 pi = -1.6 pi
   EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.1}), "spin"), -1.6 * kPi, kTolerance);
+}
+
+TEST(KauthamJointRange, LimitsOrPlusMinusTwoPiForContinuousJoints) {
+  const RobotModelPtr arm = readUrdfString(test::armUrdf(), "arm.urdf", ".");
+  const auto range = [&](const char* joint) { return kauthamJointRange(*arm, arm->variableIndex(joint)); };
+  EXPECT_EQ(range("elbow"), std::make_pair(-2.0, 3.0));
+  EXPECT_EQ(range("slide"), std::make_pair(0.0, 0.4));
+  EXPECT_EQ(range("spin"), std::make_pair(-2.0 * kPi, 2.0 * kPi));
 }
 
 TEST_F(KauthamProblemTest, SafetyControllerSoftLimitsReplaceTheUrdfLimits) {

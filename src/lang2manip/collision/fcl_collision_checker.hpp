@@ -22,8 +22,8 @@ struct FclCheckerSettings {
   bool boundingBoxPrecheck = true;
   /// How each robot's allowed-collision matrix is computed.
   AllowedCollisionSettings allowedCollisions;
-  /// Matrices computed before (e.g. by another checker of the same robot model), one per scene
-  /// robot in scene order; empty: compute them. Saves the sampling when many scenes share a robot.
+  /// Matrices computed before (e.g. for a model loaded twice), one per scene robot in scene
+  /// order; empty: take them from the process-wide cache (computed on a model's first use).
   std::vector<std::shared_ptr<const AllowedCollisionMatrix>> precomputedMatrices;
 };
 
@@ -34,7 +34,9 @@ struct FclCheckerSettings {
 /// Self-collision pairs are filtered by each robot's AllowedCollisionMatrix (computed at
 /// construction: adjacency, SRDF, never/always over seeded random samples).
 ///
-/// Construction costs the ACM sampling (a few thousand FK + self checks per robot model).
+/// Construction costs the ACM sampling (a few thousand FK + self checks per robot model) the first
+/// time a model is used in the process: the matrices are cached per model
+/// (cachedAllowedCollisionMatrix), so later checkers of the same model share them.
 /// Thread-safe as described in CollisionChecker: immutable after construction.
 class FclCollisionChecker final : public CollisionChecker {
  public:

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <map>
 
+#include "lang2manip/collision/allowed_collision_cache.hpp"
 #include "lang2manip/collision/fcl_collision_checker.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/kinematics/forward_kinematics.hpp"
@@ -113,10 +114,7 @@ class WorldBuilder {
     const RobotModel* model = robot.model.get();
     if (!shapes_.count(model)) {
       shapes_[model] = linkShapes(*model, builder_);
-      acms_[model] = settings_.precomputedMatrices.empty()
-                         ? std::make_shared<const AllowedCollisionMatrix>(computeAllowedCollisionMatrix(
-                               *model, linkTest(*model, shapes_[model]), settings_.allowedCollisions))
-                         : nullptr;
+      acms_[model] = settings_.precomputedMatrices.empty() ? sharedMatrix(robot.model) : nullptr;
     }
     tables_.allowedCollisions.push_back(acms_[model] ? acms_[model] : precomputed(r, *model));
     holding_.emplace_back();
@@ -141,6 +139,14 @@ class WorldBuilder {
     const int link = model.linkIndex(attachment->link);
     const int body = addBody(FclBody{object.name, r, link, true}, shapes, attachment->linkToObject, r);
     holding_[static_cast<std::size_t>(r)].emplace(body, holdingLinks(model, link));
+  }
+
+  /// The model's matrix from the process-wide cache (computed here on its first use).
+  std::shared_ptr<const AllowedCollisionMatrix> sharedMatrix(const RobotModelPtr& model) const {
+    const LinkShapes& shapes = shapes_.at(model.get());
+    return cachedAllowedCollisionMatrix(model, settings_.allowedCollisions, [&] {
+      return computeAllowedCollisionMatrix(*model, linkTest(*model, shapes), settings_.allowedCollisions);
+    });
   }
 
   std::shared_ptr<const AllowedCollisionMatrix> precomputed(int r, const RobotModel& model) const {

@@ -1,8 +1,9 @@
 #pragma once
 /// @file Inverse kinematics behind one interface, and the registry of solvers by name.
 ///
-/// A solver is stateless between calls: every solve() builds its own per-call state (chain,
-/// workspace, random generator), so one solver object may serve many threads at once.
+/// A solver keeps no state between calls that changes its answers: every solve() builds its
+/// per-call state (chain, workspace, random generator), and the KDL solvers reuse per-thread KDL
+/// chains and solver objects, so one solver object may serve many threads at once.
 
 #include <cstdint>
 #include <memory>

@@ -1,5 +1,11 @@
 #include "lang2manip/kinematics/kdl_ik_solver.hpp"
 
+#include <algorithm>
+#include <map>
+#include <string>
+#include <tuple>
+#include <vector>
+
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainiksolverpos_nr_jl.hpp>
 #include <kdl/chainiksolvervel_pinv.hpp>
@@ -38,25 +44,66 @@ Pose kdlGoal(const IkProblem& problem) {
   return goal;
 }
 
+/// KDL's chain and solvers for one chain, built once. The solvers keep internal buffers, so an
+/// instance serves one thread at a time.
+struct KdlChainSolvers {
+  KdlChainSolvers(const RobotModel& model, const KinematicChain& source)
+      : joints(source.joints()),
+        chain(makeKdlChain(model, source)),
+        fk(chain),
+        velocity(chain),
+        ik(chain, fk, velocity, kMaxIterations, kKdlEpsilon) {}
+  KdlChainSolvers(const KdlChainSolvers&) = delete;
+  KdlChainSolvers& operator=(const KdlChainSolvers&) = delete;
+
+  /// The chain this was built from, to detect a different model at a reused address.
+  std::vector<ChainJoint> joints;
+  KDL::Chain chain;
+  KDL::ChainFkSolverPos_recursive fk;
+  KDL::ChainIkSolverVel_pinv velocity;
+  KDL::ChainIkSolverPos_NR_JL ik;
+};
+
+bool sameJoints(const std::vector<ChainJoint>& a, const std::vector<ChainJoint>& b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const ChainJoint& x, const ChainJoint& y) {
+    return x.joint == y.joint && x.type == y.type && x.variable == y.variable &&
+           x.axis == y.axis && x.origin.matrix() == y.origin.matrix();
+  });
+}
+
+/// The calling thread's KDL solvers for `problem`'s chain: built on the thread's first call for
+/// that chain, then reused (keyed by model and link names, checked against the chain's joints).
+KdlChainSolvers& threadSolvers(const IkProblem& problem) {
+  /// More chains than any one thread uses in practice; past it the cache starts over.
+  constexpr std::size_t kMaxCachedChains = 32;
+  using Key = std::tuple<const RobotModel*, std::string, std::string>;
+  thread_local std::map<Key, std::unique_ptr<KdlChainSolvers>> cache;
+  const Key key{&problem.model, problem.chain.baseLink(), problem.chain.tipLink()};
+  auto found = cache.find(key);
+  if (found != cache.end() && sameJoints(found->second->joints, problem.chain.joints())) {
+    return *found->second;
+  }
+  if (found == cache.end() && cache.size() >= kMaxCachedChains) cache.clear();
+  auto solvers = std::make_unique<KdlChainSolvers>(problem.model, problem.chain);
+  return *(cache[key] = std::move(solvers));
+}
+
 }  // namespace
 
 IkResult KdlIkSolver::doSolve(const IkProblem& problem) const {
-  const KDL::Chain chain = makeKdlChain(problem.model, problem.chain);
-  KDL::ChainFkSolverPos_recursive fk(chain);
-  KDL::ChainIkSolverVel_pinv velocity(chain);
-  KDL::ChainIkSolverPos_NR_JL solver(chain, toJntArray(problem.lower), toJntArray(problem.upper),
-                                     fk, velocity, kMaxIterations, kKdlEpsilon);
+  KdlChainSolvers& kdl = threadSolvers(problem);
+  kdl.ik.setJointLimits(toJntArray(problem.lower), toJntArray(problem.upper));
   const KDL::Frame goal = toKdlFrame(kdlGoal(problem));
   IkSearch search(problem);
   if (!restarts_) search.setMaxAttempts(1);
   Random random(problem.randomSeed);
   VectorX start = problem.seed.cwiseMax(problem.lower).cwiseMin(problem.upper);
   KDL::JntArray init = toJntArray(start);
-  KDL::JntArray out(chain.getNrOfJoints());
+  KDL::JntArray out(kdl.chain.getNrOfJoints());
   while (!search.done()) {
     search.countAttempt();
     init.data = start;
-    solver.CartToJnt(init, goal, out);
+    kdl.ik.CartToJnt(init, goal, out);
     search.addSolution(out.data, problem.chain.pose(out.data));
     search.randomConfiguration(random, start);
   }

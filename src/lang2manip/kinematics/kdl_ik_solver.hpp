@@ -12,8 +12,9 @@ namespace lang2manip {
 /// KDL::ChainIkSolverPos_NR_JL (Smits, Bruyninckx, Aertbelien: KDL, the Orocos Kinematics and
 /// Dynamics Library) on a KDL chain converted by makeKdlChain(), with KDL's default 100
 /// iterations per attempt. Approach-axis targets are solved as full poses with the orientation
-/// of the seed's tool frame turned onto the axis (KDL has no free-axis mode). Every call builds
-/// its own KDL chain and solvers: thread-safe.
+/// of the seed's tool frame turned onto the axis (KDL has no free-axis mode). The KDL chain and
+/// solvers of a chain are built on a thread's first call for it and reused by that thread's later
+/// calls (KDL's solvers keep internal buffers): thread-safe.
 class KdlIkSolver final : public IkSolver {
  public:
   /// `restarts`: random restarts under the time budget (otherwise one attempt from the seed).

@@ -8,15 +8,37 @@
 namespace lang2manip {
 namespace {
 
-/// X_JJ' of a joint's motion for value `value` (the joint frame after moving, in its rest frame).
-Pose jointMotion(const ChainJoint& joint, double value) noexcept {
-  Pose motion = Pose::Identity();
-  if (joint.type == JointType::kRevolute || joint.type == JointType::kContinuous) {
-    motion.linear() = Eigen::AngleAxisd(value, joint.axis).toRotationMatrix();
-  } else if (joint.type == JointType::kPrismatic) {
-    motion.translation() = value * joint.axis;
+/// R <- R * (rotation by `angle` about the joint's axis), written out for the coordinate axes.
+void rotateAbout(const ChainJoint& joint, double angle, Matrix3& R) noexcept {
+  const double c = std::cos(angle);
+  const double s = std::sin(angle);
+  const auto turn = [&](Eigen::Index a, Eigen::Index b) {
+    const Vector3 first = R.col(a);
+    R.col(a) = c * first + s * R.col(b);
+    R.col(b) = c * R.col(b) - s * first;
+  };
+  switch (joint.coordinateAxis) {
+    case 0: turn(1, 2); return;
+    case 1: turn(2, 0); return;
+    case 2: turn(0, 1); return;
+    default: R = R * Eigen::AngleAxisd(angle, joint.axis).toRotationMatrix();
   }
-  return motion;
+}
+
+/// Moves frame (R, p) by the joint's motion for joint value `value`.
+void applyMotion(const ChainJoint& joint, double value, Matrix3& R, Vector3& p) noexcept {
+  if (joint.type == JointType::kRevolute || joint.type == JointType::kContinuous) {
+    rotateAbout(joint, value, R);
+  } else if (joint.type == JointType::kPrismatic) {
+    p += value * (R * joint.axis);
+  }
+}
+
+int coordinateAxisOf(const Vector3& axis) {
+  for (int i = 0; i < 3; ++i) {
+    if (axis == Vector3::Unit(i)) return i;
+  }
+  return -1;
 }
 
 bool isMovable(JointType type) {
@@ -56,6 +78,7 @@ void KinematicChain::addJoint(const RobotModel& model, int joint) {
   entry.type = source.type;
   entry.origin = source.origin;
   entry.axis = source.axis;
+  entry.coordinateAxis = coordinateAxisOf(source.axis);
   reach_ += source.origin.translation().norm();
   if (isMovable(source.type)) {
     int robotVariable = model.variableOfJoint(joint);
@@ -80,13 +103,18 @@ void KinematicChain::addJoint(const RobotModel& model, int joint) {
 }
 
 Pose KinematicChain::pose(const VectorX& qc) const noexcept {
-  Pose X_BT = Pose::Identity();
+  Matrix3 R = Matrix3::Identity();
+  Vector3 p = Vector3::Zero();
   for (const ChainJoint& joint : joints_) {
-    X_BT = X_BT * joint.origin;
+    p += R * joint.origin.translation();
+    R = R * joint.origin.linear();
     if (joint.variable >= 0) {
-      X_BT = X_BT * jointMotion(joint, joint.multiplier * qc[joint.variable] + joint.offset);
+      applyMotion(joint, joint.multiplier * qc[joint.variable] + joint.offset, R, p);
     }
   }
+  Pose X_BT = Pose::Identity();
+  X_BT.linear() = R;
+  X_BT.translation() = p;
   return X_BT;
 }
 
@@ -95,24 +123,29 @@ void KinematicChain::poseAndJacobian(const VectorX& qc, Pose& X_BT,
   // Columns are accumulated as (-axis x p_joint; axis) and corrected with axis x p_tip at the end,
   // once the tip position is known (linear in the columns, so mimic sums stay exact).
   jacobian.setZero();
-  X_BT.setIdentity();
+  Matrix3 R = Matrix3::Identity();
+  Vector3 p = Vector3::Zero();
   for (const ChainJoint& joint : joints_) {
-    X_BT = X_BT * joint.origin;
+    p += R * joint.origin.translation();
+    R = R * joint.origin.linear();
     if (joint.variable < 0) continue;
-    const Vector3 axis = X_BT.linear() * joint.axis;
+    const Vector3 axis = joint.coordinateAxis >= 0 ? Vector3(R.col(joint.coordinateAxis))
+                                                   : Vector3(R * joint.axis);
     auto column = jacobian.col(joint.variable);
     if (joint.type == JointType::kPrismatic) {
       column.head<3>() += joint.multiplier * axis;
     } else if (joint.type != JointType::kFixed) {
-      column.head<3>() -= joint.multiplier * axis.cross(X_BT.translation());
+      column.head<3>() -= joint.multiplier * axis.cross(p);
       column.tail<3>() += joint.multiplier * axis;
     }
-    X_BT = X_BT * jointMotion(joint, joint.multiplier * qc[joint.variable] + joint.offset);
+    applyMotion(joint, joint.multiplier * qc[joint.variable] + joint.offset, R, p);
   }
-  const Vector3 tip = X_BT.translation();
   for (Eigen::Index c = 0; c < jacobian.cols(); ++c) {
-    jacobian.col(c).head<3>() += Vector3(jacobian.col(c).tail<3>()).cross(tip);
+    jacobian.col(c).head<3>() += Vector3(jacobian.col(c).tail<3>()).cross(p);
   }
+  X_BT.setIdentity();
+  X_BT.linear() = R;
+  X_BT.translation() = p;
 }
 
 void KinematicChain::gather(const VectorX& q, VectorX& qc) const noexcept {

@@ -22,6 +22,8 @@ struct ChainJoint {
   /// X_PJ, the joint frame in its parent link.
   Pose origin = Pose::Identity();
   Vector3 axis = Vector3::UnitZ();
+  /// 0, 1 or 2 when `axis` is exactly +x, +y or +z (a faster rotation), otherwise -1.
+  int coordinateAxis = -1;
   /// Chain variable that drives this joint (-1 for a fixed joint).
   int variable = -1;
   /// Joint value = multiplier * chain variable + offset (1 and 0 unless the joint is a mimic).

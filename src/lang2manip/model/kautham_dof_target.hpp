@@ -3,6 +3,7 @@
 /// axis of a robot or obstacle), resolved against a loaded problem.
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lang2manip/model/kautham_problem.hpp"
@@ -18,6 +19,10 @@ struct DofTarget {
   /// Joint variable (kJoint only).
   int variable = -1;
 };
+
+/// The range Kautham maps a joint variable's control [0, 1] onto: the joint's limits, or
+/// [-2 pi, 2 pi] for a continuous joint (kautham-format.md). `variable` indexes model's variables.
+std::pair<double, double> kauthamJointRange(const RobotModel& model, int variable);
 
 /// Resolves every DOF of `controls`; throws InputError naming the control file and the DOF's line
 /// for an unknown entity, an unknown DOF name (listing the valid ones), or a base DOF without

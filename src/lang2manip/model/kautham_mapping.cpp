@@ -77,6 +77,14 @@ std::size_t baseSlot(DofKind kind) { return static_cast<std::size_t>(kind) - 1; 
 
 }  // namespace
 
+std::pair<double, double> kauthamJointRange(const RobotModel& model, int variable) {
+  const int joint = model.variableJoints()[static_cast<std::size_t>(variable)];
+  if (model.joints()[static_cast<std::size_t>(joint)].type == JointType::kContinuous) {
+    return {-kTwoPi, kTwoPi};
+  }
+  return {model.lowerLimits()[variable], model.upperLimits()[variable]};
+}
+
 std::vector<DofTarget> resolveDofTargets(const KauthamProblem& problem, const ControlSet& controls,
                                          bool robots) {
   std::vector<DofTarget> targets;
@@ -163,10 +171,7 @@ RobotStates robotStatesFromControls(const KauthamProblem& problem,
       continue;
     }
     const RobotModel& model = *problem.scene.robots()[entity].model;
-    const int joint = model.variableJoints()[static_cast<std::size_t>(target.variable)];
-    const bool continuous = model.joints()[static_cast<std::size_t>(joint)].type == JointType::kContinuous;
-    const double lower = continuous ? -kTwoPi : model.lowerLimits()[target.variable];
-    const double upper = continuous ? kTwoPi : model.upperLimits()[target.variable];
+    const auto [lower, upper] = kauthamJointRange(model, target.variable);
     states.configurations[entity][target.variable] = lower + p[d] * (upper - lower);
   }
   for (std::size_t r = 0; r < problem.robots.size(); ++r) {

@@ -1,7 +1,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
-#include <numbers>
 
 #include "lang2manip/core/rotation.hpp"
 #include "lang2manip/model/kautham_dof_target.hpp"
@@ -106,10 +105,7 @@ std::vector<double> normalizedControls(const KauthamProblem& problem, const Cont
       continue;
     }
     const RobotModel& model = *robot.model;
-    const int joint = model.variableJoints()[static_cast<std::size_t>(targets[d].variable)];
-    const bool continuous = model.joints()[static_cast<std::size_t>(joint)].type == JointType::kContinuous;
-    const double lower = continuous ? -2.0 * std::numbers::pi : model.lowerLimits()[targets[d].variable];
-    const double upper = continuous ? 2.0 * std::numbers::pi : model.upperLimits()[targets[d].variable];
+    const auto [lower, upper] = kauthamJointRange(model, targets[d].variable);
     const double q = configurations[static_cast<std::size_t>(targets[d].entity)][targets[d].variable];
     values.push_back(upper > lower ? std::clamp((q - lower) / (upper - lower), 0.0, 1.0) : 0.5);
   }
