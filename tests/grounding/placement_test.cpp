@@ -57,7 +57,9 @@ TEST_P(PlacementOnRobot, MarkerAndEraserGoInTheHolder) {
     EXPECT_EQ(c.support, "holder");
     EXPECT_FALSE(c.placeSolutions.empty());
     EXPECT_FALSE(c.prePlaceSolutions.empty());
-    EXPECT_TRUE(c.placePose.isApprox(c.objectPose * c.objectToGripper));
+    const Pose release = Pose(Eigen::Translation3d(Vector3::UnitZ() * c.dropHeight)) * c.objectPose;
+    EXPECT_TRUE(c.placePose.isApprox(release * c.objectToGripper));
+    EXPECT_LT(c.dropHeight, 0.1);
     const SymbolicState state = observeSymbolicState(placed(reach, plan));
     EXPECT_EQ(state.inside.count(object), 1u) << object;
   }

@@ -39,6 +39,9 @@ struct PlacementSettings {
   int surfaceSamples = 30;
   /// Shifts across the direction of a side relation (left_of, ...), tried in this order.
   std::vector<double> lateralShifts = {0.0, 0.04, -0.04, 0.08, -0.08};
+  /// Inside a container the object may be released above its resting pose and drop straight
+  /// down onto the cavity floor: release heights above the resting pose tried in order.
+  std::vector<double> dropHeights = {0.0, 0.03, 0.06, 0.09};
   /// Pre-place: the object held this far above its target pose.
   double approachHeight = 0.10;
   /// After release, the tool frame retreats this far back along the approach axis.
@@ -99,6 +102,8 @@ struct PlacementCandidate {
   /// Index into the request's grasps (0 for the held grasp) and that grasp X_OG.
   std::size_t graspIndex = 0;
   Pose objectToGripper = Pose::Identity();
+  /// How far above objectPose the object is released (> 0 only inside a container: it drops).
+  double dropHeight = 0.0;
   /// Tool poses X_WG: release, before the descent (object approachHeight above), after the
   /// retreat.
   Pose placePose = Pose::Identity();

@@ -76,8 +76,18 @@ struct Attempt {
 };
 
 /// Tries every grasp at one object pose; appends a candidate or rejections.
+bool tryPoseAt(Attempt& a, const PoseCandidate& pose, double drop, int& checks, PlacementPlan& plan);
+
 void tryPose(Attempt& a, const PoseCandidate& pose, int& checks, PlacementPlan& plan) {
+  const bool inside = a.request.target.relation == SpatialRelation::kIn;
+  for (double drop : inside ? a.request.settings.dropHeights : std::vector<double>{0.0}) {
+    if (tryPoseAt(a, pose, drop, checks, plan)) return;
+  }
+}
+
+bool tryPoseAt(Attempt& a, const PoseCandidate& pose, double drop, int& checks, PlacementPlan& plan) {
   const PlacementSettings& s = a.request.settings;
+  const Pose release = Pose(Eigen::Translation3d(Vector3::UnitZ() * drop)) * pose.pose;
   for (std::size_t g = 0; g < a.grasps.size() && checks < s.maxReachChecks; ++g) {
     const ReachabilityChecker& reach = a.held.forGrasp(g, a.grasps[g]);
     PlacementCandidate c;
@@ -87,7 +97,8 @@ void tryPose(Attempt& a, const PoseCandidate& pose, int& checks, PlacementPlan& 
     c.objectPose = pose.pose;
     c.graspIndex = g;
     c.objectToGripper = a.grasps[g];
-    c.placePose = pose.pose * a.grasps[g];
+    c.dropHeight = drop;
+    c.placePose = release * a.grasps[g];
     c.prePlacePose = Pose(Eigen::Translation3d(Vector3::UnitZ() * s.approachHeight)) * c.placePose;
     c.retreatPose = c.placePose * Pose(Eigen::Translation3d(-reach.gripper().approachAxis * s.retreatDistance));
     c.heldWidth = 2.0 * halfExtentAlong(a.object, Pose::Identity(), a.grasps[g].linear() * reach.gripper().closingAxis);
@@ -108,8 +119,9 @@ void tryPose(Attempt& a, const PoseCandidate& pose, int& checks, PlacementPlan& 
     c.score = 1.0 / (1.0 + static_cast<double>(plan.candidates.size() + plan.rejections.size())) +
               0.1 * static_cast<double>(place.solutions.size()) / reach.settings().ikSolutions;
     plan.candidates.push_back(std::move(c));
-    return;
+    return true;
   }
+  return false;
 }
 
 /// The failure when every pose was dropped: blocked if any pose was, else the reach reason.
@@ -134,6 +146,7 @@ void checkPlacementSettings(const PlacementSettings& s) {
                               {s.releaseMargin, "releaseMargin"}}) {
     checkLength(value, field);
   }
+  for (double drop : s.dropHeights) checkLength(drop, "dropHeights");
   for (double shift : s.lateralShifts) {
     if (!std::isfinite(shift)) throw InputError("placement settings: lateralShifts must be finite");
   }
