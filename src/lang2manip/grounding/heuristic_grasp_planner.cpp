@@ -1,0 +1,172 @@
+#include "lang2manip/grounding/heuristic_grasp_planner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "lang2manip/grounding/grasp_candidates.hpp"
+#include "lang2manip/grounding/object_geometry.hpp"
+
+namespace lang2manip {
+namespace {
+
+/// Height tolerance when looking for the support under the object.
+constexpr double kSupportTolerance = 0.015;
+
+double directionPreference(GraspDirection direction) {
+  switch (direction) {
+    case GraspDirection::kTop: return 1.0;
+    case GraspDirection::kFront: return 2.0 / 3.0;
+    default: return 1.0 / 3.0;
+  }
+}
+
+GraspPlan failed(GraspPlan plan, GraspFailure failure, std::string reason) {
+  plan.failure = failure;
+  plan.reason = std::move(reason);
+  return plan;
+}
+
+std::string directionWords(GraspDirection direction) {
+  return direction == GraspDirection::kAuto ? "grasp" : graspDirectionName(direction) + " grasp";
+}
+
+/// The failure when geometry left no candidate: too wide if every rejection says so.
+GraspPlan noGeometricGrasp(GraspPlan plan, const std::string& object, GraspDirection direction) {
+  const bool allTooWide = !plan.rejections.empty() &&
+                          std::all_of(plan.rejections.begin(), plan.rejections.end(),
+                                      [](const GraspRejection& r) { return r.failure == GraspFailure::kTooWide; });
+  if (allTooWide) {
+    std::string narrowest = plan.rejections.front().reason;
+    return failed(std::move(plan), GraspFailure::kTooWide, object + ": too wide for the gripper (" + narrowest + ")");
+  }
+  const std::string why = plan.rejections.empty() ? "" : " (" + plan.rejections.front().reason + ")";
+  return failed(std::move(plan), GraspFailure::kNoCandidate, object + ": no " + directionWords(direction) + " fits its shape" + why);
+}
+
+/// The failure when no candidate passed the reachability checks: the most frequent reason.
+GraspPlan noReachableGrasp(GraspPlan plan, const std::string& object, GraspDirection direction) {
+  int collisions = 0;
+  const GraspRejection* example = nullptr;
+  const GraspRejection* collisionExample = nullptr;
+  for (const GraspRejection& r : plan.rejections) {
+    if (r.failure == GraspFailure::kInCollision) {
+      ++collisions;
+      if (collisionExample == nullptr) collisionExample = &r;
+    }
+    if (r.failure == GraspFailure::kUnreachable && example == nullptr) example = &r;
+  }
+  const bool collision = example == nullptr || (collisionExample != nullptr && 2 * collisions >= static_cast<int>(plan.rejections.size()));
+  const GraspRejection* shown = collision ? collisionExample : example;
+  const std::string detail = shown == nullptr ? "" : ": " + shown->reason;
+  const GraspFailure failure = collision ? GraspFailure::kInCollision : GraspFailure::kUnreachable;
+  const std::string words = collision ? " is collision-free" : " is reachable";
+  return failed(std::move(plan), failure, object + ": no " + directionWords(direction) + words + detail);
+}
+
+struct Context {
+  const ReachabilityChecker& reach;
+  const ReachabilityChecker& free;
+  const GraspRequest& request;
+  const SceneObject& object;
+};
+
+/// Full checks of one geometric grasp; nullopt (and a rejection) when it fails.
+std::optional<GraspCandidate> checkGrasp(const Context& c, const GeometricGrasp& g, GraspPlan& plan) {
+  const GraspSettings& s = c.request.settings;
+  GraspCandidate candidate;
+  candidate.object = c.object.name;
+  candidate.direction = g.direction;
+  candidate.label = g.label;
+  candidate.graspPose = g.pose;
+  candidate.approachDirection = g.approach;
+  candidate.preGraspPose = Pose(Eigen::Translation3d(-g.approach * s.approachDistance)) * g.pose;
+  candidate.postGraspPose = Pose(Eigen::Translation3d(Vector3::UnitZ() * s.liftDistance)) * g.pose;
+  candidate.objectToGripper = c.object.pose.inverse() * g.pose;
+  candidate.objectWidth = g.width;
+  candidate.opening = std::min(c.reach.gripper().maxOpening, g.width + 2.0 * s.openingMargin);
+  auto reject = [&](const std::string& stage, const ReachResult& r) {
+    const GraspFailure failure = r.failure == ReachFailure::kInCollision ? GraspFailure::kInCollision : GraspFailure::kUnreachable;
+    plan.rejections.push_back({g.label, failure, stage + " " + r.reason});
+    return std::nullopt;
+  };
+  const ReachResult grasp = c.reach.reach(g.pose, c.request.seed, candidate.opening, c.object.name);
+  if (!grasp.reachable()) return reject("grasp pose", grasp);
+  const ReachResult pre = c.reach.reach(candidate.preGraspPose, grasp.solutions.front(), candidate.opening);
+  if (!pre.reachable()) return reject("pre-grasp pose", pre);
+  const ReachResult post = c.free.reach(candidate.postGraspPose, grasp.solutions.front(), candidate.opening);
+  candidate.graspSolutions = grasp.solutions;
+  candidate.preGraspSolutions = pre.solutions;
+  candidate.postGraspSolutions = post.solutions;
+  candidate.clearance = c.free.clearance(grasp.solutions.front());
+  const double length = std::max(1e-3, halfExtentAlong(c.object, c.object.pose, g.approach.cross(g.pose.linear() * c.reach.gripper().closingAxis)));
+  const double solutions = static_cast<double>(grasp.solutions.size()) / c.reach.settings().ikSolutions;
+  candidate.score = std::min(std::max(candidate.clearance, 0.0), 0.05) / 0.05 + 0.3 * directionPreference(g.direction) +
+                    0.2 * (1.0 - std::abs(g.offset) / length) + 0.2 * std::min(1.0, solutions);
+  return candidate;
+}
+
+/// Direction preference first, then grasps nearer the object's centre.
+void orderGrasps(std::vector<GeometricGrasp>& grasps) {
+  std::stable_sort(grasps.begin(), grasps.end(), [](const GeometricGrasp& a, const GeometricGrasp& b) {
+    const double pa = directionPreference(a.direction), pb = directionPreference(b.direction);
+    if (pa != pb) return pa > pb;
+    return std::abs(a.offset) < std::abs(b.offset);
+  });
+}
+
+/// Round-robin over top, front and side (each in orderGrasps() order), so that every direction
+/// gets checked within the budget.
+std::vector<GeometricGrasp> interleaveByDirection(std::vector<GeometricGrasp> grasps) {
+  orderGrasps(grasps);
+  std::vector<std::vector<GeometricGrasp>> byDirection(3);
+  for (const GeometricGrasp& g : grasps) {
+    const std::size_t slot = g.direction == GraspDirection::kTop ? 0 : g.direction == GraspDirection::kFront ? 1 : 2;
+    byDirection[slot].push_back(g);
+  }
+  std::vector<GeometricGrasp> order;
+  for (std::size_t i = 0; order.size() < grasps.size(); ++i) {
+    for (const auto& list : byDirection) {
+      if (i < list.size()) order.push_back(list[i]);
+    }
+  }
+  return order;
+}
+
+}  // namespace
+
+GraspPlan HeuristicGraspPlanner::plan(const ReachabilityChecker& reach, const GraspRequest& request) const {
+  checkGraspSettings(request.settings);
+  const Scene& scene = reach.scene();
+  const SceneObject& object = scene.object(request.object);
+  GraspPlan plan;
+  if (scene.findAttachment(object.name) != nullptr) {
+    return failed(std::move(plan), GraspFailure::kNotGraspable, object.name + ": already held");
+  }
+  if (!object.movable) return failed(std::move(plan), GraspFailure::kNotGraspable, object.name + ": not movable");
+  const SceneObject* support = currentSupport(scene, object, kSupportTolerance);
+  GraspGeometryInput input{&object, object.pose, reach.robot().basePose,
+                           support != nullptr ? support->worldBounds().max().z() : object.worldBounds().min().z()};
+  GraspGeneration generation = generateGrasps(input, reach.gripper(), request.direction, request.settings);
+  plan.rejections = std::move(generation.rejections);
+  if (generation.grasps.empty()) return noGeometricGrasp(std::move(plan), object.name, request.direction);
+
+  Scene withoutObject = scene;
+  withoutObject.object(object.name).collisionEnabled = false;
+  const ReachabilityChecker free = reach.withScene(std::move(withoutObject));
+  const Context context{reach, free, request, object};
+  int checks = 0;
+  for (const GeometricGrasp& g : interleaveByDirection(std::move(generation.grasps))) {
+    if (static_cast<int>(plan.candidates.size()) >= request.settings.maxCandidates) break;
+    if (checks++ >= request.settings.maxReachChecks) break;
+    if (auto candidate = checkGrasp(context, g, plan)) plan.candidates.push_back(std::move(*candidate));
+  }
+  std::stable_sort(plan.candidates.begin(), plan.candidates.end(),
+                   [](const GraspCandidate& a, const GraspCandidate& b) { return a.score > b.score; });
+  if (plan.candidates.empty()) return noReachableGrasp(std::move(plan), object.name, request.direction);
+  return plan;
+}
+
+std::unique_ptr<GraspPlanner> makeHeuristicGraspPlanner() { return std::make_unique<HeuristicGraspPlanner>(); }
+
+}  // namespace lang2manip

@@ -1,0 +1,45 @@
+#pragma once
+/// @file Geometric queries on scene objects shared by grasp and placement planning: extents along
+/// a direction from the object's shape, bounds at a hypothetical pose, resting orientations and
+/// the support under a point.
+
+#include <string>
+#include <vector>
+
+#include "lang2manip/core/types.hpp"
+#include "lang2manip/model/scene.hpp"
+
+namespace lang2manip {
+
+/// Half the object's extent along the world direction `direction` (unit) with the object at
+/// `X_WO`, measured from objectCentre(). Exact for an object made of one box, sphere or
+/// cylinder; other objects (several shapes, meshes) use their local bounding box.
+double halfExtentAlong(const SceneObject& object, const Pose& X_WO, const Vector3& direction);
+
+/// The centre of the object's local bounding box, in the world, with the object at `X_WO`.
+Vector3 objectCentre(const SceneObject& object, const Pose& X_WO);
+
+/// World axis-aligned bounds of the object's collision geometry with the object at `X_WO`.
+AlignedBox3 boundsAtPose(const SceneObject& object, const Pose& X_WO);
+
+/// Bounds of `box` (in frame F) in frame W, for X_WF = `X`.
+AlignedBox3 transformedBox(const AlignedBox3& box, const Pose& X);
+
+/// World orientations an object can rest in: first `current` turned about the world z axis by
+/// 0, 90, 180 and 270 degrees, then each other object axis (+-x, +-y, -z of `current`) turned to
+/// point up, each with the same four yaws. No duplicates.
+std::vector<Quaternion> restingOrientations(const Quaternion& current);
+
+/// The object that a body standing at world point `point` (its bottom centre) would rest on:
+/// the highest object, other than those in `exclude`, whose world bounds contain the point's
+/// x, y and whose top is within `tolerance` of point.z(). nullptr when there is none.
+const SceneObject* supportUnder(const Scene& scene, const Vector3& point, double tolerance,
+                                const std::vector<std::string>& exclude);
+
+/// The object `object` currently rests on (see supportUnder()), from its world bounds.
+const SceneObject* currentSupport(const Scene& scene, const SceneObject& object, double tolerance);
+
+/// The pose of object `name` in the world, following its attachment when it is held.
+Pose currentObjectPose(const Scene& scene, const std::string& name);
+
+}  // namespace lang2manip

@@ -1,0 +1,234 @@
+#include "lang2manip/grounding/placement.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/grounding/object_collision.hpp"
+#include "lang2manip/grounding/object_geometry.hpp"
+#include "lang2manip/grounding/placement_poses.hpp"
+#include "lang2manip/kinematics/forward_kinematics.hpp"
+
+namespace lang2manip {
+namespace {
+
+void checkLength(double value, const char* field) {
+  if (!std::isfinite(value) || value < 0.0) {
+    throw InputError(std::string("placement settings: ") + field + " must be a finite length >= 0 (got " + std::to_string(value) + ")");
+  }
+}
+
+void checkCount(int value, const char* field) {
+  if (value < 1) throw InputError(std::string("placement settings: ") + field + " must be >= 1 (got " + std::to_string(value) + ")");
+}
+
+PlacementPlan failed(PlacementPlan plan, PlacementFailure failure, std::string reason) {
+  plan.failure = failure;
+  plan.reason = std::move(reason);
+  return plan;
+}
+
+/// X_OG of an object the robot holds, from the scene's attachment at the current configuration.
+Pose heldGrasp(const ReachabilityChecker& reach, const std::string& object) {
+  const Pose X_WG = reach.robot().basePose * computeLinkPose(reach.model(), reach.currentConfiguration(), reach.gripper().toolFrame);
+  return currentObjectPose(reach.scene(), object).inverse() * X_WG;
+}
+
+/// The grasps to try and whether the object is already held by the robot.
+std::vector<Pose> graspsToTry(const ReachabilityChecker& reach, const PlacementRequest& request, bool held) {
+  if (!request.grasps.empty()) return request.grasps;
+  if (!held) throw InputError("placement of " + request.object + ": the object is not held and no grasp was given");
+  return {heldGrasp(reach, request.object)};
+}
+
+/// Reachability of the robot holding the object by grasp X_OG (one checker per grasp, built once).
+class HeldObjectReach {
+ public:
+  HeldObjectReach(const ReachabilityChecker& reach, std::string object, bool held)
+      : reach_(reach), object_(std::move(object)), held_(held) {}
+
+  const ReachabilityChecker& forGrasp(std::size_t index, const Pose& X_OG) {
+    if (held_) return reach_;
+    auto& slot = checkers_[index];
+    if (!slot) {
+      Scene scene = reach_.scene();
+      scene.attach({object_, reach_.robot().name, reach_.gripper().toolFrame, X_OG.inverse()});
+      slot = std::make_unique<ReachabilityChecker>(reach_.withScene(std::move(scene)));
+    }
+    return *slot;
+  }
+
+ private:
+  const ReachabilityChecker& reach_;
+  std::string object_;
+  bool held_;
+  std::map<std::size_t, std::unique_ptr<ReachabilityChecker>> checkers_;
+};
+
+struct Attempt {
+  const PlacementRequest& request;
+  const SceneObject& object;
+  const std::vector<Pose>& grasps;
+  HeldObjectReach& held;
+  VectorX seed;
+};
+
+/// Tries every grasp at one object pose; appends a candidate or rejections.
+bool tryPoseAt(Attempt& a, const PoseCandidate& pose, double drop, int& checks, PlacementPlan& plan);
+
+void tryPose(Attempt& a, const PoseCandidate& pose, int& checks, PlacementPlan& plan) {
+  const bool inside = a.request.target.relation == SpatialRelation::kIn;
+  for (double drop : inside ? a.request.settings.dropHeights : std::vector<double>{0.0}) {
+    if (tryPoseAt(a, pose, drop, checks, plan)) return;
+  }
+}
+
+bool tryPoseAt(Attempt& a, const PoseCandidate& pose, double drop, int& checks, PlacementPlan& plan) {
+  const PlacementSettings& s = a.request.settings;
+  const Pose release = Pose(Eigen::Translation3d(Vector3::UnitZ() * drop)) * pose.pose;
+  for (std::size_t g = 0; g < a.grasps.size() && checks < s.maxReachChecks; ++g) {
+    const ReachabilityChecker& reach = a.held.forGrasp(g, a.grasps[g]);
+    PlacementCandidate c;
+    c.object = a.object.name;
+    c.support = pose.support;
+    c.label = pose.label;
+    c.objectPose = pose.pose;
+    c.graspIndex = g;
+    c.objectToGripper = a.grasps[g];
+    c.dropHeight = drop;
+    c.placePose = release * a.grasps[g];
+    c.prePlacePose = Pose(Eigen::Translation3d(Vector3::UnitZ() * s.approachHeight)) * c.placePose;
+    c.retreatPose = c.placePose * Pose(Eigen::Translation3d(-reach.gripper().approachAxis * s.retreatDistance));
+    c.heldWidth = 2.0 * halfExtentAlong(a.object, Pose::Identity(), a.grasps[g].linear() * reach.gripper().closingAxis);
+    c.releaseOpening = std::min(reach.gripper().maxOpening, c.heldWidth + 2.0 * s.releaseMargin);
+    ++checks;
+    const ReachResult place = reach.reach(c.placePose, a.seed, c.heldWidth);
+    if (!place.reachable()) {
+      plan.rejections.push_back({pose.label, PlacementFailure::kUnreachable, "place pose " + place.reason});
+      continue;
+    }
+    const ReachResult pre = reach.reach(c.prePlacePose, place.solutions.front(), c.heldWidth);
+    if (!pre.reachable()) {
+      plan.rejections.push_back({pose.label, PlacementFailure::kUnreachable, "pre-place pose " + pre.reason});
+      continue;
+    }
+    c.placeSolutions = place.solutions;
+    c.prePlaceSolutions = pre.solutions;
+    c.score = 1.0 / (1.0 + static_cast<double>(plan.candidates.size() + plan.rejections.size())) +
+              0.1 * static_cast<double>(place.solutions.size()) / reach.settings().ikSolutions;
+    plan.candidates.push_back(std::move(c));
+    return true;
+  }
+  return false;
+}
+
+/// The failure when every pose was dropped: blocked if any pose was, else the reach reason.
+PlacementPlan noPlacement(PlacementPlan plan, const std::string& what) {
+  const PlacementRejection* blocked = nullptr;
+  const PlacementRejection* unreachable = nullptr;
+  for (const PlacementRejection& r : plan.rejections) {
+    if (r.failure == PlacementFailure::kBlocked && blocked == nullptr) blocked = &r;
+    if (r.failure == PlacementFailure::kUnreachable && unreachable == nullptr) unreachable = &r;
+  }
+  if (unreachable != nullptr) return failed(std::move(plan), PlacementFailure::kUnreachable, what + ": no placement is reachable (" + unreachable->reason + ")");
+  if (blocked != nullptr) return failed(std::move(plan), PlacementFailure::kBlocked, what + ": every position is blocked (" + blocked->reason + ")");
+  return failed(std::move(plan), PlacementFailure::kUnreachable, what + ": no placement found");
+}
+
+}  // namespace
+
+void checkPlacementSettings(const PlacementSettings& s) {
+  for (auto [value, field] : {std::pair{s.releaseGap, "releaseGap"}, {s.sideGap, "sideGap"}, {s.nextToGap, "nextToGap"},
+                              {s.wallMargin, "wallMargin"}, {s.edgeMargin, "edgeMargin"}, {s.approachHeight, "approachHeight"},
+                              {s.retreatDistance, "retreatDistance"}, {s.supportTolerance, "supportTolerance"},
+                              {s.releaseMargin, "releaseMargin"}}) {
+    checkLength(value, field);
+  }
+  for (double drop : s.dropHeights) checkLength(drop, "dropHeights");
+  for (double shift : s.lateralShifts) {
+    if (!std::isfinite(shift)) throw InputError("placement settings: lateralShifts must be finite");
+  }
+  if (s.lateralShifts.empty()) throw InputError("placement settings: lateralShifts must not be empty");
+  checkCount(s.cavityGrid, "cavityGrid");
+  checkCount(s.surfaceSamples, "surfaceSamples");
+  checkCount(s.maxCandidates, "maxCandidates");
+  checkCount(s.maxReachChecks, "maxReachChecks");
+}
+
+PlacementPlan planPlacement(const ReachabilityChecker& reach, const PlacementRequest& request) {
+  checkPlacementSettings(request.settings);
+  const Scene& scene = reach.scene();
+  const SceneObject& object = scene.object(request.object);
+  if (request.target.relation) static_cast<void>(scene.object(request.target.target));
+  if (request.target.distance && !(std::isfinite(*request.target.distance) && *request.target.distance >= 0.0)) {
+    throw InputError("placement of " + object.name + ": the distance must be finite and >= 0");
+  }
+  const Attachment* attachment = scene.findAttachment(object.name);
+  const bool held = attachment != nullptr && attachment->robot == reach.robot().name;
+  const std::vector<Pose> grasps = graspsToTry(reach, request, held);
+  const std::string what = object.name + " " + describePlacementTarget(request.target);
+  const Pose current = currentObjectPose(scene, object.name);
+  const PoseSamplingInput input{&scene, &object, Quaternion(object.pose.linear()), current.translation(), reach.robot().basePose};
+  PoseSampling sampling = samplePlacementPoses(input, request.target, request.settings);
+  PlacementPlan plan;
+  if (sampling.poses.empty()) return failed(std::move(plan), sampling.failure, what + ": " + sampling.reason);
+
+  const ObjectCollisionWorld world(scene, object.name);
+  HeldObjectReach heldReach(reach, object.name, held);
+  Attempt attempt{request, object, grasps, heldReach, request.seed};
+  int checks = 0;
+  for (const PoseCandidate& pose : sampling.poses) {
+    if (static_cast<int>(plan.candidates.size()) >= request.settings.maxCandidates || checks >= request.settings.maxReachChecks) break;
+    const std::vector<std::string> blockers = world.collisions(pose.pose);
+    if (!blockers.empty()) {
+      std::string names;
+      for (const std::string& name : blockers) names += (names.empty() ? "" : ", ") + name;
+      plan.rejections.push_back({pose.label, PlacementFailure::kBlocked, "blocked by " + names});
+      continue;
+    }
+    tryPose(attempt, pose, checks, plan);
+  }
+  if (plan.candidates.empty()) return noPlacement(std::move(plan), what);
+  return plan;
+}
+
+PlacementTarget placementTargetFromParams(const ActionParams& params) {
+  PlacementTarget target;
+  target.relation = params.relation;
+  target.target = params.target;
+  target.distance = params.distance;
+  target.position = params.position;
+  target.orientation = params.orientation;
+  return target;
+}
+
+std::string describePlacementTarget(const PlacementTarget& target) {
+  char buffer[96];
+  if (!target.relation) {
+    if (!target.position) return "(no target)";
+    std::snprintf(buffer, sizeof buffer, "at (%.3f, %.3f, %.3f)", target.position->x(), target.position->y(), target.position->z());
+    return buffer;
+  }
+  std::string text = spatialRelationName(*target.relation) + " " + target.target;
+  if (target.distance) {
+    std::snprintf(buffer, sizeof buffer, " (%.3f m)", *target.distance);
+    text += buffer;
+  }
+  return text;
+}
+
+std::string placementFailureName(PlacementFailure failure) {
+  switch (failure) {
+    case PlacementFailure::kNone: return "none";
+    case PlacementFailure::kBadTarget: return "bad target";
+    case PlacementFailure::kTooLarge: return "too large";
+    case PlacementFailure::kNoSupport: return "no support";
+    case PlacementFailure::kBlocked: return "blocked";
+    case PlacementFailure::kUnreachable: return "unreachable";
+  }
+  return "unknown";
+}
+
+}  // namespace lang2manip

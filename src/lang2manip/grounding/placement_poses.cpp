@@ -1,0 +1,202 @@
+#include "lang2manip/grounding/placement_poses.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "lang2manip/core/random.hpp"
+#include "lang2manip/grounding/object_geometry.hpp"
+
+namespace lang2manip {
+namespace {
+
+constexpr double kSupportTolerance = 0.015;
+
+std::string sizeText(const Vector3& v) {
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, "(%.3f x %.3f x %.3f m)", v.x(), v.y(), v.z());
+  return buffer;
+}
+
+std::string pointText(double x, double y, double z) {
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, "(%.3f, %.3f, %.3f)", x, y, z);
+  return buffer;
+}
+
+PoseSampling failure(PlacementFailure kind, std::string reason) {
+  PoseSampling sampling;
+  sampling.failure = kind;
+  sampling.reason = std::move(reason);
+  return sampling;
+}
+
+/// The pose with rotation `q` whose bounding box is centred on (x, y) with its bottom at `bottom`.
+Pose restingPose(const SceneObject& object, const Quaternion& q, double x, double y, double bottom) {
+  Pose pose = Pose::Identity();
+  pose.linear() = q.toRotationMatrix();
+  const AlignedBox3 bounds = boundsAtPose(object, pose);
+  pose.translation() = Vector3(x - bounds.center().x(), y - bounds.center().y(), bottom - bounds.min().z());
+  return pose;
+}
+
+Vector3 rotatedSize(const SceneObject& object, const Quaternion& q) {
+  Pose pose = Pose::Identity();
+  pose.linear() = q.toRotationMatrix();
+  return boundsAtPose(object, pose).sizes();
+}
+
+/// Grid coordinates over [low, high], the middle first.
+std::vector<double> gridValues(double low, double high, int count) {
+  if (high <= low || count < 2) return {(low + high) / 2.0};
+  std::vector<double> values;
+  for (int i = 0; i < count; ++i) values.push_back(low + (high - low) * i / (count - 1));
+  const double middle = (low + high) / 2.0;
+  std::stable_sort(values.begin(), values.end(), [&](double a, double b) { return std::abs(a - middle) < std::abs(b - middle); });
+  return values;
+}
+
+PoseSampling inContainer(const PoseSamplingInput& in, const SceneObject& container, const PlacementSettings& s) {
+  if (container.role != ObjectRole::kContainer || !container.cavity) {
+    return failure(PlacementFailure::kBadTarget, container.name + " is not a container");
+  }
+  const AlignedBox3 cavity = transformedBox(*container.cavity, container.pose);
+  const Vector3 room = cavity.sizes() - Vector3::Constant(2.0 * s.wallMargin);
+  const double floor = cavity.min().z() + s.releaseGap;
+  PoseSampling sampling;
+  std::vector<std::pair<Quaternion, Vector3>> fitting;
+  for (const Quaternion& q : restingOrientations(in.orientation)) {
+    const Vector3 size = rotatedSize(*in.object, q);
+    if (size.x() <= room.x() && size.y() <= room.y() && floor + size.z() / 2.0 < cavity.max().z()) fitting.emplace_back(q, size);
+  }
+  if (fitting.empty()) {
+    const Vector3 size = in.object->dimensions();
+    return failure(PlacementFailure::kTooLarge,
+                   in.object->name + " " + sizeText(size) + " is too large for the cavity of " +
+                       container.name + " " + sizeText(cavity.sizes()) + " in every orientation");
+  }
+  for (int cell = 0; cell < s.cavityGrid * s.cavityGrid; ++cell) {
+    for (const auto& [q, size] : fitting) {
+      const auto xs = gridValues(cavity.min().x() + s.wallMargin + size.x() / 2.0, cavity.max().x() - s.wallMargin - size.x() / 2.0, s.cavityGrid);
+      const auto ys = gridValues(cavity.min().y() + s.wallMargin + size.y() / 2.0, cavity.max().y() - s.wallMargin - size.y() / 2.0, s.cavityGrid);
+      const std::size_t ix = static_cast<std::size_t>(cell / s.cavityGrid), iy = static_cast<std::size_t>(cell % s.cavityGrid);
+      if (ix >= xs.size() || iy >= ys.size()) continue;
+      sampling.poses.push_back({restingPose(*in.object, q, xs[ix], ys[iy], floor), container.name,
+                                "in " + container.name + " at " + pointText(xs[ix], ys[iy], floor)});
+    }
+  }
+  return sampling;
+}
+
+std::vector<Quaternion> uprightYaws(const Quaternion& current) {
+  std::vector<Quaternion> all = restingOrientations(current);
+  all.resize(std::min<std::size_t>(all.size(), 4));
+  return all;
+}
+
+PoseSampling onSurface(const PoseSamplingInput& in, const SceneObject& surface, const PlacementSettings& s) {
+  const AlignedBox3 top = surface.worldBounds();
+  Random random(s.seed);
+  std::vector<Vector3> points;
+  for (int i = 0; i < s.surfaceSamples; ++i) {
+    points.emplace_back(random.uniform(top.min().x(), top.max().x()), random.uniform(top.min().y(), top.max().y()), top.max().z());
+  }
+  std::stable_sort(points.begin(), points.end(), [&](const Vector3& a, const Vector3& b) {
+    return (a - in.position).head<2>().norm() < (b - in.position).head<2>().norm();
+  });
+  PoseSampling sampling;
+  for (const Vector3& p : points) {
+    for (const Quaternion& q : uprightYaws(in.orientation)) {
+      const Vector3 half = rotatedSize(*in.object, q) / 2.0 + Vector3::Constant(s.edgeMargin);
+      if (p.x() - half.x() < top.min().x() || p.x() + half.x() > top.max().x() || p.y() - half.y() < top.min().y() ||
+          p.y() + half.y() > top.max().y()) continue;
+      sampling.poses.push_back({restingPose(*in.object, q, p.x(), p.y(), top.max().z() + s.releaseGap), surface.name,
+                                "on " + surface.name + " at " + pointText(p.x(), p.y(), p.z())});
+    }
+  }
+  if (sampling.poses.empty()) return failure(PlacementFailure::kTooLarge, in.object->name + " does not fit on top of " + surface.name);
+  return sampling;
+}
+
+std::vector<Vector3> sideDirections(SpatialRelation relation, const Pose& base) {
+  const Vector3 x = Vector3(base.linear().col(0).x(), base.linear().col(0).y(), 0.0).normalized();
+  const Vector3 y = Vector3::UnitZ().cross(x);
+  switch (relation) {
+    case SpatialRelation::kLeftOf: return {y};
+    case SpatialRelation::kRightOf: return {-y};
+    case SpatialRelation::kInFrontOf: return {x};
+    case SpatialRelation::kBehind: return {-x};
+    default: return {y, -y, x, -x};
+  }
+}
+
+PoseSampling besideObject(const PoseSamplingInput& in, const SceneObject& reference, SpatialRelation relation,
+                          std::optional<double> distance, const PlacementSettings& s) {
+  const SceneObject* support = currentSupport(*in.scene, reference, kSupportTolerance);
+  if (support == nullptr) return failure(PlacementFailure::kNoSupport, reference.name + " rests on nothing to place beside it");
+  const double floor = support->worldBounds().max().z();
+  const AlignedBox3 area = support->worldBounds();
+  const Vector3 centre = reference.worldBounds().center();
+  const bool nextTo = relation == SpatialRelation::kNextTo;
+  PoseSampling sampling;
+  for (double shift : nextTo ? std::vector<double>{0.0} : s.lateralShifts) {
+    for (const Vector3& d : sideDirections(relation, in.robotBase)) {
+      for (const Quaternion& q : uprightYaws(in.orientation)) {
+        Pose probe = Pose::Identity();
+        probe.linear() = q.toRotationMatrix();
+        const double halfMine = halfExtentAlong(*in.object, probe, d);
+        const double gap = distance.value_or(nextTo ? s.nextToGap : s.sideGap);
+        const double offset = (distance && !nextTo) ? *distance : halfExtentAlong(reference, reference.pose, d) + halfMine + gap;
+        const Vector3 p = centre + d * offset + Vector3::UnitZ().cross(d) * shift;
+        const Vector3 half = rotatedSize(*in.object, q) / 2.0;
+        if (p.x() - half.x() < area.min().x() || p.x() + half.x() > area.max().x() || p.y() - half.y() < area.min().y() ||
+            p.y() + half.y() > area.max().y()) {
+          sampling.failure = PlacementFailure::kNoSupport;
+          sampling.reason = in.object->name + ": no room on " + support->name + " " + describePlacementTarget({relation, reference.name, distance, {}, {}});
+          continue;
+        }
+        sampling.poses.push_back({restingPose(*in.object, q, p.x(), p.y(), floor + s.releaseGap), support->name,
+                                  describePlacementTarget({relation, reference.name, distance, {}, {}}) + " at " + pointText(p.x(), p.y(), floor)});
+      }
+    }
+  }
+  return sampling;
+}
+
+PoseSampling atPose(const PoseSamplingInput& in, const PlacementTarget& target, const PlacementSettings& s) {
+  Pose pose = Pose::Identity();
+  pose.linear() = target.orientation ? (in.robotBase.linear() * target.orientation->normalized().toRotationMatrix()) : in.orientation.toRotationMatrix();
+  pose.translation() = in.robotBase * *target.position;
+  const AlignedBox3 bounds = boundsAtPose(*in.object, pose);
+  const Vector3 bottom(bounds.center().x(), bounds.center().y(), bounds.min().z());
+  const SceneObject* support = supportUnder(*in.scene, bottom, s.supportTolerance, {in.object->name});
+  if (support == nullptr || bottom.z() < support->worldBounds().max().z() - 1e-3) {
+    return failure(PlacementFailure::kNoSupport, in.object->name + ": nothing to rest on at " + pointText(bottom.x(), bottom.y(), bottom.z()) + " (world)");
+  }
+  pose.translation().z() += support->worldBounds().max().z() + s.releaseGap - bottom.z();
+  PoseSampling sampling;
+  sampling.poses.push_back({pose, support->name, describePlacementTarget(target)});
+  return sampling;
+}
+
+}  // namespace
+
+PoseSampling samplePlacementPoses(const PoseSamplingInput& in, const PlacementTarget& target, const PlacementSettings& s) {
+  if (!target.relation) {
+    if (!target.position) return failure(PlacementFailure::kBadTarget, in.object->name + ": the placement has neither a relation nor a position");
+    return atPose(in, target, s);
+  }
+  if (target.target == in.object->name) return failure(PlacementFailure::kBadTarget, in.object->name + " cannot be placed relative to itself");
+  const SceneObject& reference = in.scene->object(target.target);
+  switch (*target.relation) {
+    case SpatialRelation::kIn: return inContainer(in, reference, s);
+    case SpatialRelation::kOn: return onSurface(in, reference, s);
+    default: {
+      PoseSampling sampling = besideObject(in, reference, *target.relation, target.distance, s);
+      if (!sampling.poses.empty()) sampling.failure = PlacementFailure::kNone;
+      return sampling;
+    }
+  }
+}
+
+}  // namespace lang2manip

@@ -1,0 +1,136 @@
+#include "lang2manip/grounding/reachability.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "lang2manip/collision/fcl_collision_checker.hpp"
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/kinematics/forward_kinematics.hpp"
+#include "lang2manip/kinematics/kinematic_chain.hpp"
+
+namespace lang2manip {
+namespace {
+
+std::string contactText(const CollisionContact& contact) { return contact.first + " - " + contact.second; }
+
+std::string metres(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3f m", value);
+  return buffer;
+}
+
+}  // namespace
+
+std::string reachFailureName(ReachFailure failure) {
+  switch (failure) {
+    case ReachFailure::kNone: return "none";
+    case ReachFailure::kOutOfReach: return "out of reach";
+    case ReachFailure::kNoIk: return "no IK solution";
+    case ReachFailure::kInCollision: return "in collision";
+  }
+  return "unknown";
+}
+
+ReachabilityChecker::ReachabilityChecker(std::shared_ptr<const CollisionChecker> checker,
+                                         std::shared_ptr<const IkSolver> ik, const std::string& robot,
+                                         const std::string& manipulator, ReachSettings settings)
+    : checker_(std::move(checker)), ik_(std::move(ik)), settings_(settings) {
+  if (!checker_) throw InputError("reachability: no collision checker");
+  if (!ik_) throw InputError("reachability: no IK solver");
+  if (checker_->scene().robots().empty()) throw InputError("reachability: the scene has no robot");
+  robotName_ = robot.empty() ? checker_->scene().robots().front().name : robot;
+  robotIndex_ = checker_->robotIndex(robotName_);
+  gripper_ = describeGripper(model(), manipulator);
+  const Manipulator& arm = findManipulator(model(), gripper_.manipulator);
+  chainBase_ = this->robot().basePose * computeLinkPose(model(), currentConfiguration(), arm.baseLink);
+  chainReach_ = KinematicChain(model(), arm.baseLink, arm.toolFrame).reach();
+  context_ = std::shared_ptr<CollisionContext>(checker_->makeContext());
+}
+
+const SceneRobot& ReachabilityChecker::robot() const { return checker_->scene().robot(robotName_); }
+
+bool ReachabilityChecker::allowedContact(const CollisionContact& contact, const std::string& touchable) const {
+  if (touchable.empty()) return false;
+  const std::string* other = nullptr;
+  if (contact.first == touchable) other = &contact.second;
+  if (contact.second == touchable) other = &contact.first;
+  if (other == nullptr) return false;
+  for (const std::string& finger : gripper_.fingerLinks) {
+    if (*other == robotName_ + "/" + finger) return true;
+  }
+  return false;
+}
+
+bool ReachabilityChecker::isFree(const VectorX& q, const std::string& touchable) const {
+  ++statistics_.collisionChecks;
+  if (touchable.empty()) return checker_->isStateValid(robotIndex_, q, *context_);
+  const CollisionReport report = checker_->checkState(robotIndex_, q, {}, *context_);
+  return std::all_of(report.contacts.begin(), report.contacts.end(),
+                     [&](const CollisionContact& c) { return allowedContact(c, touchable); });
+}
+
+std::string ReachabilityChecker::collisionReason(const VectorX& q, const std::string& touchable) const {
+  const CollisionReport report = checker_->checkState(robotIndex_, q, {}, *context_);
+  std::string pairs;
+  for (const CollisionContact& contact : report.contacts) {
+    if (!allowedContact(contact, touchable)) pairs += (pairs.empty() ? "" : ", ") + contactText(contact);
+  }
+  return "in collision: " + pairs;
+}
+
+ReachResult ReachabilityChecker::reach(const Pose& X_WG, const VectorX& seed, double opening,
+                                       const std::string& touchable) const {
+  ReachResult result;
+  const Pose X_BG = chainBase_.inverse() * X_WG;
+  if (X_BG.translation().norm() > chainReach_) {
+    result.failure = ReachFailure::kOutOfReach;
+    result.reason = "out of reach: " + metres(X_BG.translation().norm()) + " from the arm base, reach " + metres(chainReach_);
+    return result;
+  }
+  IkRequest request;
+  request.model = &model();
+  request.manipulator = gripper_.manipulator;
+  request.target = IkTarget::pose(X_BG);
+  request.seed = seed.size() == 0 ? currentConfiguration() : seed;
+  request.timeoutSeconds = settings_.ikTimeoutSeconds;
+  request.solutionCount = settings_.ikSolutions;
+  request.randomSeed = settings_.seed;
+  ++statistics_.ikCalls;
+  const IkResult ik = ik_->solve(request);
+  if (ik.status != IkStatus::kSuccess) {
+    result.failure = ReachFailure::kNoIk;
+    result.reason = "no IK solution (" + ikStatusName(ik.status) + (ik.message.empty() ? "" : ": " + ik.message) + ")";
+    return result;
+  }
+  for (const VectorX& solution : ik.solutions) {
+    VectorX q = withGripperOpening(model(), gripper_, solution, opening);
+    if (isFree(q, touchable)) result.solutions.push_back(std::move(q));
+  }
+  if (result.solutions.empty()) {
+    result.failure = ReachFailure::kInCollision;
+    result.reason = collisionReason(withGripperOpening(model(), gripper_, ik.solutions.front(), opening), touchable);
+  }
+  return result;
+}
+
+double ReachabilityChecker::clearance(const VectorX& q) const {
+  CollisionRequest request;
+  request.computeDistance = true;
+  ++statistics_.collisionChecks;
+  return checker_->checkState(robotIndex_, q, request, *context_).minimumDistance;
+}
+
+ReachabilityChecker ReachabilityChecker::withScene(Scene scene) const {
+  FclCheckerSettings fcl;
+  if (const auto* exact = dynamic_cast<const FclCollisionChecker*>(checker_.get())) {
+    if (exact->scene().robots().size() == scene.robots().size()) {
+      for (std::size_t r = 0; r < scene.robots().size(); ++r) {
+        fcl.precomputedMatrices.push_back(exact->sharedAllowedCollisions(static_cast<int>(r)));
+      }
+    }
+  }
+  auto checker = std::make_shared<const FclCollisionChecker>(std::move(scene), fcl);
+  return ReachabilityChecker(checker, ik_, robotName_, gripper_.manipulator, settings_);
+}
+
+}  // namespace lang2manip

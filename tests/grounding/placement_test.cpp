@@ -1,0 +1,151 @@
+// Placement on the built-in desk scenes: in the holder, on the desk, beside other objects, at an
+// explicit pose; a full holder, a too-large object and a blocked pose are refused with reasons.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "grounding_test_support.hpp"
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/grounding/grasp_planner.hpp"
+#include "lang2manip/grounding/placement.hpp"
+#include "lang2manip/symbolic/spatial_relations.hpp"
+#include "lang2manip/symbolic/symbolic_state.hpp"
+
+namespace lang2manip::test {
+namespace {
+
+using ::testing::HasSubstr;
+
+/// Every top/front/side grasp the planner finds for `object`, as X_OG.
+std::vector<Pose> graspsOf(const ReachabilityChecker& reach, const std::string& object) {
+  GraspRequest request;
+  request.object = object;
+  request.settings.maxCandidates = 12;
+  const GraspPlan plan = makeGraspPlanner("heuristic")->plan(reach, request);
+  std::vector<Pose> grasps;
+  for (const GraspCandidate& c : plan.candidates) grasps.push_back(c.objectToGripper);
+  return grasps;
+}
+
+PlacementPlan place(const ReachabilityChecker& reach, const std::string& object, PlacementTarget target) {
+  PlacementRequest request;
+  request.object = object;
+  request.target = std::move(target);
+  request.grasps = graspsOf(reach, object);
+  return planPlacement(reach, request);
+}
+
+PlacementTarget relation(SpatialRelation r, const std::string& target, std::optional<double> distance = {}) {
+  return {r, target, distance, {}, {}};
+}
+
+/// The scene after releasing the object at the first candidate's pose.
+Scene placed(const ReachabilityChecker& reach, const PlacementPlan& plan) {
+  Scene scene = reach.scene();
+  scene.object(plan.candidates.front().object).pose = plan.candidates.front().objectPose;
+  return scene;
+}
+
+class PlacementOnRobot : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(PlacementOnRobot, MarkerAndEraserGoInTheHolder) {
+  const ReachabilityChecker reach = reachFor(GetParam(), deskScene(GetParam()));
+  for (const std::string object : {"eraser", "marker"}) {
+    const PlacementPlan plan = place(reach, object, relation(SpatialRelation::kIn, "holder"));
+    ASSERT_TRUE(plan.success()) << plan.reason;
+    const PlacementCandidate& c = plan.candidates.front();
+    EXPECT_EQ(c.support, "holder");
+    EXPECT_FALSE(c.placeSolutions.empty());
+    EXPECT_FALSE(c.prePlaceSolutions.empty());
+    const Pose release = Pose(Eigen::Translation3d(Vector3::UnitZ() * c.dropHeight)) * c.objectPose;
+    EXPECT_TRUE(c.placePose.isApprox(release * c.objectToGripper));
+    EXPECT_LT(c.dropHeight, 0.1);
+    const SymbolicState state = observeSymbolicState(placed(reach, plan));
+    EXPECT_EQ(state.inside.count(object), 1u) << object;
+  }
+}
+
+TEST_P(PlacementOnRobot, EraserOnTheDeskAndBesideTheMarker) {
+  const ReachabilityChecker reach = reachFor(GetParam(), deskScene(GetParam()));
+  const PlacementPlan on = place(reach, "eraser", relation(SpatialRelation::kOn, "desk"));
+  ASSERT_TRUE(on.success()) << on.reason;
+  EXPECT_EQ(observeSymbolicState(placed(reach, on)).onTopOf.at("eraser"), "desk");
+  for (SpatialRelation r : {SpatialRelation::kLeftOf, SpatialRelation::kRightOf, SpatialRelation::kInFrontOf,
+                            SpatialRelation::kBehind, SpatialRelation::kNextTo}) {
+    const PlacementPlan plan = place(reach, "eraser", relation(r, "marker"));
+    ASSERT_TRUE(plan.success()) << spatialRelationName(r) << ": " << plan.reason;
+    Goal goal{GoalKind::kRelation, "eraser", r, "marker", {}, Vector3::Zero(), {}};
+    const GoalCheck check = checkGoalInScene(placed(reach, plan), goal);
+    EXPECT_TRUE(check.holds) << check.explanation;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(DeskRobots, PlacementOnRobot, ::testing::Values("panda", "ur5"));
+
+TEST(Placement, GivenDistanceIsKept) {
+  const ReachabilityChecker reach = reachFor("panda", deskScene("panda"));
+  const PlacementPlan plan = place(reach, "eraser", relation(SpatialRelation::kLeftOf, "marker", 0.12));
+  ASSERT_TRUE(plan.success()) << plan.reason;
+  Goal goal{GoalKind::kRelation, "eraser", SpatialRelation::kLeftOf, "marker", 0.12, Vector3::Zero(), {}};
+  EXPECT_TRUE(checkGoalInScene(placed(reach, plan), goal).holds);
+}
+
+TEST(Placement, FullHolderIsRefused) {
+  Scene scene = deskScene("panda");
+  scene.addObject(boxObject("block", Vector3(0.055, 0.055, 0.09), Vector3(0.12, 0.02, 0.755)));
+  const PlacementPlan plan = place(reachFor("panda", scene), "eraser", relation(SpatialRelation::kIn, "holder"));
+  EXPECT_FALSE(plan.success());
+  EXPECT_EQ(plan.failure, PlacementFailure::kBlocked);
+  EXPECT_THAT(plan.reason, HasSubstr("eraser in holder"));
+  EXPECT_THAT(plan.reason, HasSubstr("block"));
+}
+
+TEST(Placement, TooLargeObjectIsRefused) {
+  Scene scene = deskScene("panda");
+  scene.addObject(boxObject("cube", Vector3(0.07, 0.07, 0.07), Vector3(0.1, -0.3, 0.75)));
+  PlacementRequest request;
+  request.object = "cube";
+  request.target = relation(SpatialRelation::kIn, "holder");
+  request.grasps = {Pose::Identity()};
+  const PlacementPlan plan = planPlacement(reachFor("panda", scene), request);
+  EXPECT_EQ(plan.failure, PlacementFailure::kTooLarge);
+  EXPECT_THAT(plan.reason, HasSubstr("cube"));
+  EXPECT_THAT(plan.reason, HasSubstr("too large for the cavity of holder"));
+}
+
+TEST(Placement, BlockedExplicitPoseAndMidAirAreRefused) {
+  const ReachabilityChecker reach = reachFor("panda", deskScene("panda"));
+  const Pose base = reach.robot().basePose;
+  PlacementTarget onMarker;
+  onMarker.position = base.inverse() * Vector3(0.02, -0.18, 0.75);
+  const PlacementPlan blocked = place(reach, "eraser", onMarker);
+  EXPECT_EQ(blocked.failure, PlacementFailure::kBlocked);
+  EXPECT_THAT(blocked.reason, HasSubstr("blocked by marker"));
+  PlacementTarget midAir;
+  midAir.position = base.inverse() * Vector3(0.2, -0.1, 1.2);
+  const PlacementPlan air = place(reach, "eraser", midAir);
+  EXPECT_EQ(air.failure, PlacementFailure::kNoSupport);
+  PlacementTarget free;
+  free.position = base.inverse() * Vector3(0.1, -0.25, 0.75);
+  const PlacementPlan ok = place(reach, "eraser", free);
+  EXPECT_TRUE(ok.success()) << ok.reason;
+}
+
+TEST(Placement, BadTargetsAndInput) {
+  const ReachabilityChecker reach = reachFor("panda", deskScene("panda"));
+  EXPECT_EQ(place(reach, "eraser", relation(SpatialRelation::kIn, "desk")).failure, PlacementFailure::kBadTarget);
+  EXPECT_EQ(place(reach, "eraser", relation(SpatialRelation::kLeftOf, "eraser")).failure, PlacementFailure::kBadTarget);
+  PlacementRequest request;
+  request.object = "eraser";
+  request.target = relation(SpatialRelation::kOn, "desk");
+  EXPECT_THROW(static_cast<void>(planPlacement(reach, request)), InputError);  // not held, no grasp
+  request.grasps = {Pose::Identity()};
+  request.target = relation(SpatialRelation::kOn, "shelf");
+  EXPECT_THROW(static_cast<void>(planPlacement(reach, request)), InputError);
+  request.target = relation(SpatialRelation::kOn, "desk");
+  request.settings.cavityGrid = 0;
+  EXPECT_THROW(static_cast<void>(planPlacement(reach, request)), InputError);
+}
+
+}  // namespace
+}  // namespace lang2manip::test
