@@ -65,6 +65,11 @@ long progressIterations(const ob::Planner& planner) {
   }
 }
 
+bool plansUntilLimit(const PlannerSettings& settings) {
+  const PlannerDescription& description = plannerDescription(settings.planner());
+  return description.runsUntilTimeLimit || (settings.optimize() && description.optimizing);
+}
+
 }  // namespace
 
 void routeOmplMessagesToLog() {
@@ -258,9 +263,15 @@ MotionPlan MotionPlanner::solve(const VectorX& start, const std::vector<VectorX>
     ob::Planner& planner = *ompl_->planner;
     planner.setProblemDefinition(problem);
     planner.setup();
+    // A planner that always plans until its limit is given 80% of the time left, keeping the
+    // rest to plan again if its path fails verification.
+    const StopCondition attemptLimit = plansUntilLimit(settings)
+                                           ? limit.orElse(StopCondition::afterSeconds(
+                                                 std::max(1e-3, 0.8 * limit.secondsLeft())))
+                                           : limit;
     const auto planningStart = Clock::now();
-    const ob::PlannerStatus status =
-        planner.solve(ob::PlannerTerminationCondition([&limit] { return limit.shouldStop(); }));
+    const ob::PlannerStatus status = planner.solve(
+        ob::PlannerTerminationCondition([&attemptLimit] { return attemptLimit.shouldStop(); }));
     plan.statistics.planningSeconds += secondsSince(planningStart);
     plan.statistics.iterations = progressIterations(planner);
     ob::PlannerData data(ompl_->si);

@@ -74,7 +74,7 @@ const std::vector<RegisteredPlanner>& registry() {
       {{"LazyRRT", {"omplLazyRRT"}, false, false}, factory<og::LazyRRT>()},
       {{"TRRT", {"omplTRRT", "T-RRT"}, false, false}, factory<og::TRRT>()},
       {{"BiTRRT", {"omplTRRTConnect", "Bi-TRRT"}, false, false}, factory<og::BiTRRT>()},
-      {{"LBTRRT", {}, true, false}, factory<og::LBTRRT>()},
+      {{"LBTRRT", {}, true, false, true}, factory<og::LBTRRT>()},
       {{"pRRT", {"omplpRRT"}, false, true}, factory<og::pRRT>()},
       {{"BITstar", {"BIT*"}, true, false}, factory<og::BITstar>()},
       {{"ABITstar", {"ABIT*"}, true, false}, factory<og::ABITstar>()},
@@ -161,6 +161,10 @@ const std::vector<PlannerDescription>& plannerDescriptions() {
     return result;
   }();
   return descriptions;
+}
+
+const PlannerDescription& plannerDescription(const std::string& name) {
+  return findPlanner(canonicalPlannerName(name), true)->description;
 }
 
 std::vector<std::string> plannerNames() {

@@ -21,10 +21,16 @@ struct PlannerDescription {
   bool optimizing = false;
   /// Runs several threads.
   bool parallel = false;
+  /// Ignores the "first solution is enough" objective and always plans until its time limit.
+  bool runsUntilTimeLimit = false;
 };
 
 /// Every registered planner, in a stable order.
 const std::vector<PlannerDescription>& plannerDescriptions();
+
+/// The description of a registered planner (by canonical name, alias, ...); throws as
+/// canonicalPlannerName().
+const PlannerDescription& plannerDescription(const std::string& name);
 
 /// Canonical names of every registered planner.
 std::vector<std::string> plannerNames();
