@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "lang2manip/core/error.hpp"
+#include "model/model_test_support.hpp"
 #include "lang2manip/planning/motion_planner.hpp"
 #include "lang2manip/planning/planner_registry.hpp"
 #include "planning_test_support.hpp"
@@ -78,41 +79,32 @@ TEST(MotionPlanner, CancelledSolveStops) {
   EXPECT_EQ(plan.status, MotionPlanStatus::kStopped);
 }
 
-std::string errorOf(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const std::exception& error) {
-    return error.what();
-  }
-  return "(no error)";
-}
-
 TEST(MotionPlannerBadInput, EndpointsAreCheckedWithClearMessages) {
   MotionPlanner planner(planarArmSpace());
   const PlannerSettings settings;
   const auto stop = StopCondition::never();
   VectorX colliding(2);
   colliding << 0.0, 0.0;  // stretched through the post
-  EXPECT_NE(errorOf([&] { (void)planner.solve(colliding, {planarGoal()}, settings, stop); })
+  EXPECT_NE(test::errorMessage([&] { (void)planner.solve(colliding, {planarGoal()}, settings, stop); })
                 .find("start is in collision: planar/fore touches post"),
             std::string::npos);
-  EXPECT_NE(errorOf([&] { (void)planner.solve(planarStart(), {colliding}, settings, stop); })
+  EXPECT_NE(test::errorMessage([&] { (void)planner.solve(planarStart(), {colliding}, settings, stop); })
                 .find("goal is in collision"),
             std::string::npos);
   VectorX outside(2);
   outside << 3.5, 0.0;
-  EXPECT_NE(errorOf([&] { (void)planner.solve(outside, {planarGoal()}, settings, stop); })
+  EXPECT_NE(test::errorMessage([&] { (void)planner.solve(outside, {planarGoal()}, settings, stop); })
                 .find("start: planar/shoulder = 3.5"),
             std::string::npos);
-  EXPECT_NE(errorOf([&] { (void)planner.solve(VectorX::Zero(3), {planarGoal()}, settings, stop); })
+  EXPECT_NE(test::errorMessage([&] { (void)planner.solve(VectorX::Zero(3), {planarGoal()}, settings, stop); })
                 .find("start has 3 values; the planning space has 2 (planar/shoulder, planar/elbow)"),
             std::string::npos);
   VectorX nan(2);
   nan << std::nan(""), 0.0;
-  EXPECT_NE(errorOf([&] { (void)planner.solve(planarStart(), {nan}, settings, stop); })
+  EXPECT_NE(test::errorMessage([&] { (void)planner.solve(planarStart(), {nan}, settings, stop); })
                 .find("not a finite number"),
             std::string::npos);
-  EXPECT_NE(errorOf([&] { (void)planner.solve(planarStart(), {}, settings, stop); }).find("no goal"),
+  EXPECT_NE(test::errorMessage([&] { (void)planner.solve(planarStart(), {}, settings, stop); }).find("no goal"),
             std::string::npos);
 }
 

@@ -1,20 +1,12 @@
 #include <gtest/gtest.h>
 
 #include "lang2manip/core/error.hpp"
+#include "model/model_test_support.hpp"
 #include "lang2manip/planning/planner_registry.hpp"
 #include "lang2manip/planning/planner_settings.hpp"
 
 namespace lang2manip {
 namespace {
-
-std::string errorOf(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const std::exception& error) {
-    return error.what();
-  }
-  return "(no error)";
-}
 
 TEST(PlannerRegistry, CoversOmplGeometricPlannersAndKauthamNames) {
   const std::vector<std::string> names = plannerNames();
@@ -33,11 +25,11 @@ TEST(PlannerRegistry, CoversOmplGeometricPlannersAndKauthamNames) {
 }
 
 TEST(PlannerRegistry, UnknownAndUnsupportedPlannersAreClearErrors) {
-  const std::string unknown = errorOf([] { (void)canonicalPlannerName("RRTFast"); });
+  const std::string unknown = test::errorMessage([] { (void)canonicalPlannerName("RRTFast"); });
   EXPECT_NE(unknown.find("unknown planner \"RRTFast\"; valid planners: RRTConnect, RRT,"), std::string::npos)
       << unknown;
   EXPECT_THROW((void)canonicalPlannerName("omplconstr"), NotSupportedError);
-  EXPECT_NE(errorOf([] { (void)canonicalPlannerName("omplcRRTcar"); }).find("control-based"),
+  EXPECT_NE(test::errorMessage([] { (void)canonicalPlannerName("omplcRRTcar"); }).find("control-based"),
             std::string::npos);
 }
 
@@ -73,23 +65,23 @@ TEST(PlannerSettings, PlannerParametersUnderOmplAndKauthamNames) {
 TEST(PlannerSettingsBadInput, UnknownNamesWrongTypesAndRanges) {
   PlannerSettings settings;
   settings.setPlanner("RRT");
-  const std::string unknown = errorOf([&] { settings.setParameter("Cell Size", "0.1"); });
+  const std::string unknown = test::errorMessage([&] { settings.setParameter("Cell Size", "0.1"); });
   EXPECT_NE(unknown.find("unknown parameter \"Cell Size\" for planner RRT; valid parameters: "
                          "_Max Planning Time"),
             std::string::npos)
       << unknown;
   EXPECT_NE(unknown.find("goal_bias"), std::string::npos);
-  EXPECT_NE(errorOf([&] { settings.setParameter("Goal Bias", "lots"); }).find("\"Goal Bias\""),
+  EXPECT_NE(test::errorMessage([&] { settings.setParameter("Goal Bias", "lots"); }).find("\"Goal Bias\""),
             std::string::npos);
-  EXPECT_NE(errorOf([&] { settings.setParameter("Goal Bias", "1.5"); }).find("outside its range"),
+  EXPECT_NE(test::errorMessage([&] { settings.setParameter("Goal Bias", "1.5"); }).find("outside its range"),
             std::string::npos);
-  EXPECT_NE(errorOf([&] { settings.setParameter("_Max Planning Time", "0"); }).find("positive"),
+  EXPECT_NE(test::errorMessage([&] { settings.setParameter("_Max Planning Time", "0"); }).find("positive"),
             std::string::npos);
-  EXPECT_NE(errorOf([&] { settings.setParameter("_Max Planning Time", "nan"); }).find("Max Planning Time"),
+  EXPECT_NE(test::errorMessage([&] { settings.setParameter("_Max Planning Time", "nan"); }).find("Max Planning Time"),
             std::string::npos);
-  EXPECT_NE(errorOf([&] { settings.setParameter("_Simplify Solution", "3"); }).find("0 (none)"),
+  EXPECT_NE(test::errorMessage([&] { settings.setParameter("_Simplify Solution", "3"); }).find("0 (none)"),
             std::string::npos);
-  EXPECT_NE(errorOf([&] { settings.setParameter("_Incremental (0/1)", "maybe"); }).find("Incremental"),
+  EXPECT_NE(test::errorMessage([&] { settings.setParameter("_Incremental (0/1)", "maybe"); }).find("Incremental"),
             std::string::npos);
   EXPECT_THROW(settings.setPlanner("nope"), InputError);
   EXPECT_EQ(settings.planner(), "RRT");

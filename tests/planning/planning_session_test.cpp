@@ -1,20 +1,12 @@
 #include <gtest/gtest.h>
 
 #include "lang2manip/core/error.hpp"
+#include "model/model_test_support.hpp"
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/planning/planning_session.hpp"
 
 namespace lang2manip {
 namespace {
-
-std::string errorOf(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const std::exception& error) {
-    return error.what();
-  }
-  return "(no error)";
-}
 
 
 class PandaDeskSession : public ::testing::Test {
@@ -31,7 +23,7 @@ TEST_F(PandaDeskSession, OpensWithTheFilesPlannerAndQuery) {
 }
 
 TEST_F(PandaDeskSession, SolveThenGetPathReturnsTheStoredSolution) {
-  EXPECT_NE(errorOf([&] { (void)session.getPath(); }).find("call solve first"), std::string::npos);
+  EXPECT_NE(test::errorMessage([&] { (void)session.getPath(); }).find("call solve first"), std::string::npos);
   const MotionPlan& plan = session.solve();
   ASSERT_TRUE(plan.solved()) << plan.message;
   const MotionPlan& stored = session.getPath();
@@ -48,7 +40,7 @@ TEST_F(PandaDeskSession, CollidingQueryIsRejectedAndThePreviousOneKept) {
   std::vector<double> colliding = query.init;
   colliding[1] = 1.0;  // shoulder fully forward: the arm goes through the desk
   colliding[3] = 1.0;
-  const std::string message = errorOf([&] { session.setGoal(colliding); });
+  const std::string message = test::errorMessage([&] { session.setGoal(colliding); });
   EXPECT_NE(message.find("goal is in collision: panda/"), std::string::npos) << message;
   EXPECT_NE(message.find("desk"), std::string::npos) << message;
   const MotionPlan& plan = session.solve();
@@ -57,18 +49,18 @@ TEST_F(PandaDeskSession, CollidingQueryIsRejectedAndThePreviousOneKept) {
 }
 
 TEST_F(PandaDeskSession, BadQueriesAndVerbsInTheWrongOrder) {
-  EXPECT_NE(errorOf([&] { session.setInit({0.5, 0.5}); }).find("init has 2 values; the planning space has 8"),
+  EXPECT_NE(test::errorMessage([&] { session.setInit({0.5, 0.5}); }).find("init has 2 values; the planning space has 8"),
             std::string::npos);
   std::vector<double> outside = session.problem().queries.front().init;
   outside[0] = 1.5;
-  EXPECT_NE(errorOf([&] { session.setInit(outside); }).find("outside its limits [0, 1]"), std::string::npos);
-  EXPECT_NE(errorOf([&] { session.setPlanner("omplFoo"); }).find("valid planners"), std::string::npos);
-  EXPECT_NE(errorOf([&] { session.setPlannerParameter("Nope", "1"); }).find("valid parameters"),
+  EXPECT_NE(test::errorMessage([&] { session.setInit(outside); }).find("outside its limits [0, 1]"), std::string::npos);
+  EXPECT_NE(test::errorMessage([&] { session.setPlanner("omplFoo"); }).find("valid planners"), std::string::npos);
+  EXPECT_NE(test::errorMessage([&] { session.setPlannerParameter("Nope", "1"); }).find("valid parameters"),
             std::string::npos);
   PlanningSession empty;
-  EXPECT_NE(errorOf([&] { (void)empty.solve(); }).find("no problem is open"), std::string::npos);
-  EXPECT_NE(errorOf([&] { (void)empty.getPath(); }).find("call solve first"), std::string::npos);
-  EXPECT_NE(errorOf([&] { empty.openProblem(std::filesystem::path("/nonexistent/problem.xml")); })
+  EXPECT_NE(test::errorMessage([&] { (void)empty.solve(); }).find("no problem is open"), std::string::npos);
+  EXPECT_NE(test::errorMessage([&] { (void)empty.getPath(); }).find("call solve first"), std::string::npos);
+  EXPECT_NE(test::errorMessage([&] { empty.openProblem(std::filesystem::path("/nonexistent/problem.xml")); })
                 .find("/nonexistent/problem.xml"),
             std::string::npos);
 }
@@ -96,7 +88,7 @@ TEST_F(PandaDeskSession, AttachedObstacleMovesWithTheHandAndDetaches) {
   session.attachObstacle2RobotLink("panda", "panda_hand", "marker");
   EXPECT_THROW(session.attachObstacle2RobotLink("panda", "panda_hand", "marker"), InputError);
   session.detachObstacle("marker");
-  EXPECT_NE(errorOf([&] { session.detachObstacle("marker"); }).find("not attached"), std::string::npos);
+  EXPECT_NE(test::errorMessage([&] { session.detachObstacle("marker"); }).find("not attached"), std::string::npos);
 }
 
 TEST_F(PandaDeskSession, CheckCollisionAndSetRobotsConfig) {
@@ -117,8 +109,8 @@ TEST(PlanningSessionBadInput, SolveWithoutAQuery) {
   problem.queries.clear();
   PlanningSession session;
   session.openProblem(std::move(problem));
-  EXPECT_NE(errorOf([&] { (void)session.solve(); }).find("no query to solve"), std::string::npos);
-  EXPECT_NE(errorOf([&] { (void)session.getNumVertices(); }).find("call solve first"), std::string::npos);
+  EXPECT_NE(test::errorMessage([&] { (void)session.solve(); }).find("no query to solve"), std::string::npos);
+  EXPECT_NE(test::errorMessage([&] { (void)session.getNumVertices(); }).find("call solve first"), std::string::npos);
 }
 
 TEST(KauthamPose, AxisAngleAsKauthamWritesIt) {

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "lang2manip/cli/bench_commands.hpp"
+#include "lang2manip/cli/bench_statistics.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/core/random.hpp"
 #include "lang2manip/kinematics/ik_solver.hpp"
@@ -63,13 +64,6 @@ double threadCpuMs() {
   timespec now{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
   return static_cast<double>(now.tv_sec) * 1e3 + static_cast<double>(now.tv_nsec) * 1e-6;
-}
-
-double percentile(std::vector<double> values, double fraction) {
-  if (values.empty()) return 0.0;
-  const auto index = static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1));
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(index), values.end());
-  return values[index];
 }
 
 /// Our own re-check: errors within the protocol's tolerance and joints within the limits.

@@ -36,6 +36,7 @@ struct MbmOptions {
   std::string family;
   int limit = 0;
   std::string planner = "RRTConnect";
+  std::vector<std::string> parameters;
   double timeLimit = 10.0;
   double resolution = MotionPlanningOptions{}.resolution;
   long seed = 1;
@@ -128,6 +129,11 @@ class MbmRunner {
  public:
   explicit MbmRunner(const MbmOptions& options) : options_(options), panda_(readUrdfFile(builtinRobotUrdf("panda"))) {
     settings_.setPlanner(options.planner);
+    for (const std::string& parameter : options.parameters) {
+      const auto equals = parameter.find('=');
+      if (equals == std::string::npos || equals == 0) throw InputError("--param \"" + parameter + "\": expected NAME=VALUE");
+      settings_.setParameter(parameter.substr(0, equals), parameter.substr(equals + 1));
+    }
     settings_.setParameter("_Max Planning Time", std::to_string(options.timeLimit));
     planningOptions_.resolution = options.resolution;
   }
@@ -275,6 +281,7 @@ void addBenchMbmCommand(CLI::App& bench, std::ostream& out) {
   command->add_option("--family", options->family, "Only this family (e.g. box_panda)");
   command->add_option("--limit", options->limit, "At most N problems per family")->check(CLI::PositiveNumber);
   command->add_option("--planner", options->planner, "Planner name")->capture_default_str();
+  command->add_option("--param", options->parameters, "Planner parameter NAME=VALUE (repeatable)");
   command->add_option("--time-limit", options->timeLimit, "Seconds per problem")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
