@@ -17,9 +17,12 @@ build: deps
 	  -DLANG2MANIP_WERROR=$(WERROR) $(CMAKE_FLAGS)
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
+# The paper's task offline: the scene, the symbolic plan from the offline planner, and a verified
+# motion of the scene's query (grounding each action into motions is an open issue).
 demo: build
-	$(BUILD_DIR)/src/lang2manip/cli/lang2manip problems
 	$(BUILD_DIR)/src/lang2manip/cli/lang2manip show
+	$(BUILD_DIR)/src/lang2manip/cli/lang2manip plan --task "put the marker and eraser in the holder"
+	$(BUILD_DIR)/src/lang2manip/cli/lang2manip solve
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)

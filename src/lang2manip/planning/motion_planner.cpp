@@ -1,5 +1,6 @@
 #include "lang2manip/planning/motion_planner.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -183,6 +184,12 @@ void MotionPlanner::preparePlanner(const PlannerSettings& settings) {
     return;
   }
   ompl_->planner = createOmplPlanner(settings.planner(), ompl_->si);
+  const bool rangeGiven = std::any_of(settings.omplParameters().begin(), settings.omplParameters().end(),
+                                      [](const auto& parameter) { return parameter.first == "range"; });
+  if (!rangeGiven && space_->defaultRange() && plannerDescription(settings.planner()).takesSpaceRange &&
+      ompl_->planner->params().hasParam("range")) {
+    ompl_->planner->params().setParam("range", std::to_string(*space_->defaultRange()));
+  }
   for (const auto& [name, value] : settings.omplParameters()) {
     if (!ompl_->planner->params().setParam(name, value)) {
       throw InputError("planner " + settings.planner() + " rejected parameter " + name + " = " + value);

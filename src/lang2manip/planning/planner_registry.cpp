@@ -97,8 +97,8 @@ const std::vector<RegisteredPlanner>& registry() {
       {{"PDST", {}, false, false}, factory<og::PDST>()},
       {{"FMT", {"FMT*"}, true, false}, factory<og::FMT>()},
       {{"BFMT", {"BFMT*"}, true, false}, factory<og::BFMT>()},
-      {{"RLRT", {}, false, false}, factory<og::RLRT>()},
-      {{"BiRLRT", {}, false, false}, factory<og::BiRLRT>()},
+      {{"RLRT", {}, false, false, false, false}, factory<og::RLRT>()},
+      {{"BiRLRT", {}, false, false, false, false}, factory<og::BiRLRT>()},
   };
   return planners;
 }

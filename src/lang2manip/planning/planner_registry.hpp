@@ -23,6 +23,9 @@ struct PlannerDescription {
   bool parallel = false;
   /// Ignores the "first solution is enough" objective and always plans until its time limit.
   bool runsUntilTimeLimit = false;
+  /// Its `range` is a tree step that PlanningSpace::defaultRange() may set (false for RLRT and
+  /// BiRLRT, whose range bounds random local trees and stalls them when small).
+  bool takesSpaceRange = true;
 };
 
 /// Every registered planner, in a stable order.

