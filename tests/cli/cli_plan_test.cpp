@@ -108,7 +108,7 @@ TEST(CliPlan, AnInstructionTheOfflinePlannerCannotGroundIsAClearError) {
   EXPECT_EQ(result.exitCode, 1);
   EXPECT_THAT(result.output, HasSubstr("lang2manip: error: plan: offline could not plan"));
   EXPECT_THAT(result.output, HasSubstr("flamingo"));
-  EXPECT_THAT(result.output, HasSubstr("round 1 (planner error)"));
+  EXPECT_THAT(result.output, Not(HasSubstr("attempts:"))) << "the error is said once";
 }
 
 TEST(CliPlan, EachProtocolPlansThePaperTaskThroughItsFakeServer) {
@@ -267,7 +267,8 @@ TEST(CliPlan, HangingServerEndsAtTheTimeoutWithAClearError) {
   EXPECT_EQ(result.exitCode, 1) << result.output;
   EXPECT_LT(seconds, 10.0);
   EXPECT_THAT(result.output, HasSubstr("lang2manip: error: plan: the LLM call of openai:test-model failed"));
-  EXPECT_THAT(result.output, HasSubstr("within 0.5 s"));
+  // Whichever fires first, the per-attempt limit or the call's budget, the message gives the 0.5 s.
+  EXPECT_THAT(result.output, ::testing::ContainsRegex("(within|time budget of) 0.5 s"));
   EXPECT_THAT(result.output, Not(HasSubstr(kApiKey)));
 }
 

@@ -46,9 +46,9 @@ std::string roundsText(int used, int allowed) {
 
 std::string statisticsText(const PlanningStatistics& statistics) {
   char line[256];
-  std::snprintf(line, sizeof line, "LLM calls: %d, tokens: %ld in / %ld out, LLM time %.3f s, planning time %.3f s",
+  std::snprintf(line, sizeof line, "LLM calls: %d, tokens: %ld in / %ld out, LLM time %.2f s, planning time %.1f ms",
                 statistics.llmCalls, statistics.inputTokens, statistics.outputTokens, statistics.llmSeconds,
-                statistics.planningSeconds);
+                statistics.planningSeconds * 1000.0);
   return line;
 }
 
