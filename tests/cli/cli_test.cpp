@@ -1,12 +1,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <array>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <sys/wait.h>
 
+#include "cli/cli_run.hpp"
 #include "test_paths.hpp"
 
 namespace lang2manip {
@@ -14,25 +13,8 @@ namespace {
 
 using ::testing::HasSubstr;
 
-struct RunResult {
-  int exitCode = -1;
-  std::string output;  // stdout and stderr
-  std::string stdoutOnly;
-};
-
-// Runs the real lang2manip binary.
-RunResult run(const std::string& arguments, bool mergeStderr = true) {
-  const std::string command = std::string(LANG2MANIP_CLI_PATH) + " " + arguments + (mergeStderr ? " 2>&1" : " 2>/dev/null");
-  RunResult result;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), static_cast<int>(buffer.size()), pipe) != nullptr) result.output += buffer.data();
-  const int status = ::pclose(pipe);
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.stdoutOnly = result.output;
-  return result;
-}
+using test::run;
+using test::RunResult;
 
 TEST(Cli, ProblemsListsTheBuiltInProblemsWithTheDefaultFirst) {
   const RunResult result = run("problems");
@@ -194,13 +176,6 @@ TEST(Cli, PlanPrintPromptShowsSystemPromptTaskAndObservation) {
   EXPECT_THAT(result.output, HasSubstr("prompt version lang2manip-plan-prompt-1"));
   EXPECT_THAT(result.output, HasSubstr("=== user ===\nTASK: put the marker and eraser in the holder"));
   EXPECT_THAT(result.output, HasSubstr("marker: kind marker, movable"));
-}
-
-TEST(Cli, PlanWithoutPrintPromptSaysPlanningIsNotAvailableYet) {
-  const RunResult result = run("plan --task \"put the marker in the holder\"");
-  EXPECT_EQ(result.exitCode, 1);
-  EXPECT_THAT(result.output, HasSubstr("not available yet"));
-  EXPECT_THAT(result.output, HasSubstr("--print-prompt"));
 }
 
 TEST(Cli, PlanPrintPromptNeedsATask) {

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "cli_test_support.hpp"
+#include "cli_run.hpp"
 #include "test_paths.hpp"
 
 namespace lang2manip::test {
@@ -23,7 +23,7 @@ std::string readFile(const std::filesystem::path& file) {
 TEST(SolveCli, SolvesThePaperSceneAndWritesJsonAndCsv) {
   const TempDirectory directory;
   const auto out = directory.path() / "result.json";
-  const CliResult result = runCli("solve panda_desk --seed 3 --out " + out.string());
+  const RunResult result = run("solve panda_desk --seed 3 --out " + out.string());
   ASSERT_EQ(result.exitCode, 0) << result.output;
   EXPECT_THAT(result.output, HasSubstr("query 1: solved by RRTConnect"));
   EXPECT_THAT(result.output, HasSubstr("verified"));
@@ -38,7 +38,7 @@ TEST(SolveCli, SolvesThePaperSceneAndWritesJsonAndCsv) {
 }
 
 TEST(SolveCli, JsonOutputAndPlannerOverride) {
-  const CliResult result = runCli("solve panda_desk --planner omplKPIECE --param Range=0.3 --json", false);
+  const RunResult result = run("solve panda_desk --planner omplKPIECE --param Range=0.3 --json", false);
   ASSERT_EQ(result.exitCode, 0) << result.output;
   const nlohmann::json report = nlohmann::json::parse(result.output);
   EXPECT_EQ(report["queries"][0]["planner"], "KPIECE1");
@@ -47,33 +47,33 @@ TEST(SolveCli, JsonOutputAndPlannerOverride) {
 }
 
 TEST(SolveCliBadInput, UnknownPlannerParameterAndMalformedArguments) {
-  CliResult result = runCli("solve panda_desk --planner NotAPlanner");
+  RunResult result = run("solve panda_desk --planner NotAPlanner");
   EXPECT_EQ(result.exitCode, 1);
   EXPECT_THAT(result.output, HasSubstr("unknown planner \"NotAPlanner\"; valid planners: RRTConnect"));
-  result = runCli("solve panda_desk --param Bogus=1");
+  result = run("solve panda_desk --param Bogus=1");
   EXPECT_EQ(result.exitCode, 1);
   EXPECT_THAT(result.output, HasSubstr("unknown parameter \"Bogus\" for planner RRTConnect"));
-  result = runCli("solve panda_desk --param Range");
+  result = run("solve panda_desk --param Range");
   EXPECT_THAT(result.output, HasSubstr("expected NAME=VALUE"));
-  result = runCli("solve panda_desk --param Range=abc");
+  result = run("solve panda_desk --param Range=abc");
   EXPECT_THAT(result.output, HasSubstr("invalid value \"abc\""));
-  result = runCli("solve panda_desk --query 5");
+  result = run("solve panda_desk --query 5");
   EXPECT_THAT(result.output, HasSubstr("--query 5: the problem has 1 queries"));
-  result = runCli("solve /nonexistent.xml");
+  result = run("solve /nonexistent.xml");
   EXPECT_EQ(result.exitCode, 1);
   EXPECT_THAT(result.output, HasSubstr("/nonexistent.xml"));
-  result = runCli("solve panda_desk --time-limit -1");
+  result = run("solve panda_desk --time-limit -1");
   EXPECT_NE(result.exitCode, 0);
 }
 
 TEST(SolveCli, KauthamDemoWithItsOwnPlanner) {
   LANG2MANIP_REQUIRE_SHARED_DATA(shared);
   const auto problem = shared / "kautham/OMPL_geo_demos/Cube_Maze_R2/OMPL_RRTconnect_bigcube-maze2D_R2.xml";
-  const CliResult result = runCli("solve " + problem.string());
+  const RunResult result = run("solve " + problem.string());
   ASSERT_EQ(result.exitCode, 0) << result.output;
   EXPECT_THAT(result.output, HasSubstr("solved by RRTConnect"));
-  const CliResult constrained =
-      runCli("solve " + (shared / "kautham/OMPL_constr_demos/UR5/ur5_table_constr_box.xml").string());
+  const RunResult constrained =
+      run("solve " + (shared / "kautham/OMPL_constr_demos/UR5/ur5_table_constr_box.xml").string());
   EXPECT_EQ(constrained.exitCode, 1);
   EXPECT_THAT(constrained.output, HasSubstr("planner \"omplconstr\" is not supported"));
 }
@@ -82,7 +82,7 @@ TEST(BenchMbmCli, OneProblemPerFamilyWithJsonAndOmplLog) {
   LANG2MANIP_REQUIRE_SHARED_DATA(shared);
   const TempDirectory directory;
   const auto log = directory.path() / "mbm.log";
-  const CliResult result = runCli("bench mbm " + (shared / "mbm/panda").string() +
+  const RunResult result = run("bench mbm " + (shared / "mbm/panda").string() +
                                       " --family box_panda --limit 2 --time-limit 5 --json --log " + log.string(),
                                   false);
   ASSERT_EQ(result.exitCode, 0) << result.output;
@@ -101,11 +101,11 @@ TEST(BenchMbmCli, OneProblemPerFamilyWithJsonAndOmplLog) {
 }
 
 TEST(BenchMbmCli, BadDirectoryAndFamily) {
-  CliResult result = runCli("bench mbm /nonexistent");
+  RunResult result = run("bench mbm /nonexistent");
   EXPECT_EQ(result.exitCode, 1);
   EXPECT_THAT(result.output, HasSubstr("/nonexistent: not a directory"));
   LANG2MANIP_REQUIRE_SHARED_DATA(shared);
-  result = runCli("bench mbm " + (shared / "mbm/panda").string() + " --family nope");
+  result = run("bench mbm " + (shared / "mbm/panda").string() + " --family nope");
   EXPECT_THAT(result.output, HasSubstr("--family nope: unknown family; families: bookshelf_small_panda"));
 }
 

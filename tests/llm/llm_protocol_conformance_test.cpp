@@ -291,6 +291,17 @@ TEST_P(LlmProtocolTest, HangPastTheTimeoutEndsInTimeoutQuickly) {
   EXPECT_EQ(server_.requestCount(), 2U) << "a timeout is retried";
 }
 
+TEST_P(LlmProtocolTest, HangPastTheCallsTimeBudgetNamesTheBudget) {
+  options_.http.requestTimeoutSeconds = 5.0;
+  options_.retry.totalTimeoutSeconds = 0.3;
+  server_.enqueueHang(30.0);
+  const auto start = std::chrono::steady_clock::now();
+  const LlmError error = failingCall();
+  EXPECT_EQ(error.kind(), LlmErrorKind::kTimeout);
+  EXPECT_THAT(error.what(), HasSubstr("no answer within the time budget of 0.3 s for one call (1 attempt; "));
+  EXPECT_LT(secondsSince(start), 2.0);
+}
+
 TEST_P(LlmProtocolTest, CancellationDuringBackoffEndsTheWait) {
   options_.retry.totalTimeoutSeconds = 120.0;
   server_.enqueueError(429, "slow down", {{"Retry-After", "30"}});

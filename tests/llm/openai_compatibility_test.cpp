@@ -56,15 +56,25 @@ TEST(OpenAiCompatibility, RejectionItCannotAdaptToIsAConfigurationError) {
   EXPECT_EQ(server.requestCount(), 1U);
 }
 
-TEST(AnthropicAnswers, TextInsteadOfTheToolIsABadResponse) {
+TEST(AnthropicAnswers, TextInsteadOfTheToolIsTheContentForTheCallerToJudge) {
   FakeLlmServer server(FakeLlmProtocol::kAnthropic);
   server.enqueueAnswer("Here is my plan: pick the marker.");
+  auto client = makeLlmClient(server.spec(), fastOptions(server));
+  const LlmReply reply = client->complete(planRequest(), StopCondition::never());
+  EXPECT_EQ(reply.content, "Here is my plan: pick the marker.");
+  EXPECT_EQ(reply.finish, FinishReason::kStop);
+}
+
+TEST(AnthropicAnswers, NeitherToolNorTextIsABadResponse) {
+  FakeLlmServer server(FakeLlmProtocol::kAnthropic);
+  FakeHttpResponse empty;
+  empty.body = R"({"content": [], "stop_reason": "end_turn"})";
+  server.enqueue(empty);
   auto client = makeLlmClient(server.spec(), fastOptions(server));
   const LlmError error =
       expectLlmError([&] { client->complete(planRequest(), StopCondition::never()); });
   EXPECT_EQ(error.kind(), LlmErrorKind::kBadResponse);
-  EXPECT_THAT(error.what(), HasSubstr("no tool_use block named \"plan\""));
-  EXPECT_THAT(error.what(), HasSubstr("Here is my plan"));
+  EXPECT_THAT(error.what(), HasSubstr("no tool_use block named \"plan\" and no text"));
 }
 
 TEST(GeminiAnswers, SafetyStopIsAContentFilter) {

@@ -16,6 +16,7 @@ namespace {
 
 using nlohmann::json;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 const char* const kPaperTask = "put the marker and eraser in the holder";
 
@@ -154,6 +155,17 @@ TEST_F(RepairLoopTest, PlannerErrorsEndTheLoopWithoutMoreRounds) {
   EXPECT_FALSE(result.succeeded());
   EXPECT_EQ(result.rounds.size(), 1U);
   EXPECT_THAT(result.failure, HasSubstr("scripted could not plan: script exhausted"));
+  EXPECT_THAT(result.failure, Not(HasSubstr("attempts:"))) << "the only round is the error itself";
+}
+
+TEST_F(RepairLoopTest, APlannerErrorAfterRejectedRoundsListsTheEarlierAttempts) {
+  ScriptedPlanner planner({"no plan here"});
+  const RepairResult result = planWithRepair(planner, request_, nullptr, rounds(3), StopCondition::never());
+  EXPECT_FALSE(result.succeeded());
+  EXPECT_EQ(result.rounds.size(), 2U);
+  EXPECT_THAT(result.failure, ::testing::StartsWith("scripted could not plan: script exhausted; earlier attempts:\n"
+                                                    "  round 1 (unusable answer): "));
+  EXPECT_THAT(result.failure, Not(HasSubstr("round 2")));
 }
 
 TEST_F(RepairLoopTest, AStoppedConditionEndsBeforeAskingAndBadOptionsAreRejected) {

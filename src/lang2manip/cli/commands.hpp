@@ -25,8 +25,11 @@ void addSolveCommand(CLI::App& app, std::ostream& out);
 /// given to task planners (text), or the same as JSON.
 void addObserveCommand(CLI::App& app, std::ostream& out);
 
-/// `lang2manip plan [PROBLEM] --task "..." --print-prompt`: the assembled planner prompt. Running
-/// the planners from this command is not available yet (NotSupportedError).
+/// `lang2manip plan [PROBLEM] --task "..." [--llm offline|PROVIDER:MODEL] [--llm-base-url URL]
+/// [--llm-timeout S] [--llm-record FILE | --llm-replay FILE] [--rounds N] [--json]
+/// [--print-prompt]`: runs the task planner through the repair loop (the plan is checked against
+/// the scene's symbolic state; nothing is executed) and prints the plan, or its JSON, or the
+/// prompt. A planner that fails every round is an error listing the attempts.
 void addPlanCommand(CLI::App& app, std::ostream& out);
 
 /// `lang2manip bench KIND ...`: benchmarks that print figures (kinds: ik; see bench_commands.hpp).

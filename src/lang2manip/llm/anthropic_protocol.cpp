@@ -74,12 +74,14 @@ class AnthropicProtocol final : public LlmProtocol {
       reply.content = text;
     } else if (toolInput != nullptr) {
       reply.content = toolInput->dump();
-    } else if (reply.finish == FinishReason::kLength) {
+    } else if (reply.finish == FinishReason::kLength || !text.empty()) {
+      // Text instead of the tool (a model or proxy ignoring tool_choice): the caller judges it
+      // like any other answer, so a planner can ask again rather than give up.
       reply.content = text;
     } else {
       throw LlmError(LlmErrorKind::kBadResponse,
                      who + ": answer has no tool_use block named \"" + request.schemaName +
-                         "\" in content" + (text.empty() ? "" : " (text: \"" + abbreviated(text, 120) + "\")"));
+                         "\" and no text in content");
     }
     return reply;
   }

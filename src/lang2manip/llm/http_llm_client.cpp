@@ -108,6 +108,12 @@ LlmReply HttpLlmClient::completeUnredacted(const LlmRequest& request, const Stop
                  "HTTP " + std::to_string(response.status) + ": " + serverMessage,
                  response.status, retryAfterSeconds(response.headers)};
     } catch (const LlmError& error) {
+      if (error.kind() == LlmErrorKind::kTimeout && limited.shouldStop() && !stop.shouldStop()) {
+        throw LlmError(LlmErrorKind::kTimeout,
+                       "no answer within the time budget of " +
+                           formatSeconds(config_.retry.totalTimeoutSeconds) + " s for one call (" +
+                           attemptsText(attempts) + "; " + error.what() + ")");
+      }
       const bool retryable =
           error.kind() == LlmErrorKind::kTransport || error.kind() == LlmErrorKind::kTimeout;
       if (!retryable || limited.shouldStop()) throw;

@@ -43,7 +43,8 @@ class LlmProtocol {
 std::unique_ptr<LlmProtocol> makeOpenAiProtocol();
 
 /// Anthropic messages (POST {base}/v1/messages): the schema is the input_schema of a tool that
-/// tool_choice forces; the reply's content is the tool input as JSON text.
+/// tool_choice forces; the reply's content is the tool input as JSON text, or the text blocks
+/// when the model answered in text instead (the caller judges them like any answer).
 std::unique_ptr<LlmProtocol> makeAnthropicProtocol();
 
 /// Gemini generateContent (POST {base}/v1beta/models/{model}:generateContent) with

@@ -136,7 +136,12 @@ RepairResult planWithRepair(TaskPlanner& planner, const PlanningRequest& request
     ending = "no acceptable plan from " + planner.name() + " after " + std::to_string(result.rounds.size()) +
              (result.rounds.size() == 1 ? " round" : " rounds");
   }
-  result.failure = ending + (result.rounds.empty() ? "" : "; attempts:" + roundsText(result.rounds));
+  // A planner error is the ending itself; only the rounds before it are listed then.
+  const bool endedByPlannerError =
+      !result.rounds.empty() && result.rounds.back().outcome == RoundOutcome::kPlannerError;
+  const std::vector<RepairRound> listed(result.rounds.begin(), result.rounds.end() - (endedByPlannerError ? 1 : 0));
+  if (!listed.empty()) ending += (endedByPlannerError ? "; earlier attempts:" : "; attempts:") + roundsText(listed);
+  result.failure = ending;
   return result;
 }
 

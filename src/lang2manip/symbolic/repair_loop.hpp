@@ -49,7 +49,8 @@ struct RepairResult {
   std::vector<RepairRound> rounds;
   /// Summed over the rounds.
   PlanningStatistics statistics;
-  /// Empty on success; otherwise why it ended, followed by every round and its failure.
+  /// Empty on success; otherwise why it ended, followed by every round and its failure (when a
+  /// planner error ended it: the rounds before that error).
   std::string failure;
 
   [[nodiscard]] bool succeeded() const noexcept { return plan.has_value(); }
