@@ -6,18 +6,12 @@
 
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/planning/planning_session.hpp"
+#include "planning_test_support.hpp"
 #include "test_paths.hpp"
 
 namespace lang2manip {
 namespace {
 
-// Under AddressSanitizer everything runs about ten times slower; the problems' limits are
-// wall-clock budgets of an optimized build.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr double kTimeLimitScale = 10.0;
-#else
-constexpr double kTimeLimitScale = 1.0;
-#endif
 
 std::vector<std::filesystem::path> demoProblems(const std::filesystem::path& shared) {
   std::vector<std::filesystem::path> files;
@@ -48,7 +42,7 @@ TEST(KauthamDemos, GeometricQueriesAreSolvedWithinTheirTimeLimit) {
       continue;
     }
     const KauthamProblem& problem = session.problem();
-    const double timeLimit = session.plannerSettings().maxPlanningTime() * kTimeLimitScale;
+    const double timeLimit = session.plannerSettings().maxPlanningTime() * test::kTimeLimitScale;
     session.setPlannerParameter("_Max Planning Time", std::to_string(timeLimit));
     ASSERT_FALSE(problem.queries.empty());
     for (std::size_t q = 0; q < problem.queries.size(); ++q) {

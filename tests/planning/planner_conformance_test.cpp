@@ -20,7 +20,7 @@ TEST_P(PlannerConformance, SolvesNineOfTenRunsWithVerifiedTrajectories) {
   MotionPlanner planner(space, options);
   PlannerSettings settings;
   settings.setPlanner(GetParam());
-  settings.setParameter("_Max Planning Time", "1");
+  settings.setParameter("_Max Planning Time", std::to_string(1.0 * kTimeLimitScale));
   int solved = 0;
   for (int run = 0; run < 10; ++run) {
     const MotionPlan plan = planner.solve(planarStart(), {planarGoal()}, settings, StopCondition::never());
