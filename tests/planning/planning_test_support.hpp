@@ -14,8 +14,10 @@ namespace lang2manip::test {
 /// Wall-clock planning limits in tests are budgets of an optimized build; under AddressSanitizer
 /// everything runs about ten times slower.
 #if defined(__SANITIZE_ADDRESS__)
+constexpr bool kSanitizedBuild = true;
 constexpr double kTimeLimitScale = 10.0;
 #else
+constexpr bool kSanitizedBuild = false;
 constexpr double kTimeLimitScale = 1.0;
 #endif
 
