@@ -29,7 +29,9 @@ TEST_P(PlannerConformance, SolvesNineOfTenRunsWithVerifiedTrajectories) {
   for (int run = 0; run < runs; ++run) {
     const MotionPlan plan = planner.solve(planarStart(), {planarGoal()}, settings, StopCondition::never());
     if (!plan.solved()) {
-      if (!kSanitizedBuild) ADD_FAILURE() << GetParam() << ": " << plan.message;
+      if (!kSanitizedBuild) {
+        ADD_FAILURE() << GetParam() << ": " << plan.message;
+      }
       continue;
     }
     ++solved;
@@ -37,7 +39,9 @@ TEST_P(PlannerConformance, SolvesNineOfTenRunsWithVerifiedTrajectories) {
     EXPECT_EQ(checkTrajectoryLimits(*space, plan.trajectory), "");
     EXPECT_TRUE(plan.trajectory.points.back().positions.isApprox(planarGoal(), 1e-9));
   }
-  if (!kSanitizedBuild) EXPECT_GE(solved, 9) << GetParam();
+  if (!kSanitizedBuild) {
+    EXPECT_GE(solved, 9) << GetParam();
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryPlanner, PlannerConformance, ::testing::ValuesIn(plannerNames()),
