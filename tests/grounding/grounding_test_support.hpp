@@ -19,13 +19,17 @@ inline Scene deskScene(const std::string& robot) {
 
 /// A reachability checker for `scene` (robot arm `manipulator`), seeded, reusing the collision
 /// matrices computed for the robot's desk problem.
-inline ReachabilityChecker reachFor(const std::string& robot, Scene scene, const std::string& manipulator = {}) {
+/// `ikTimeoutSeconds`: IK's time budget per pose; rankings are deterministic only while IK ends
+/// by finding its solutions rather than by running out of time.
+inline ReachabilityChecker reachFor(const std::string& robot, Scene scene, const std::string& manipulator = {},
+                                    double ikTimeoutSeconds = ReachSettings{}.ikTimeoutSeconds) {
   static std::map<std::string, std::shared_ptr<const FclCollisionChecker>> base;
   auto& checker = base[robot];
   if (!checker) checker = std::make_shared<const FclCollisionChecker>(deskScene(robot));
   static const std::shared_ptr<const IkSolver> ik = makeIkSolver(defaultIkSolverName());
   ReachSettings settings;
   settings.seed = 7;
+  settings.ikTimeoutSeconds = ikTimeoutSeconds;
   const ReachabilityChecker prototype(checker, ik, {}, manipulator, settings);
   return prototype.withScene(std::move(scene));
 }
