@@ -93,6 +93,10 @@ std::string motionPlanStatusName(MotionPlanStatus status) {
 }
 
 struct MotionPlanner::Ompl {
+  // Planners free their graphs in clear(); LazyPRM leaks its states when destroyed without it.
+  ~Ompl() {
+    if (planner) planner->clear();
+  }
   std::shared_ptr<CheckCounters> counters = std::make_shared<CheckCounters>();
   ob::SpaceInformationPtr si;
   ob::PlannerPtr planner;
@@ -183,6 +187,7 @@ void MotionPlanner::preparePlanner(const PlannerSettings& settings) {
     ompl_->planner->clearQuery();
     return;
   }
+  if (ompl_->planner) ompl_->planner->clear();
   ompl_->planner = createOmplPlanner(settings.planner(), ompl_->si);
   const bool rangeGiven = std::any_of(settings.omplParameters().begin(), settings.omplParameters().end(),
                                       [](const auto& parameter) { return parameter.first == "range"; });
@@ -264,6 +269,7 @@ MotionPlan MotionPlanner::solve(const VectorX& start, const std::vector<VectorX>
   for (int attempt = 1;; ++attempt) {
     const auto problem = makeProblem(start, goals, settings);
     if (attempt > 1) {  // a fresh planner: OMPL planners warn when set up twice
+      ompl_->planner->clear();
       ompl_->planner.reset();
       preparePlanner(settings);
     }
