@@ -18,6 +18,7 @@
 
 #include "lang2manip/cli/bench_commands.hpp"
 #include "lang2manip/cli/bench_statistics.hpp"
+#include "lang2manip/cli/parameter_assignment.hpp"
 #include "lang2manip/collision/fcl_collision_checker.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/model/builtin_data.hpp"
@@ -130,9 +131,8 @@ class MbmRunner {
   explicit MbmRunner(const MbmOptions& options) : options_(options), panda_(readUrdfFile(builtinRobotUrdf("panda"))) {
     settings_.setPlanner(options.planner);
     for (const std::string& parameter : options.parameters) {
-      const auto equals = parameter.find('=');
-      if (equals == std::string::npos || equals == 0) throw InputError("--param \"" + parameter + "\": expected NAME=VALUE");
-      settings_.setParameter(parameter.substr(0, equals), parameter.substr(equals + 1));
+      const auto [name, value] = parseParameterAssignment(parameter);
+      settings_.setParameter(name, value);
     }
     settings_.setParameter("_Max Planning Time", std::to_string(options.timeLimit));
     planningOptions_.resolution = options.resolution;

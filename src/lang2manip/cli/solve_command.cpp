@@ -8,6 +8,7 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include "lang2manip/cli/commands.hpp"
+#include "lang2manip/cli/parameter_assignment.hpp"
 #include "lang2manip/cli/problem_loading.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/model/builtin_data.hpp"
@@ -34,11 +35,8 @@ struct SolveOptions {
 void configurePlanner(PlanningSession& session, const SolveOptions& options) {
   if (!options.planner.empty()) session.setPlanner(options.planner);
   for (const std::string& parameter : options.parameters) {
-    const auto equals = parameter.find('=');
-    if (equals == std::string::npos || equals == 0) {
-      throw InputError("--param \"" + parameter + "\": expected NAME=VALUE");
-    }
-    session.setPlannerParameter(parameter.substr(0, equals), parameter.substr(equals + 1));
+    const auto [name, value] = parseParameterAssignment(parameter);
+    session.setPlannerParameter(name, value);
   }
   if (options.timeLimit > 0.0) session.setPlannerParameter("_Max Planning Time", std::to_string(options.timeLimit));
 }

@@ -253,6 +253,32 @@ std::string MotionPlanner::finishPath(og::PathGeometric path, const VectorX& sta
   return checkTrajectoryLimits(*space_, plan.trajectory);
 }
 
+// One planner run on `problem`, adding its time, iterations and graph size to `statistics`.
+ompl::base::PlannerStatus MotionPlanner::runPlanner(const ob::ProblemDefinitionPtr& problem,
+                                                   const PlannerSettings& settings,
+                                                   const StopCondition& limit,
+                                                   MotionPlanStatistics& statistics) {
+  ob::Planner& planner = *ompl_->planner;
+  planner.setProblemDefinition(problem);
+  planner.setup();
+  // A planner that always plans until its limit is given 80% of the time left, keeping the
+  // rest to plan again if its path fails verification.
+  const StopCondition attemptLimit =
+      plansUntilLimit(settings)
+          ? limit.orElse(StopCondition::afterSeconds(std::max(1e-3, 0.8 * limit.secondsLeft())))
+          : limit;
+  const auto planningStart = Clock::now();
+  const ob::PlannerStatus status = planner.solve(
+      ob::PlannerTerminationCondition([&attemptLimit] { return attemptLimit.shouldStop(); }));
+  statistics.planningSeconds += secondsSince(planningStart);
+  statistics.iterations = progressIterations(planner);
+  ob::PlannerData data(ompl_->si);
+  planner.getPlannerData(data);
+  statistics.vertices = static_cast<long>(data.numVertices());
+  statistics.edges = static_cast<long>(data.numEdges());
+  return status;
+}
+
 MotionPlan MotionPlanner::solve(const VectorX& start, const std::vector<VectorX>& goals,
                                 const PlannerSettings& settings, const StopCondition& stop) {
   if (goals.empty()) throw InputError("motion query: no goal given");
@@ -273,24 +299,7 @@ MotionPlan MotionPlanner::solve(const VectorX& start, const std::vector<VectorX>
       ompl_->planner.reset();
       preparePlanner(settings);
     }
-    ob::Planner& planner = *ompl_->planner;
-    planner.setProblemDefinition(problem);
-    planner.setup();
-    // A planner that always plans until its limit is given 80% of the time left, keeping the
-    // rest to plan again if its path fails verification.
-    const StopCondition attemptLimit = plansUntilLimit(settings)
-                                           ? limit.orElse(StopCondition::afterSeconds(
-                                                 std::max(1e-3, 0.8 * limit.secondsLeft())))
-                                           : limit;
-    const auto planningStart = Clock::now();
-    const ob::PlannerStatus status = planner.solve(
-        ob::PlannerTerminationCondition([&attemptLimit] { return attemptLimit.shouldStop(); }));
-    plan.statistics.planningSeconds += secondsSince(planningStart);
-    plan.statistics.iterations = progressIterations(planner);
-    ob::PlannerData data(ompl_->si);
-    planner.getPlannerData(data);
-    plan.statistics.vertices = static_cast<long>(data.numVertices());
-    plan.statistics.edges = static_cast<long>(data.numEdges());
+    const ob::PlannerStatus status = runPlanner(problem, settings, limit, plan.statistics);
     const bool exact = status == ob::PlannerStatus::EXACT_SOLUTION && problem->hasExactSolution();
     if (!exact) {
       plan.status = !rejected.empty() ? MotionPlanStatus::kVerificationFailed

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include <ompl/base/PlannerStatus.h>
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/geometric/PathGeometric.h>
 
@@ -99,6 +100,9 @@ class MotionPlanner {
                                                              const std::vector<VectorX>& goals,
                                                              const PlannerSettings& settings) const;
   void preparePlanner(const PlannerSettings& settings);
+  ompl::base::PlannerStatus runPlanner(const ompl::base::ProblemDefinitionPtr& problem,
+                                       const PlannerSettings& settings, const StopCondition& limit,
+                                       MotionPlanStatistics& statistics);
   void appendExactGoal(ompl::geometric::PathGeometric& path, const std::vector<VectorX>& goals) const;
   [[nodiscard]] std::string finishPath(ompl::geometric::PathGeometric path, const VectorX& start,
                                        const std::vector<VectorX>& goals, const PlannerSettings& settings, const StopCondition& stop,
