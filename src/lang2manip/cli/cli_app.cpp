@@ -18,11 +18,15 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   addSolveCommand(app, out);
   addObserveCommand(app, out);
   addPlanCommand(app, out);
+  addRunCommand(app, out);
   addBenchCommand(app, out);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     return app.exit(error, out, err);
+  } catch (const TaskFailedError& error) {
+    err << "lang2manip: " << error.what() << '\n';
+    return 2;
   } catch (const std::exception& error) {
     err << "lang2manip: error: " << error.what() << '\n';
     return 1;

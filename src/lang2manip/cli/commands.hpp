@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <ostream>
+#include <stdexcept>
 
 namespace lang2manip {
 
@@ -31,6 +32,19 @@ void addObserveCommand(CLI::App& app, std::ostream& out);
 /// the scene's symbolic state; nothing is executed) and prints the plan, or its JSON, or the
 /// prompt. A planner that fails every round is an error listing the attempts.
 void addPlanCommand(CLI::App& app, std::ostream& out);
+
+/// `lang2manip run [PROBLEM] [--task "..."] [--llm SPEC] [--planner NAME] [--ik NAME] [--arm NAME]
+/// [--seed N] [--time-limit S] [--rounds N] [--out DIR]`: plans the task (default: the paper's task
+/// on the paper's scene, offline), grounds and executes every action, verifies the result and
+/// writes plan.json, observation.{txt,json}, prompt.txt, trajectory.{json,csv} and report.json.
+/// A task that does not succeed still writes everything and ends with TaskFailedError.
+void addRunCommand(CLI::App& app, std::ostream& out);
+
+/// A command ran to its end but the task failed (its results were written); exit status 2.
+class TaskFailedError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 /// `lang2manip bench KIND ...`: benchmarks that print figures (kinds: ik; see bench_commands.hpp).
 void addBenchCommand(CLI::App& app, std::ostream& out);

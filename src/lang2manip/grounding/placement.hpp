@@ -42,6 +42,9 @@ struct PlacementSettings {
   /// Inside a container the object may be released above its resting pose and drop straight
   /// down onto the cavity floor: release heights above the resting pose tried in order.
   std::vector<double> dropHeights = {0.0, 0.03, 0.06, 0.09};
+  /// Last, the object is released with its bottom this far above the container's rim (the
+  /// hand then stays out of the opening); the heights above that are not tried.
+  double rimClearance = 0.01;
   /// Pre-place: the object held this far above its target pose.
   double approachHeight = 0.10;
   /// After release, the tool frame retreats this far back along the approach axis.

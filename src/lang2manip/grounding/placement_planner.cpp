@@ -1,5 +1,6 @@
 #include "lang2manip/grounding/placement.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -68,6 +69,8 @@ class HeldObjectReach {
 };
 
 struct Attempt {
+  const Scene& scene;
+  const GripperGeometry& gripper;
   const PlacementRequest& request;
   const SceneObject& object;
   const std::vector<Pose>& grasps;
@@ -78,9 +81,27 @@ struct Attempt {
 /// Tries every grasp at one object pose; appends a candidate or rejections.
 bool tryPoseAt(Attempt& a, const PoseCandidate& pose, double drop, int& checks, PlacementPlan& plan);
 
+/// Release heights above `pose` to try: none but 0 outside a container; inside one, the
+/// settings' drop heights below the rim drop, then the rim drop (the lowest of the object and
+/// the fingers, for any of the grasps, rimClearance above the container's rim, so that the hand
+/// stays out of the opening).
+std::vector<double> dropHeightsFor(const Attempt& a, const PoseCandidate& pose) {
+  if (a.request.target.relation != SpatialRelation::kIn) return {0.0};
+  const PlacementSettings& s = a.request.settings;
+  const double rim = a.scene.object(pose.support).worldBounds().max().z();
+  double lowest = boundsAtPose(a.object, pose.pose).min().z();
+  for (const Pose& X_OG : a.grasps) lowest = std::min(lowest, transformedBox(a.gripper.fingerBounds, pose.pose * X_OG).min().z());
+  const double rimDrop = rim + s.rimClearance - lowest;
+  std::vector<double> drops;
+  for (double drop : s.dropHeights) {
+    if (drop < rimDrop) drops.push_back(drop);
+  }
+  drops.push_back(std::max(rimDrop, 0.0));
+  return drops;
+}
+
 void tryPose(Attempt& a, const PoseCandidate& pose, int& checks, PlacementPlan& plan) {
-  const bool inside = a.request.target.relation == SpatialRelation::kIn;
-  for (double drop : inside ? a.request.settings.dropHeights : std::vector<double>{0.0}) {
+  for (double drop : dropHeightsFor(a, pose)) {
     if (tryPoseAt(a, pose, drop, checks, plan)) return;
   }
 }
@@ -147,6 +168,7 @@ void checkPlacementSettings(const PlacementSettings& s) {
     checkLength(value, field);
   }
   for (double drop : s.dropHeights) checkLength(drop, "dropHeights");
+  checkLength(s.rimClearance, "rimClearance");
   for (double shift : s.lateralShifts) {
     if (!std::isfinite(shift)) throw InputError("placement settings: lateralShifts must be finite");
   }
@@ -177,7 +199,7 @@ PlacementPlan planPlacement(const ReachabilityChecker& reach, const PlacementReq
 
   const ObjectCollisionWorld world(scene, object.name);
   HeldObjectReach heldReach(reach, object.name, held);
-  Attempt attempt{request, object, grasps, heldReach, request.seed};
+  Attempt attempt{scene, reach.gripper(), request, object, grasps, heldReach, request.seed};
   int checks = 0;
   for (const PoseCandidate& pose : sampling.poses) {
     if (static_cast<int>(plan.candidates.size()) >= request.settings.maxCandidates || checks >= request.settings.maxReachChecks) break;

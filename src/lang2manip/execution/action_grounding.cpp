@@ -1,0 +1,102 @@
+#include "lang2manip/execution/action_grounding.hpp"
+
+#include <chrono>
+
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/symbolic/plan_json.hpp"
+
+namespace lang2manip {
+
+const VectorX& robotConfiguration(const ArmContext& arm, const Scene& world) {
+  return world.robot(arm.robotName()).configuration;
+}
+
+GroundingAttempt::GroundingAttempt(const ArmContext& arm, Scene start)
+    : world(std::move(start)), q(robotConfiguration(arm, world)) {}
+
+bool GroundingAttempt::add(const ArmContext& arm, MotionResult result, ExecutionCounters& counters, StageTimes& times) {
+  counters.plannerCalls += result.plannerCalls;
+  counters.ikCalls += result.ikCalls;
+  times.ik += result.ikSeconds;
+  if (!result.ok()) {
+    stage = result.stage;
+    reason = result.reason;
+    return false;
+  }
+  q = result.segment->waypoints.back();
+  world.setConfiguration(arm.robotName(), q);
+  segments.push_back(std::move(*result.segment));
+  return true;
+}
+
+bool GroundingAttempt::add(const ArmContext& arm, MotionSegment segment) {
+  const std::string collision = findSegmentCollision(arm, segment, arm.settings().verificationResolution);
+  if (!collision.empty()) {
+    stage = "motion";
+    reason = collision;
+    return false;
+  }
+  q = segment.waypoints.back();
+  world.setConfiguration(arm.robotName(), q);
+  segments.push_back(std::move(segment));
+  return true;
+}
+
+namespace {
+
+std::optional<GroundingAttempt> groundByType(const GroundingContext& context, const Scene& world,
+                                             const SymbolicAction& action, ActionExecution& record) {
+  switch (action.type) {
+    case ActionType::kPick: return groundPick(context, world, action, record);
+    case ActionType::kPlace: return groundPlace(context, world, action, record);
+    case ActionType::kMove: return groundMove(context, world, action, record);
+    case ActionType::kPush: return groundPush(context, world, action, record);
+  }
+  record.stage = "precondition";
+  record.reason = "unknown action type";
+  return std::nullopt;
+}
+
+void fail(ActionExecution& record, const std::string& stage, const std::string& reason) {
+  record.status = ActionStatus::kFailed;
+  record.stage = stage;
+  record.reason = reason;
+}
+
+}  // namespace
+
+ActionExecution executeAction(const GroundingContext& context, Scene& world, const SymbolicAction& action,
+                              std::size_t index) {
+  ActionExecution record;
+  record.index = index;
+  record.action = action;
+  const auto began = std::chrono::steady_clock::now();
+  std::optional<GroundingAttempt> done;
+  try {
+    done = groundByType(context, world, action, record);
+  } catch (const InputError& error) {
+    fail(record, "precondition", describeAction(action) + ": " + error.what());
+    return record;
+  } catch (const NotSupportedError& error) {
+    fail(record, "precondition", describeAction(action) + ": " + error.what());
+    return record;
+  }
+  record.times.motion = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count() -
+                        record.times.grasp - record.times.placement - record.times.ik;
+  if (!done) {
+    record.status = ActionStatus::kFailed;
+    return record;
+  }
+  std::vector<VectorX> waypoints;
+  for (const MotionSegment& segment : done->segments) {
+    waypoints.insert(waypoints.end(), segment.waypoints.begin(), segment.waypoints.end());
+  }
+  if (waypoints.empty()) waypoints.push_back(done->q);
+  record.trajectory = context.arm.timeParameterize(waypoints);
+  record.segments = std::move(done->segments);
+  record.status = ActionStatus::kSucceeded;
+  world = std::move(done->world);
+  return record;
+}
+
+}  // namespace lang2manip

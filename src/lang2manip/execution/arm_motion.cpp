@@ -1,0 +1,294 @@
+#include "lang2manip/execution/arm_motion.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/grounding/object_collision.hpp"
+#include "lang2manip/kinematics/forward_kinematics.hpp"
+#include "lang2manip/planning/motion_planner.hpp"
+#include "lang2manip/planning/planning_space.hpp"
+
+namespace lang2manip {
+namespace {
+
+/// A resting object slides on its support during a push: its sweep is checked this far above
+/// the support so that the resting contact is not a collision.
+constexpr double kSlideLift = 0.001;
+/// Step of the carried object's sweep check (m).
+constexpr double kSweepStep = 0.002;
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+MotionResult failedMotion(const std::string& stage, std::string reason) {
+  MotionResult result;
+  result.stage = stage;
+  result.reason = std::move(reason);
+  return result;
+}
+
+std::string armPart(const VectorX& x) {
+  std::string text = "(";
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    char value[24];
+    std::snprintf(value, sizeof value, "%s%.3f", i == 0 ? "" : ", ", x[i]);
+    text += value;
+  }
+  return text + ")";
+}
+
+VectorX armValues(const ArmContext& arm, const VectorX& q) {
+  VectorX x(static_cast<Eigen::Index>(arm.armVariables().size()));
+  for (std::size_t i = 0; i < arm.armVariables().size(); ++i) x[static_cast<Eigen::Index>(i)] = q[arm.armVariables()[i]];
+  return x;
+}
+
+VectorX withArmValues(const ArmContext& arm, VectorX q, const VectorX& x) {
+  for (std::size_t i = 0; i < arm.armVariables().size(); ++i) q[arm.armVariables()[i]] = x[static_cast<Eigen::Index>(i)];
+  return q;
+}
+
+std::string contactsText(const std::vector<CollisionContact>& contacts) {
+  std::string text;
+  for (const CollisionContact& c : contacts) text += (text.empty() ? "" : ", ") + c.first + " - " + c.second;
+  return text;
+}
+
+/// The contacts of robot `robot` at `q` that the segment does not allow.
+std::vector<CollisionContact> forbiddenContacts(const CollisionChecker& checker, int robot, const VectorX& q,
+                                                const MotionSegment& segment, CollisionContext& context) {
+  const CollisionReport report = checker.checkState(robot, q, {}, context);
+  std::vector<CollisionContact> forbidden;
+  for (const CollisionContact& c : report.contacts) {
+    const bool allowed = std::any_of(segment.allowedContacts.begin(), segment.allowedContacts.end(), [&](const auto& pair) {
+      return (pair.first == c.first && pair.second == c.second) || (pair.first == c.second && pair.second == c.first);
+    });
+    if (!allowed) forbidden.push_back(c);
+  }
+  return forbidden;
+}
+
+/// The world a segment's robot is checked in: the carried object left out.
+Scene robotCheckWorld(const MotionSegment& segment) {
+  Scene world = segment.world;
+  if (!segment.carried.empty()) world.object(segment.carried).collisionEnabled = false;
+  return world;
+}
+
+std::string findCarriedCollision(const MotionSegment& segment) {
+  const ObjectCollisionWorld objects(segment.world, segment.carried);
+  const double length = segment.carriedDisplacement.norm();
+  const int steps = std::max(1, static_cast<int>(std::ceil(length / kSweepStep)));
+  for (int i = 0; i <= steps; ++i) {
+    Pose X_WO = segment.carriedStart;
+    X_WO.translation() += segment.carriedDisplacement * (static_cast<double>(i) / steps) + Vector3::UnitZ() * kSlideLift;
+    const std::vector<std::string> hits = objects.collisions(X_WO);
+    if (!hits.empty()) {
+      char at[64];
+      std::snprintf(at, sizeof at, " after %.3f m", length * i / steps);
+      std::string names;
+      for (const std::string& name : hits) names += (names.empty() ? "" : ", ") + name;
+      return segment.carried + " would hit " + names + at;
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+ArmContext::ArmContext(const Scene& scene, ExecutionSettings settings) : settings_(std::move(settings)) {
+  checkExecutionSettings(settings_);
+  if (scene.robots().empty()) throw InputError("execution: the scene has no robot");
+  robot_ = settings_.robot.empty() ? scene.robots().front().name : settings_.robot;
+  model_ = scene.robot(robot_).model;
+  manipulator_ = findManipulator(*model_, settings_.manipulator);
+  gripper_ = describeGripper(*model_, manipulator_.name);
+  ik_ = makeIkSolver(settings_.ikSolver);
+  (void)makeGraspPlanner(settings_.graspPlanner);
+  for (const std::string& joint : manipulator_.armJoints) armVariables_.push_back(model_->variableIndex(joint));
+  const auto first = std::make_shared<const FclCollisionChecker>(scene);
+  for (std::size_t r = 0; r < scene.robots().size(); ++r) matrices_.push_back(first->sharedAllowedCollisions(static_cast<int>(r)));
+  robotSpace_ = std::make_shared<const JointPlanningSpace>(first, std::vector<std::string>{robot_});
+}
+
+JointTrajectory ArmContext::timeParameterize(const std::vector<VectorX>& waypoints) const {
+  std::vector<VectorX> path;
+  for (const VectorX& q : waypoints) {
+    if (path.empty() || (q - path.back()).cwiseAbs().maxCoeff() > 1e-9) path.push_back(q);
+  }
+  TimeParameterizationOptions options;
+  options.limitScale = settings_.speedScale;
+  return lang2manip::timeParameterize(*robotSpace_, path, options);
+}
+
+std::shared_ptr<const FclCollisionChecker> ArmContext::checkerFor(const Scene& world) const {
+  FclCheckerSettings fcl;
+  if (world.robots().size() == matrices_.size()) fcl.precomputedMatrices = matrices_;
+  return std::make_shared<const FclCollisionChecker>(world, fcl);
+}
+
+ReachabilityChecker ArmContext::reachIn(const Scene& world) const {
+  ReachSettings reach = settings_.reach;
+  reach.seed = settings_.seed;
+  return ReachabilityChecker(checkerFor(world), ik_, robot_, manipulator_.name, reach);
+}
+
+Pose ArmContext::toolPose(const Scene& world, const VectorX& q) const {
+  return world.robot(robot_).basePose * computeLinkPose(*model_, q, gripper_.toolFrame);
+}
+
+double ArmContext::gripperWidth(const VectorX& q) const {
+  const int variable = model_->variableIndex(gripper_.gripperJoints.front());
+  const double span = gripper_.openValues.front() - gripper_.closedValues.front();
+  return std::clamp((q[variable] - gripper_.closedValues.front()) / span, 0.0, 1.0) * gripper_.maxOpening;
+}
+
+MotionResult planTransit(const ArmContext& arm, const Scene& world, const VectorX& start,
+                         const std::vector<VectorX>& goals, const std::string& planner, const std::string& label,
+                         const StopCondition& stop) {
+  const auto checker = arm.checkerFor(world);
+  std::vector<std::vector<std::string>> variables{arm.manipulator().armJoints};
+  auto space = std::make_shared<const JointPlanningSpace>(checker, std::vector<std::string>{arm.robotName()}, variables);
+  const std::string name = planner.empty() ? arm.settings().defaultPlanner : planner;
+  PlannerSettings settings;
+  settings.setPlanner(name);
+  settings.setParameter("_Max Planning Time", std::to_string(arm.settings().planningTimeSeconds));
+  MotionPlanningOptions options;
+  options.verificationResolution = arm.settings().verificationResolution;
+  MotionPlanner motion(space, options);
+  std::vector<VectorX> goalPoints;
+  for (const VectorX& goal : goals) goalPoints.push_back(armValues(arm, goal));
+  MotionResult result;
+  result.plannerCalls = 1;
+  MotionPlan plan;
+  try {
+    plan = motion.solve(armValues(arm, start), goalPoints, settings, stop);
+  } catch (const InputError& error) {
+    return failedMotion("motion", std::string(label) + ": " + error.what());
+  }
+  if (!plan.solved()) {
+    MotionResult failure = failedMotion("motion", label + ": " + motionPlanStatusName(plan.status) + ": " + plan.message);
+    failure.plannerCalls = 1;
+    return failure;
+  }
+  MotionSegment segment;
+  segment.label = label;
+  segment.world = world;
+  segment.planner = settings.planner();
+  for (const VectorX& x : plan.path) segment.waypoints.push_back(withArmValues(arm, start, x));
+  result.segment = std::move(segment);
+  return result;
+}
+
+MotionResult planCartesian(const ArmContext& arm, const Scene& world, const VectorX& start, const Pose& X_WG_goal,
+                           const std::string& label, const CartesianAllowance& allowance) {
+  const ExecutionSettings& s = arm.settings();
+  const Pose X_WG_start = arm.toolPose(world, start);
+  const double distance = (X_WG_goal.translation() - X_WG_start.translation()).norm();
+  const Quaternion from(X_WG_start.linear()), to(X_WG_goal.linear());
+  const double angle = from.angularDistance(to);
+  const int steps = std::max(1, static_cast<int>(std::ceil(std::max(distance / s.cartesianStep, angle / s.cartesianAngleStep))));
+  const SceneRobot& robot = world.robot(arm.robotName());
+  const Pose X_WB = robot.basePose * computeLinkPose(arm.model(), start, arm.manipulator().baseLink);
+  MotionResult result;
+  MotionSegment segment;
+  segment.label = label;
+  segment.world = world;
+  segment.allowedContacts = allowance.allowedContacts;
+  segment.carried = allowance.carried;
+  segment.carriedStart = allowance.carriedStart;
+  segment.carriedDisplacement = allowance.carriedDisplacement;
+  segment.waypoints.push_back(start);
+  const auto began = std::chrono::steady_clock::now();
+  for (int i = 1; i <= steps; ++i) {
+    const double t = static_cast<double>(i) / steps;
+    Pose X_WG = Pose::Identity();
+    X_WG.linear() = from.slerp(t, to).toRotationMatrix();
+    X_WG.translation() = X_WG_start.translation() + t * (X_WG_goal.translation() - X_WG_start.translation());
+    IkRequest request;
+    request.model = &arm.model();
+    request.manipulator = arm.manipulator().name;
+    request.target = IkTarget::pose(X_WB.inverse() * X_WG);
+    request.seed = segment.waypoints.back();
+    request.timeoutSeconds = s.reach.ikTimeoutSeconds;
+    request.randomSeed = s.seed;
+    ++result.ikCalls;
+    const IkResult ik = arm.ik()->solve(request);
+    if (ik.status != IkStatus::kSuccess) {
+      MotionResult failure = failedMotion("ik", label + ": no IK solution at step " + std::to_string(i) + " of " +
+                                                    std::to_string(steps) + " (" + ikStatusName(ik.status) + ")");
+      failure.ikCalls = result.ikCalls;
+      return failure;
+    }
+    const VectorX& q = ik.solutions.front();
+    const double jump = (armValues(arm, q) - armValues(arm, segment.waypoints.back())).cwiseAbs().maxCoeff();
+    if (jump > s.maxJointStep) {
+      char text[160];
+      std::snprintf(text, sizeof text, ": the arm would jump %.2f rad at step %d of %d (limit %.2f)", jump, i, steps, s.maxJointStep);
+      MotionResult failure = failedMotion("ik", label + text);
+      failure.ikCalls = result.ikCalls;
+      return failure;
+    }
+    segment.waypoints.push_back(q);
+  }
+  result.ikSeconds = secondsSince(began);
+  const std::string collision = findSegmentCollision(arm, segment, s.verificationResolution);
+  if (!collision.empty()) {
+    MotionResult failure = failedMotion("motion", label + ": " + collision);
+    failure.ikCalls = result.ikCalls;
+    failure.ikSeconds = result.ikSeconds;
+    return failure;
+  }
+  result.segment = std::move(segment);
+  return result;
+}
+
+std::vector<std::pair<std::string, std::string>> fingerContacts(const ArmContext& arm, const std::string& object) {
+  std::vector<std::pair<std::string, std::string>> pairs;
+  for (const std::string& link : arm.gripper().fingerLinks) pairs.emplace_back(object, arm.robotName() + "/" + link);
+  return pairs;
+}
+
+CartesianAllowance fingersMayTouch(const ArmContext& arm, const std::string& object) {
+  CartesianAllowance allowance;
+  allowance.allowedContacts = fingerContacts(arm, object);
+  return allowance;
+}
+
+MotionSegment gripperMotion(const ArmContext& arm, const Scene& world, const VectorX& start, double width,
+                            const std::string& label, std::vector<std::pair<std::string, std::string>> allowedContacts) {
+  MotionSegment segment;
+  segment.label = label;
+  segment.world = world;
+  segment.allowedContacts = std::move(allowedContacts);
+  segment.waypoints = {start, withGripperOpening(arm.model(), arm.gripper(), start, width)};
+  return segment;
+}
+
+std::string findSegmentCollision(const ArmContext& arm, const MotionSegment& segment, double resolution) {
+  const auto checker = arm.checkerFor(robotCheckWorld(segment));
+  const int robot = checker->robotIndex(arm.robotName());
+  const auto context = checker->makeContext();
+  for (std::size_t w = 0; w + 1 < segment.waypoints.size() || (w == 0 && segment.waypoints.size() == 1); ++w) {
+    const VectorX& q0 = segment.waypoints[w];
+    const VectorX& q1 = segment.waypoints[std::min(w + 1, segment.waypoints.size() - 1)];
+    const double span = (q1 - q0).cwiseAbs().maxCoeff();
+    const int steps = std::max(1, static_cast<int>(std::ceil(span / resolution)));
+    for (int i = 0; i <= steps; ++i) {
+      const VectorX q = q0 + (q1 - q0) * (static_cast<double>(i) / steps);
+      if (checker->isStateValid(robot, q, *context)) continue;
+      const auto forbidden = forbiddenContacts(*checker, robot, q, segment, *context);
+      if (forbidden.empty()) continue;
+      return segment.label + ", waypoint " + std::to_string(w) + " " + armPart(armValues(arm, q)) + ": " +
+             contactsText(forbidden);
+    }
+  }
+  if (!segment.carried.empty()) return findCarriedCollision(segment);
+  return {};
+}
+
+}  // namespace lang2manip

@@ -1,0 +1,195 @@
+// Move and push (see action_grounding.hpp).
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "lang2manip/execution/action_grounding.hpp"
+#include "lang2manip/grounding/object_geometry.hpp"
+#include "lang2manip/symbolic/spatial_relations.hpp"
+
+namespace lang2manip {
+namespace {
+
+constexpr double kSupportTolerance = 0.015;
+/// The fingertips pass this far above the support while pushing, at most, and at most this
+/// fraction of the object's height.
+constexpr double kFingertipClearance = 0.005;
+constexpr double kFingertipHeightFraction = 0.4;
+
+std::optional<GroundingAttempt> refuse(ActionExecution& record, const std::string& stage, std::string reason) {
+  record.stage = stage;
+  record.reason = std::move(reason);
+  return std::nullopt;
+}
+
+std::optional<GroundingAttempt> finish(GroundingAttempt attempt, ActionExecution& record, const std::string& failedStage = {}) {
+  if (attempt.stage.empty()) return attempt;
+  return refuse(record, failedStage.empty() ? attempt.stage : failedStage, attempt.reason);
+}
+
+/// R_WG with the tool's approach axis pointing down and its closing axis across `direction`.
+Matrix3 pushOrientation(const GripperGeometry& gripper, const Vector3& direction) {
+  const Vector3 a = gripper.approachAxis.normalized();
+  const Vector3 c = (gripper.closingAxis - gripper.closingAxis.dot(a) * a).normalized();
+  Matrix3 inGripper;
+  inGripper << a, c, a.cross(c);
+  const Vector3 down = -Vector3::UnitZ();
+  const Vector3 across = Vector3::UnitZ().cross(direction).normalized();
+  Matrix3 inWorld;
+  inWorld << down, across, down.cross(across);
+  return inWorld * inGripper.transpose();
+}
+
+/// How far the fingers reach from the tool frame along world direction `direction` (their box's
+/// support function).
+double fingerReachAlong(const GripperGeometry& gripper, const Matrix3& R_WG, const Vector3& direction) {
+  const Vector3 d = R_WG.transpose() * direction;
+  double reach = 0.0;
+  for (int i = 0; i < 3; ++i) reach += std::max(gripper.fingerBounds.min()[i] * d[i], gripper.fingerBounds.max()[i] * d[i]);
+  return reach;
+}
+
+struct PushGeometry {
+  Vector3 direction;
+  Pose contact = Pose::Identity();
+};
+
+PushGeometry pushGeometry(const ArmContext& arm, const Scene& world, const SceneObject& object, const Vector3& direction) {
+  PushGeometry push;
+  push.direction = direction;
+  const SceneObject* support = currentSupport(world, object, kSupportTolerance);
+  const AlignedBox3 bounds = object.worldBounds();
+  const double supportTop = support != nullptr ? support->worldBounds().max().z() : bounds.min().z();
+  const double height = bounds.max().z() - supportTop;
+  const Matrix3 R_WG = pushOrientation(arm.gripper(), direction);
+  const double tipHeight = supportTop + std::min(kFingertipClearance, kFingertipHeightFraction * height);
+  const double behind = halfExtentAlong(object, object.pose, direction) + fingerReachAlong(arm.gripper(), R_WG, direction) +
+                        arm.settings().pushStandoff;
+  Vector3 position = objectCentre(object, object.pose) - direction * behind;
+  position.z() = tipHeight + arm.gripper().fingertipOffset();
+  push.contact.linear() = R_WG;
+  push.contact.translation() = position;
+  return push;
+}
+
+Pose raised(const Pose& pose, double height) {
+  Pose result = pose;
+  result.translation().z() += height;
+  return result;
+}
+
+Pose shifted(const Pose& pose, const Vector3& offset) {
+  Pose result = pose;
+  result.translation() += offset;
+  return result;
+}
+
+std::string metres(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f m", value);
+  return text;
+}
+
+std::optional<GroundingAttempt> moveToConfiguration(const GroundingContext& c, const Scene& world, const SymbolicAction& action,
+                                                    ActionExecution& record) {
+  const ArmContext& arm = c.arm;
+  const VectorX named = arm.model().namedConfiguration(action.params.configuration);
+  GroundingAttempt a(arm, world);
+  VectorX goal = a.q;
+  for (int variable : arm.armVariables()) goal[variable] = named[variable];
+  record.choice = action.params.configuration;
+  a.add(arm, planTransit(arm, a.world, a.q, {goal}, action.planner, "transit to " + action.params.configuration, c.stop),
+        c.counters, record.times);
+  return finish(std::move(a), record);
+}
+
+std::optional<GroundingAttempt> moveToPose(const GroundingContext& c, const Scene& world, const SymbolicAction& action,
+                                           ActionExecution& record) {
+  const ArmContext& arm = c.arm;
+  GroundingAttempt a(arm, world);
+  const Pose X_WB = robotBaseFrame(world, arm.robotName());
+  const Pose current = X_WB.inverse() * arm.toolPose(world, a.q);
+  Pose X_BG = Pose::Identity();
+  X_BG.linear() = action.params.orientation ? action.params.orientation->normalized().toRotationMatrix() : current.linear();
+  X_BG.translation() = *action.params.position;
+  const ReachabilityChecker reach = arm.reachIn(world);
+  const ReachResult goals = reach.reach(X_WB * X_BG, a.q, arm.gripperWidth(a.q));
+  c.counters.ikCalls += reach.statistics().ikCalls;
+  c.counters.collisionChecks += reach.statistics().collisionChecks;
+  if (!goals.reachable()) return refuse(record, "ik", "move to the tool pose: " + goals.reason);
+  record.choice = "tool pose";
+  a.add(arm, planTransit(arm, a.world, a.q, goals.solutions, action.planner, "transit to the tool pose", c.stop), c.counters,
+        record.times);
+  return finish(std::move(a), record);
+}
+
+}  // namespace
+
+std::optional<GroundingAttempt> groundMove(const GroundingContext& c, const Scene& world, const SymbolicAction& action,
+                                           ActionExecution& record) {
+  if (!action.object.empty()) {
+    const Attachment* held = world.findAttachment(action.object);
+    if (held == nullptr || held->robot != c.arm.robotName()) {
+      return refuse(record, "precondition", "cannot move " + action.object + ": it is not held");
+    }
+  }
+  if (!action.params.configuration.empty()) return moveToConfiguration(c, world, action, record);
+  if (action.params.position) return moveToPose(c, world, action, record);
+  return refuse(record, "precondition", "move needs a named configuration or a tool position");
+}
+
+std::optional<GroundingAttempt> groundPush(const GroundingContext& c, const Scene& world, const SymbolicAction& action,
+                                           ActionExecution& record) {
+  const ArmContext& arm = c.arm;
+  const SceneObject& object = world.object(action.object);
+  if (world.findAttachment(object.name) != nullptr) return refuse(record, "precondition", "cannot push " + object.name + ": it is held");
+  if (!object.movable) return refuse(record, "precondition", "cannot push " + object.name + ": it is not movable");
+  for (const Attachment& attachment : world.attachments()) {
+    if (attachment.robot == arm.robotName()) {
+      return refuse(record, "precondition", "cannot push " + object.name + ": the gripper holds " + attachment.object);
+    }
+  }
+  if (!action.params.direction || !action.params.distance || !(*action.params.distance > 0.0)) {
+    return refuse(record, "precondition", "push of " + object.name + " needs a direction and a positive distance");
+  }
+  Vector3 direction = robotBaseFrame(world, arm.robotName()).linear() * *action.params.direction;
+  direction.z() = 0.0;
+  if (direction.norm() < 1e-6) return refuse(record, "precondition", "push of " + object.name + ": the direction is vertical");
+  direction.normalize();
+  const double distance = *action.params.distance;
+  const PushGeometry push = pushGeometry(arm, world, object, direction);
+  const Pose above = raised(push.contact, arm.settings().pushApproachHeight);
+  const Pose end = shifted(push.contact, direction * (distance + arm.settings().pushStandoff));
+
+  GroundingAttempt a(arm, world);
+  if (arm.gripperWidth(a.q) > 1e-4 && !a.add(arm, gripperMotion(arm, a.world, a.q, 0.0, "close gripper to push"))) {
+    return finish(std::move(a), record);
+  }
+  const ReachabilityChecker reach = arm.reachIn(a.world);
+  const ReachResult start = reach.reach(above, a.q, 0.0);
+  c.counters.ikCalls += reach.statistics().ikCalls;
+  c.counters.collisionChecks += reach.statistics().collisionChecks;
+  if (!start.reachable()) return refuse(record, "ik", "push of " + object.name + ": the pose above the contact: " + start.reason);
+  if (!a.add(arm, planTransit(arm, a.world, a.q, start.solutions, action.planner, "transit above " + object.name, c.stop),
+             c.counters, record.times) ||
+      !a.add(arm, planCartesian(arm, a.world, a.q, push.contact, "descend behind " + object.name), c.counters, record.times)) {
+    return finish(std::move(a), record);
+  }
+  CartesianAllowance carry;
+  carry.carried = object.name;
+  carry.carriedStart = object.pose;
+  carry.carriedDisplacement = direction * distance;
+  if (!a.add(arm, planCartesian(arm, a.world, a.q, end, "push " + object.name + " " + metres(distance), carry), c.counters,
+             record.times)) {
+    return finish(std::move(a), record, "push");
+  }
+  a.world.object(object.name).pose = shifted(object.pose, direction * distance);
+  a.add(arm, planCartesian(arm, a.world, a.q, raised(end, arm.settings().pushRetreat), "retreat from " + object.name,
+                           fingersMayTouch(arm, object.name)),
+        c.counters, record.times);
+  record.choice = "contact behind " + object.name + ", " + metres(distance);
+  return finish(std::move(a), record);
+}
+
+}  // namespace lang2manip

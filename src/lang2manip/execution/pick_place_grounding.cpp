@@ -1,0 +1,158 @@
+// Pick and place (see action_grounding.hpp).
+
+#include <algorithm>
+#include <chrono>
+
+#include "lang2manip/execution/action_grounding.hpp"
+#include "lang2manip/grounding/object_geometry.hpp"
+
+namespace lang2manip {
+namespace {
+
+/// How far an object's bottom may be from its support's top (m).
+constexpr double kSupportTolerance = 0.015;
+/// The gripper is opened before a transit when it is farther than this from the wanted gap (m).
+constexpr double kWidthTolerance = 1e-4;
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void countReach(const ReachabilityChecker& reach, ExecutionCounters& counters) {
+  counters.ikCalls += reach.statistics().ikCalls;
+  counters.collisionChecks += reach.statistics().collisionChecks;
+}
+
+/// Whatever the robot's gripper already holds, or nullptr.
+const Attachment* heldByRobot(const Scene& world, const std::string& robot) {
+  for (const Attachment& attachment : world.attachments()) {
+    if (attachment.robot == robot) return &attachment;
+  }
+  return nullptr;
+}
+
+std::optional<GroundingAttempt> refuse(ActionExecution& record, const std::string& stage, std::string reason) {
+  record.stage = stage;
+  record.reason = std::move(reason);
+  return std::nullopt;
+}
+
+std::optional<GroundingAttempt> tryPick(const GroundingContext& c, const Scene& world, const GraspCandidate& grasp,
+                                        const SymbolicAction& action, ActionExecution& record) {
+  const ArmContext& arm = c.arm;
+  const std::string& name = grasp.object;
+  GroundingAttempt a(arm, world);
+  if (std::abs(arm.gripperWidth(a.q) - grasp.opening) > kWidthTolerance &&
+      !a.add(arm, gripperMotion(arm, a.world, a.q, grasp.opening, "open gripper for " + name))) {
+    return a;
+  }
+  if (!a.add(arm, planTransit(arm, a.world, a.q, grasp.preGraspSolutions, action.planner, "transit to pre-grasp of " + name, c.stop),
+             c.counters, record.times)) {
+    return a;
+  }
+  if (!a.add(arm, planCartesian(arm, a.world, a.q, grasp.graspPose, "approach " + name, fingersMayTouch(arm, name)), c.counters,
+             record.times)) {
+    return a;
+  }
+  if (!a.add(arm, gripperMotion(arm, a.world, a.q, grasp.objectWidth, "close gripper on " + name, fingerContacts(arm, name)))) {
+    return a;
+  }
+  const SceneObject* support = currentSupport(a.world, a.world.object(name), kSupportTolerance);
+  const Pose X_GO = arm.toolPose(a.world, a.q).inverse() * a.world.object(name).pose;
+  a.world.attach({name, arm.robotName(), arm.gripper().toolFrame, X_GO});
+  CartesianAllowance leave;
+  if (support != nullptr) leave.allowedContacts.emplace_back(name, support->name);
+  a.add(arm, planCartesian(arm, a.world, a.q, grasp.postGraspPose, "lift " + name, leave), c.counters, record.times);
+  return a;
+}
+
+std::optional<GroundingAttempt> tryPlace(const GroundingContext& c, const Scene& world, const PlacementCandidate& place,
+                                         const SymbolicAction& action, ActionExecution& record) {
+  const ArmContext& arm = c.arm;
+  const std::string& name = place.object;
+  GroundingAttempt a(arm, world);
+  if (!a.add(arm, planTransit(arm, a.world, a.q, place.prePlaceSolutions, action.planner, "transit holding " + name, c.stop),
+             c.counters, record.times)) {
+    return a;
+  }
+  if (!a.add(arm, planCartesian(arm, a.world, a.q, place.placePose, "lower " + name), c.counters, record.times)) return a;
+  if (!a.add(arm, gripperMotion(arm, a.world, a.q, place.releaseOpening, "release " + name))) return a;
+  a.world.detach(name, place.objectPose);
+  a.add(arm, planCartesian(arm, a.world, a.q, place.retreatPose, "retreat from " + name, fingersMayTouch(arm, name)),
+        c.counters, record.times);
+  return a;
+}
+
+/// Tries `candidates` best first with `attempt`; the first success, or the failures joined.
+template <typename Candidate, typename Attempt>
+std::optional<GroundingAttempt> firstThatMoves(const GroundingContext& c, const std::vector<Candidate>& candidates, int limit,
+                                               const std::string& what, ActionExecution& record, Attempt attempt) {
+  std::string failures;
+  const std::size_t count = std::min(candidates.size(), static_cast<std::size_t>(limit));
+  for (std::size_t i = 0; i < count; ++i) {
+    if (c.stop.shouldStop()) return refuse(record, "motion", what + ": stopped before a candidate could be executed");
+    std::optional<GroundingAttempt> a = attempt(candidates[i]);
+    if (a && a->stage.empty()) {
+      record.choice = candidates[i].label;
+      return a;
+    }
+    record.stage = a ? a->stage : "motion";
+    failures += "; [" + candidates[i].label + "] " + (a ? a->reason : std::string("failed"));
+  }
+  record.reason = what + ": none of the " + std::to_string(count) + " best candidates could be executed" + failures;
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<GroundingAttempt> groundPick(const GroundingContext& c, const Scene& world, const SymbolicAction& action,
+                                           ActionExecution& record) {
+  const ArmContext& arm = c.arm;
+  const SceneObject& object = world.object(action.object);
+  if (world.findAttachment(object.name) != nullptr) return refuse(record, "precondition", object.name + " is already held");
+  if (const Attachment* held = heldByRobot(world, arm.robotName())) {
+    return refuse(record, "precondition", "cannot pick " + object.name + ": the gripper already holds " + held->object);
+  }
+  const auto began = std::chrono::steady_clock::now();
+  const ReachabilityChecker reach = arm.reachIn(world);
+  GraspRequest request;
+  request.object = object.name;
+  request.direction = action.refinements.grasp;
+  request.seed = robotConfiguration(arm, world);
+  request.settings = arm.settings().grasp;
+  const GraspPlan grasps = makeGraspPlanner(arm.settings().graspPlanner)->plan(reach, request);
+  ++c.counters.graspPlans;
+  countReach(reach, c.counters);
+  record.times.grasp += secondsSince(began);
+  if (!grasps.success()) return refuse(record, "grasp", grasps.reason);
+  return firstThatMoves(c, grasps.candidates, arm.settings().maxGraspAttempts, "pick " + object.name, record,
+                        [&](const GraspCandidate& grasp) { return tryPick(c, world, grasp, action, record); });
+}
+
+std::optional<GroundingAttempt> groundPlace(const GroundingContext& c, const Scene& world, const SymbolicAction& action,
+                                            ActionExecution& record) {
+  const ArmContext& arm = c.arm;
+  const SceneObject& object = world.object(action.object);
+  const Attachment* held = world.findAttachment(object.name);
+  if (held == nullptr || held->robot != arm.robotName()) {
+    return refuse(record, "precondition", "cannot place " + object.name + ": it is not held; pick it first");
+  }
+  const auto began = std::chrono::steady_clock::now();
+  const ReachabilityChecker reach = arm.reachIn(world);
+  PlacementRequest request;
+  request.object = object.name;
+  request.target = placementTargetFromParams(action.params);
+  request.seed = robotConfiguration(arm, world);
+  request.settings = arm.settings().placement;
+  request.settings.seed = arm.settings().seed;
+  const PlacementPlan places = planPlacement(reach, request);
+  ++c.counters.placementPlans;
+  countReach(reach, c.counters);
+  record.times.placement += secondsSince(began);
+  if (!places.success()) return refuse(record, "placement", places.reason);
+  return firstThatMoves(c, places.candidates, arm.settings().maxPlacementAttempts,
+                        "place " + object.name + " " + describePlacementTarget(request.target), record,
+                        [&](const PlacementCandidate& place) { return tryPlace(c, world, place, action, record); });
+}
+
+}  // namespace lang2manip

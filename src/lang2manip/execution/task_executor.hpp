@@ -1,0 +1,36 @@
+#pragma once
+/// @file The execution layer's PlanExecutor: grounds and executes a symbolic plan action by
+/// action in a world it keeps (object poses, what is held, the robot's configuration), records
+/// per action a status with a reason, the motions and the trajectory, and reports the first
+/// failure to the repair loop. Each execute() starts again from the initial world.
+
+#include <vector>
+
+#include "lang2manip/execution/arm_motion.hpp"
+
+namespace lang2manip {
+
+/// See the file comment. Not thread-safe.
+class TaskExecutor final : public PlanExecutor {
+ public:
+  /// Throws InputError as ArmContext does (unknown robot, arm, IK solver, grasp planner, bad
+  /// settings).
+  TaskExecutor(Scene initial, ExecutionSettings settings = {});
+
+  /// Executes `plan` from the initial world; the first action that failed, or nullopt.
+  std::optional<GroundingFailure> execute(const Plan& plan, const StopCondition& stop) override;
+
+  [[nodiscard]] const Scene& initialScene() const noexcept { return initial_; }
+  [[nodiscard]] const ArmContext& arm() const noexcept { return arm_; }
+  /// Every execution so far, oldest first.
+  [[nodiscard]] const std::vector<ExecutionRecord>& executions() const noexcept { return executions_; }
+  /// The last execution; throws InputError when execute() was never called.
+  [[nodiscard]] const ExecutionRecord& lastExecution() const;
+
+ private:
+  Scene initial_;
+  ArmContext arm_;
+  std::vector<ExecutionRecord> executions_;
+};
+
+}  // namespace lang2manip
