@@ -113,6 +113,9 @@ ArmContext::ArmContext(const Scene& scene, ExecutionSettings settings) : setting
   const auto first = std::make_shared<const FclCollisionChecker>(scene);
   for (std::size_t r = 0; r < scene.robots().size(); ++r) matrices_.push_back(first->sharedAllowedCollisions(static_cast<int>(r)));
   robotSpace_ = std::make_shared<const JointPlanningSpace>(first, std::vector<std::string>{robot_});
+  for (const NamedState& state : model_->semantics().namedStates) {
+    if (state.name == kHomeConfiguration) homeArm_ = armValues(*this, model_->namedConfiguration(kHomeConfiguration));
+  }
 }
 
 JointTrajectory ArmContext::timeParameterize(const std::vector<VectorX>& waypoints) const {
@@ -147,9 +150,11 @@ double ArmContext::gripperWidth(const VectorX& q) const {
   return std::clamp((q[variable] - gripper_.closedValues.front()) / span, 0.0, 1.0) * gripper_.maxOpening;
 }
 
-MotionResult planTransit(const ArmContext& arm, const Scene& world, const VectorX& start,
-                         const std::vector<VectorX>& goals, const std::string& planner, const std::string& label,
-                         const StopCondition& stop) {
+namespace {
+
+MotionResult planDirectTransit(const ArmContext& arm, const Scene& world, const VectorX& start,
+                               const std::vector<VectorX>& goals, const std::string& planner, const std::string& label,
+                               const StopCondition& stop) {
   const auto checker = arm.checkerFor(world);
   std::vector<std::vector<std::string>> variables{arm.manipulator().armJoints};
   auto space = std::make_shared<const JointPlanningSpace>(checker, std::vector<std::string>{arm.robotName()}, variables);
@@ -182,6 +187,45 @@ MotionResult planTransit(const ArmContext& arm, const Scene& world, const Vector
   for (const VectorX& x : plan.path) segment.waypoints.push_back(withArmValues(arm, start, x));
   result.segment = std::move(segment);
   return result;
+}
+
+bool nearlyEqual(const VectorX& a, const VectorX& b) { return (a - b).cwiseAbs().maxCoeff() < 1e-6; }
+
+/// start -> home -> goals, when home is free and differs from both ends.
+MotionResult planTransitThroughHome(const ArmContext& arm, const Scene& world, const VectorX& start,
+                                    const std::vector<VectorX>& goals, const std::string& planner, const std::string& label,
+                                    const StopCondition& stop, MotionResult direct) {
+  const VectorX home = withArmValues(arm, start, *arm.homeArm());
+  if (nearlyEqual(home, start) || std::any_of(goals.begin(), goals.end(), [&](const VectorX& g) { return nearlyEqual(armValues(arm, g), *arm.homeArm()); })) {
+    return direct;
+  }
+  MotionResult first = planDirectTransit(arm, world, start, {home}, planner, label + " (to home)", stop);
+  if (!first.ok()) {
+    first.plannerCalls += direct.plannerCalls;
+    first.reason = direct.reason + "; through home: " + first.reason;
+    return first;
+  }
+  MotionResult second = planDirectTransit(arm, world, first.segment->waypoints.back(), goals, planner, label + " (from home)", stop);
+  second.plannerCalls += first.plannerCalls + direct.plannerCalls;
+  if (!second.ok()) {
+    second.reason = direct.reason + "; through home: " + second.reason;
+    return second;
+  }
+  auto& waypoints = first.segment->waypoints;
+  waypoints.insert(waypoints.end(), second.segment->waypoints.begin() + 1, second.segment->waypoints.end());
+  second.segment->waypoints = std::move(waypoints);
+  second.segment->label = label + " (through home)";
+  return second;
+}
+
+}  // namespace
+
+MotionResult planTransit(const ArmContext& arm, const Scene& world, const VectorX& start,
+                         const std::vector<VectorX>& goals, const std::string& planner, const std::string& label,
+                         const StopCondition& stop) {
+  MotionResult direct = planDirectTransit(arm, world, start, goals, planner, label, stop);
+  if (direct.ok() || direct.stage != "motion" || !arm.homeArm() || stop.shouldStop()) return direct;
+  return planTransitThroughHome(arm, world, start, goals, planner, label, stop, std::move(direct));
 }
 
 MotionResult planCartesian(const ArmContext& arm, const Scene& world, const VectorX& start, const Pose& X_WG_goal,

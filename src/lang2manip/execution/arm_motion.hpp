@@ -31,6 +31,8 @@ class ArmContext {
   [[nodiscard]] const GripperGeometry& gripper() const noexcept { return gripper_; }
   [[nodiscard]] const ExecutionSettings& settings() const noexcept { return settings_; }
   [[nodiscard]] const std::shared_ptr<const IkSolver>& ik() const noexcept { return ik_; }
+  /// The arm joints of the robot's named configuration "home", when it has one.
+  [[nodiscard]] const std::optional<VectorX>& homeArm() const noexcept { return homeArm_; }
   /// Variable indices of the arm joints in the robot's configuration.
   [[nodiscard]] const std::vector<int>& armVariables() const noexcept { return armVariables_; }
 
@@ -56,7 +58,11 @@ class ArmContext {
   std::vector<int> armVariables_;
   std::vector<std::shared_ptr<const AllowedCollisionMatrix>> matrices_;
   std::shared_ptr<const PlanningSpace> robotSpace_;
+  std::optional<VectorX> homeArm_;
 };
+
+/// The named configuration transits fall back to: "home".
+inline constexpr const char* kHomeConfiguration = "home";
 
 /// A motion, or why there is none.
 struct MotionResult {
@@ -76,6 +82,8 @@ struct MotionResult {
 /// joint keep start's values) in `world` with `planner` (empty = the settings' default), within
 /// the settings' time limit or until `stop`. The path is simplified and re-verified by the motion
 /// planner. A start or goal in collision is a failure naming the colliding pair, not an error.
+/// When no path is found and the robot has a "home" configuration, plans start -> home -> goal
+/// (a known free configuration often joins IK branches a direct query does not).
 MotionResult planTransit(const ArmContext& arm, const Scene& world, const VectorX& start,
                          const std::vector<VectorX>& goals, const std::string& planner,
                          const std::string& label, const StopCondition& stop);

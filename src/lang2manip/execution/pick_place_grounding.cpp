@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "lang2manip/execution/action_grounding.hpp"
 #include "lang2manip/grounding/object_geometry.hpp"
@@ -29,6 +30,19 @@ const Attachment* heldByRobot(const Scene& world, const std::string& robot) {
     if (attachment.robot == robot) return &attachment;
   }
   return nullptr;
+}
+
+/// Where the IK searches of grasps and placements start: the current configuration, then the
+/// arm at "home" (a second chance for arms parked far from their workspace, or with IK branches
+/// that a far seed does not reach).
+std::vector<VectorX> ikSeeds(const ArmContext& arm, const Scene& world) {
+  std::vector<VectorX> seeds{robotConfiguration(arm, world)};
+  if (arm.homeArm()) {
+    VectorX home = seeds.front();
+    for (std::size_t i = 0; i < arm.armVariables().size(); ++i) home[arm.armVariables()[i]] = (*arm.homeArm())[static_cast<Eigen::Index>(i)];
+    if ((home - seeds.front()).cwiseAbs().maxCoeff() > 1e-3) seeds.push_back(home);
+  }
+  return seeds;
 }
 
 std::optional<GroundingAttempt> refuse(ActionExecution& record, const std::string& stage, std::string reason) {
@@ -66,6 +80,28 @@ std::optional<GroundingAttempt> tryPick(const GroundingContext& c, const Scene& 
   return a;
 }
 
+/// After a release: back along the approach axis, else straight up, else back and up; the
+/// first of them that can be moved to.
+void retreat(const GroundingContext& c, GroundingAttempt& a, const PlacementCandidate& place, ActionExecution& record) {
+  const ArmContext& arm = c.arm;
+  const Vector3 back = place.retreatPose.translation() - place.placePose.translation();
+  const double distance = back.norm();
+  const Pose up = Pose(Eigen::Translation3d(Vector3::UnitZ() * distance)) * place.placePose;
+  const Pose backAndUp = Pose(Eigen::Translation3d((back + Vector3::UnitZ() * distance) * std::sqrt(0.5))) * place.placePose;
+  std::string failures;
+  for (const Pose& target : {place.retreatPose, up, backAndUp}) {
+    MotionResult motion = planCartesian(arm, a.world, a.q, target, "retreat from " + place.object, fingersMayTouch(arm, place.object));
+    if (motion.ok()) {
+      a.add(arm, std::move(motion), c.counters, record.times);
+      return;
+    }
+    c.counters.ikCalls += motion.ikCalls;
+    failures += (failures.empty() ? "" : "; ") + motion.reason;
+  }
+  a.stage = "motion";
+  a.reason = "no retreat from " + place.object + " is free: " + failures;
+}
+
 std::optional<GroundingAttempt> tryPlace(const GroundingContext& c, const Scene& world, const PlacementCandidate& place,
                                          const SymbolicAction& action, ActionExecution& record) {
   const ArmContext& arm = c.arm;
@@ -78,8 +114,7 @@ std::optional<GroundingAttempt> tryPlace(const GroundingContext& c, const Scene&
   if (!a.add(arm, planCartesian(arm, a.world, a.q, place.placePose, "lower " + name), c.counters, record.times)) return a;
   if (!a.add(arm, gripperMotion(arm, a.world, a.q, place.releaseOpening, "release " + name))) return a;
   a.world.detach(name, place.objectPose);
-  a.add(arm, planCartesian(arm, a.world, a.q, place.retreatPose, "retreat from " + name, fingersMayTouch(arm, name)),
-        c.counters, record.times);
+  retreat(c, a, place, record);
   return a;
 }
 
@@ -113,20 +148,30 @@ std::optional<GroundingAttempt> groundPick(const GroundingContext& c, const Scen
   if (const Attachment* held = heldByRobot(world, arm.robotName())) {
     return refuse(record, "precondition", "cannot pick " + object.name + ": the gripper already holds " + held->object);
   }
-  const auto began = std::chrono::steady_clock::now();
   const ReachabilityChecker reach = arm.reachIn(world);
-  GraspRequest request;
-  request.object = object.name;
-  request.direction = action.refinements.grasp;
-  request.seed = robotConfiguration(arm, world);
-  request.settings = arm.settings().grasp;
-  const GraspPlan grasps = makeGraspPlanner(arm.settings().graspPlanner)->plan(reach, request);
-  ++c.counters.graspPlans;
+  for (const VectorX& seed : ikSeeds(arm, world)) {
+    const auto began = std::chrono::steady_clock::now();
+    GraspRequest request;
+    request.object = object.name;
+    request.direction = action.refinements.grasp;
+    request.seed = seed;
+    request.settings = arm.settings().grasp;
+    const GraspPlan grasps = makeGraspPlanner(arm.settings().graspPlanner)->plan(reach, request);
+    ++c.counters.graspPlans;
+    record.times.grasp += secondsSince(began);
+    if (!grasps.success()) {
+      refuse(record, "grasp", grasps.reason);
+      continue;
+    }
+    auto done = firstThatMoves(c, grasps.candidates, arm.settings().maxGraspAttempts, "pick " + object.name, record,
+                               [&](const GraspCandidate& grasp) { return tryPick(c, world, grasp, action, record); });
+    if (done) {
+      countReach(reach, c.counters);
+      return done;
+    }
+  }
   countReach(reach, c.counters);
-  record.times.grasp += secondsSince(began);
-  if (!grasps.success()) return refuse(record, "grasp", grasps.reason);
-  return firstThatMoves(c, grasps.candidates, arm.settings().maxGraspAttempts, "pick " + object.name, record,
-                        [&](const GraspCandidate& grasp) { return tryPick(c, world, grasp, action, record); });
+  return std::nullopt;
 }
 
 std::optional<GroundingAttempt> groundPlace(const GroundingContext& c, const Scene& world, const SymbolicAction& action,
@@ -137,22 +182,32 @@ std::optional<GroundingAttempt> groundPlace(const GroundingContext& c, const Sce
   if (held == nullptr || held->robot != arm.robotName()) {
     return refuse(record, "precondition", "cannot place " + object.name + ": it is not held; pick it first");
   }
-  const auto began = std::chrono::steady_clock::now();
   const ReachabilityChecker reach = arm.reachIn(world);
-  PlacementRequest request;
-  request.object = object.name;
-  request.target = placementTargetFromParams(action.params);
-  request.seed = robotConfiguration(arm, world);
-  request.settings = arm.settings().placement;
-  request.settings.seed = arm.settings().seed;
-  const PlacementPlan places = planPlacement(reach, request);
-  ++c.counters.placementPlans;
+  for (const VectorX& seed : ikSeeds(arm, world)) {
+    const auto began = std::chrono::steady_clock::now();
+    PlacementRequest request;
+    request.object = object.name;
+    request.target = placementTargetFromParams(action.params);
+    request.seed = seed;
+    request.settings = arm.settings().placement;
+    request.settings.seed = arm.settings().seed;
+    const PlacementPlan places = planPlacement(reach, request);
+    ++c.counters.placementPlans;
+    record.times.placement += secondsSince(began);
+    if (!places.success()) {
+      refuse(record, "placement", places.reason);
+      continue;
+    }
+    auto done = firstThatMoves(c, places.candidates, arm.settings().maxPlacementAttempts,
+                               "place " + object.name + " " + describePlacementTarget(request.target), record,
+                               [&](const PlacementCandidate& place) { return tryPlace(c, world, place, action, record); });
+    if (done) {
+      countReach(reach, c.counters);
+      return done;
+    }
+  }
   countReach(reach, c.counters);
-  record.times.placement += secondsSince(began);
-  if (!places.success()) return refuse(record, "placement", places.reason);
-  return firstThatMoves(c, places.candidates, arm.settings().maxPlacementAttempts,
-                        "place " + object.name + " " + describePlacementTarget(request.target), record,
-                        [&](const PlacementCandidate& place) { return tryPlace(c, world, place, action, record); });
+  return std::nullopt;
 }
 
 }  // namespace lang2manip

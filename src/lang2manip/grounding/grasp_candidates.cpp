@@ -148,7 +148,7 @@ void addGrasps(const GraspGeometryInput& in, const GripperGeometry& gripper, con
     const double lift = in.supportTop + settings.supportClearance - (p.z() + fingerLowest(gripper, R));
     if (lift > 0.0) p.z() += lift;
     const std::string label = describe(approach.direction, a, c, offset);
-    if (p.z() > top - settings.minimumEngagement) {
+    if (p.z() + fingerLowest(gripper, R) > top - settings.minimumEngagement) {
       out.rejections.push_back({label, GraspFailure::kNotGraspable,
                                 object.name + ": the fingers cannot close below its top without touching its support"});
       continue;

@@ -37,7 +37,8 @@ struct GraspSettings {
   /// Clearance kept between the fingers and the object's support, and between the object and
   /// the part of the gripper behind the fingers.
   double supportClearance = 0.001;
-  /// The TCP must be at least this far below the object's top (the fingers must hold something).
+  /// The fingertips must reach at least this far below the object's top (the fingers must hold
+  /// something; the TCP may stay above the top when the fingers reach beyond it).
   double minimumEngagement = 0.002;
   /// Closing directions tried around a top approach (evenly spaced over a full turn).
   int topYawSteps = 8;

@@ -1,6 +1,7 @@
 #include "lang2manip/grounding/reachability.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "lang2manip/collision/fcl_collision_checker.hpp"
@@ -17,6 +18,26 @@ std::string metres(double value) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.3f m", value);
   return buffer;
+}
+
+/// `q` with each revolute joint turned by whole turns (within its limits) to the value nearest
+/// to `seed`'s: the same pose, and no needless full turn for a motion planner to make.
+VectorX nearestTurns(const RobotModel& model, VectorX q, const VectorX& seed) {
+  constexpr double kTurn = 2.0 * M_PI;
+  for (int v = 0; v < model.variableCount(); ++v) {
+    const Joint& joint = model.joints()[static_cast<std::size_t>(model.variableJoints()[static_cast<std::size_t>(v)])];
+    if (joint.type != JointType::kRevolute && joint.type != JointType::kContinuous) continue;
+    const double value = q[v];
+    const double turns = std::round((seed[v] - value) / kTurn);
+    for (double k : {turns, turns - 1.0, turns + 1.0}) {
+      const double candidate = value + k * kTurn;
+      if (candidate >= model.lowerLimits()[v] && candidate <= model.upperLimits()[v] &&
+          std::abs(candidate - seed[v]) < std::abs(q[v] - seed[v])) {
+        q[v] = candidate;
+      }
+    }
+  }
+  return q;
 }
 
 }  // namespace
@@ -103,7 +124,7 @@ ReachResult ReachabilityChecker::reach(const Pose& X_WG, const VectorX& seed, do
     return result;
   }
   for (const VectorX& solution : ik.solutions) {
-    VectorX q = withGripperOpening(model(), gripper_, solution, opening);
+    VectorX q = withGripperOpening(model(), gripper_, nearestTurns(model(), solution, request.seed), opening);
     if (isFree(q, touchable)) result.solutions.push_back(std::move(q));
   }
   if (result.solutions.empty()) {
