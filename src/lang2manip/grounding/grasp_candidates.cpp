@@ -106,6 +106,10 @@ std::vector<Approach> approachesFor(const GraspGeometryInput& in, GraspDirection
   return all;
 }
 
+/// How far (m) lifting a grasp off the support may move it along the closing axis and still
+/// count as centred on the object.
+constexpr double kCentringTolerance = 0.003;
+
 std::string describe(GraspDirection direction, const Vector3& a, const Vector3& c, double offset) {
   char buffer[160];
   std::snprintf(buffer, sizeof buffer, "%s, approach (%.2f, %.2f, %.2f), closing (%.2f, %.2f, %.2f), offset %+.3f m",
@@ -145,10 +149,14 @@ void addGrasps(const GraspGeometryInput& in, const GripperGeometry& gripper, con
   const double top = centre.z() + halfExtentAlong(object, in.objectPose, kUp);
   for (double offset : graspOffsets(halfExtentAlong(object, in.objectPose, t), padHalfWidth)) {
     Vector3 p = centre + t * offset + a * (depth - depthHalf);
-    const double lift = in.supportTop + settings.supportClearance - (p.z() + fingerLowest(gripper, R));
-    if (lift > 0.0) p.z() += lift;
+    const double lift = std::max(0.0, in.supportTop + settings.supportClearance - (p.z() + fingerLowest(gripper, R)));
+    p.z() += lift;
     const std::string label = describe(approach.direction, a, c, offset);
-    if (p.z() + fingerLowest(gripper, R) > top - settings.minimumEngagement) {
+    // Lifted across the closing axis, the object is no longer between the pads: then the TCP
+    // itself must be below the top; otherwise the fingertips must be.
+    const bool centred = std::abs(lift * c.z()) <= kCentringTolerance;
+    const double lowestHold = centred ? p.z() + fingerLowest(gripper, R) : p.z();
+    if (lowestHold > top - settings.minimumEngagement) {
       out.rejections.push_back({label, GraspFailure::kNotGraspable,
                                 object.name + ": the fingers cannot close below its top without touching its support"});
       continue;
