@@ -167,6 +167,7 @@ MotionResult planDirectTransit(const ArmContext& arm, const Scene& world, const 
   MotionPlanner motion(space, options);
   std::vector<VectorX> goalPoints;
   for (const VectorX& goal : goals) goalPoints.push_back(armValues(arm, goal));
+  if (stop.shouldStop()) return failedMotion("motion", label + ": stopped before planning");
   MotionResult result;
   result.plannerCalls = 1;
   MotionPlan plan;
@@ -314,6 +315,10 @@ MotionSegment gripperMotion(const ArmContext& arm, const Scene& world, const Vec
 }
 
 std::string findSegmentCollision(const ArmContext& arm, const MotionSegment& segment, double resolution) {
+  if (!segment.carried.empty()) {
+    std::string carried = findCarriedCollision(segment);
+    if (!carried.empty()) return segment.label + ": " + carried;
+  }
   const auto checker = arm.checkerFor(robotCheckWorld(segment));
   const int robot = checker->robotIndex(arm.robotName());
   const auto context = checker->makeContext();
@@ -331,7 +336,6 @@ std::string findSegmentCollision(const ArmContext& arm, const MotionSegment& seg
              contactsText(forbidden);
     }
   }
-  if (!segment.carried.empty()) return findCarriedCollision(segment);
   return {};
 }
 

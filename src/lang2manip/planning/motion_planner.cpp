@@ -157,7 +157,7 @@ ompl::base::ProblemDefinitionPtr MotionPlanner::makeProblem(const VectorX& start
   si->freeState(startState);
   // Within the planning resolution of a goal counts as reached (planners that steer by random
   // propagation, such as SST, never land on it exactly); finishPath() appends the exact goal.
-  if (goals.size() == 1) {  // pSBL accepts nothing but a GoalState
+  if (goals.size() == 1 || plannerDescription(settings.planner()).singleGoalState) {
     auto goal = std::make_shared<ob::GoalState>(si);
     ob::State* state = newState(si, goals.front());
     goal->setState(state);

@@ -86,6 +86,7 @@ class MotionPlanner {
   /// Plans from `start` to any of `goals` with `settings`, stopping at its time limit or when
   /// `stop` fires. Throws InputError when there is no goal, a point has the wrong size, is outside
   /// the limits, or is in collision (naming the colliding pair). No path is a result, not an error.
+  /// A planner that accepts a single goal state only (pSBL) plans to the first of `goals`.
   MotionPlan solve(const VectorX& start, const std::vector<VectorX>& goals,
                    const PlannerSettings& settings, const StopCondition& stop);
 

@@ -81,7 +81,8 @@ const std::vector<RegisteredPlanner>& registry() {
       {{"AITstar", {"AIT*"}, true, false}, factory<og::AITstar>()},
       {{"PRM", {"omplPRM"}, false, false}, factory<og::PRM>()},
       {{"PRMstar", {"PRM*"}, true, false}, factory<og::PRMstar>()},
-      {{"LazyPRM", {}, false, false}, factory<og::LazyPRM>()},
+      // A 0.5 rad connection radius leaves a 7-DOF roadmap too sparse to cross a desk scene.
+      {{"LazyPRM", {}, false, false, false, false}, factory<og::LazyPRM>()},
       {{"LazyPRMstar", {"LazyPRM*"}, true, false}, factory<og::LazyPRMstar>()},
       {{"SPARS", {}, true, false}, factory<og::SPARS>()},
       {{"SPARStwo", {"SPARS2"}, true, false}, factory<og::SPARStwo>()},
@@ -92,7 +93,7 @@ const std::vector<RegisteredPlanner>& registry() {
       {{"BiEST", {}, false, false}, factory<og::BiEST>()},
       {{"ProjEST", {"omplProjEST"}, false, false}, factory<og::ProjEST>()},
       {{"SBL", {"omplSBL"}, false, false}, factory<og::SBL>()},
-      {{"pSBL", {}, false, true}, factory<og::pSBL>()},
+      {{"pSBL", {}, false, true, false, true, true}, factory<og::pSBL>()},
       {{"STRIDE", {}, false, false}, factory<og::STRIDE>()},
       {{"PDST", {}, false, false}, factory<og::PDST>()},
       {{"FMT", {"FMT*"}, true, false}, factory<og::FMT>()},

@@ -26,6 +26,8 @@ struct PlannerDescription {
   /// Its `range` is a tree step that PlanningSpace::defaultRange() may set (false for RLRT and
   /// BiRLRT, whose range bounds random local trees and stalls them when small).
   bool takesSpaceRange = true;
+  /// Accepts a single goal state only (not a set of goal states).
+  bool singleGoalState = false;
 };
 
 /// Every registered planner, in a stable order.

@@ -1,0 +1,115 @@
+// Each action type executed on the desk scenes of two robots: the world is updated as the action
+// says (what is held, where objects end up, where the robot is), and the motion is continuous.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "execution_test_support.hpp"
+#include "lang2manip/execution/execution_verification.hpp"
+#include "lang2manip/grounding/object_geometry.hpp"
+#include "lang2manip/symbolic/spatial_relations.hpp"
+#include "lang2manip/symbolic/symbolic_state.hpp"
+
+namespace lang2manip::test {
+namespace {
+
+class ActionsOnRobot : public ::testing::TestWithParam<std::string> {
+ protected:
+  const ExecutionRecord& run(TaskExecutor& executor, const Plan& plan) {
+    const auto failure = executor.execute(plan, StopCondition::never());
+    EXPECT_FALSE(failure.has_value()) << (failure ? failure->stage + ": " + failure->reason : "");
+    return executor.lastExecution();
+  }
+};
+
+TEST_P(ActionsOnRobot, PickThenPlaceInTheHolder) {
+  TaskExecutor executor(deskScene(GetParam()), testSettings());
+  const ExecutionRecord& record =
+      run(executor, planOf({pickAction("marker"), placeAction("marker", SpatialRelation::kIn, "holder")}));
+  ASSERT_TRUE(record.succeeded());
+  ASSERT_EQ(record.actions.size(), 2u);
+  const SymbolicState state = observeSymbolicState(record.finalScene);
+  EXPECT_EQ(state.inside.at("marker"), "holder");
+  EXPECT_TRUE(state.held.empty());
+  expectContinuousMotion(executor, record);
+  std::vector<std::string> labels;
+  for (const MotionSegment& segment : record.actions[0].segments) labels.push_back(segment.label);
+  EXPECT_THAT(labels, ::testing::Contains(::testing::HasSubstr("transit to pre-grasp of marker")));
+  EXPECT_THAT(labels, ::testing::Contains("approach marker"));
+  EXPECT_THAT(labels, ::testing::Contains("close gripper on marker"));
+  EXPECT_THAT(labels, ::testing::Contains("lift marker"));
+  EXPECT_FALSE(record.actions[0].choice.empty());
+  EXPECT_EQ(record.counters.graspPlans, 1);
+  EXPECT_GE(record.counters.plannerCalls, 2);
+  EXPECT_GT(record.counters.ikCalls, 0);
+}
+
+TEST_P(ActionsOnRobot, PickHoldsTheObjectAndMoveCarriesItHome) {
+  TaskExecutor executor(deskScene(GetParam()), testSettings());
+  const ExecutionRecord& record = run(executor, planOf({pickAction("eraser"), moveHomeAction()}));
+  ASSERT_TRUE(record.succeeded());
+  const SymbolicState state = observeSymbolicState(record.finalScene);
+  EXPECT_EQ(state.held, "eraser");
+  EXPECT_EQ(state.atConfiguration, "home");
+  const Pose tool = executor.arm().toolPose(record.finalScene, record.finalScene.robot(executor.arm().robotName()).configuration);
+  const Attachment* held = record.finalScene.findAttachment("eraser");
+  ASSERT_NE(held, nullptr);
+  const Vector3 eraser = currentObjectPose(record.finalScene, "eraser").translation();
+  EXPECT_LT((eraser - (tool * held->linkToObject).translation()).norm(), 1e-9);
+  EXPECT_GT(eraser.z(), 0.80);
+  expectContinuousMotion(executor, record);
+}
+
+TEST_P(ActionsOnRobot, PlaceOnTheDeskBesideAnotherObject) {
+  TaskExecutor executor(deskScene(GetParam()), testSettings());
+  const ExecutionRecord& record =
+      run(executor, planOf({pickAction("eraser"), placeAction("eraser", SpatialRelation::kRightOf, "holder")}));
+  ASSERT_TRUE(record.succeeded());
+  Goal goal;
+  goal.object = "eraser";
+  goal.relation = SpatialRelation::kRightOf;
+  goal.target = "holder";
+  EXPECT_TRUE(checkGoalInScene(record.finalScene, goal).holds) << checkGoalInScene(record.finalScene, goal).explanation;
+  EXPECT_EQ(observeSymbolicState(record.finalScene).onTopOf.at("eraser"), "desk");
+}
+
+TEST_P(ActionsOnRobot, MoveToAToolPoseThenHome) {
+  const Scene scene = deskScene(GetParam());
+  TaskExecutor executor(scene, testSettings());
+  const Pose X_WB = robotBaseFrame(scene, executor.arm().robotName());
+  const Vector3 target(0.40, -0.10, 0.25);
+  const ExecutionRecord& record = run(executor, planOf({moveToAction(target), moveHomeAction()}));
+  ASSERT_TRUE(record.succeeded());
+  const VectorX& reached = record.actions[0].segments.back().waypoints.back();
+  const Vector3 tool = X_WB.inverse() * executor.arm().toolPose(scene, reached).translation();
+  EXPECT_LT((tool - target).norm(), 1e-3);
+  EXPECT_EQ(observeSymbolicState(record.finalScene).atConfiguration, "home");
+  expectContinuousMotion(executor, record);
+}
+
+TEST_P(ActionsOnRobot, PushSlidesTheObjectByTheDistance) {
+  const Scene scene = deskScene(GetParam());
+  TaskExecutor executor(scene, testSettings());
+  const ExecutionRecord& record = run(executor, planOf({pushAction("eraser", Vector3(1, 0, 0), 0.05)}));
+  ASSERT_TRUE(record.succeeded());
+  const Vector3 moved = record.finalScene.object("eraser").pose.translation() - scene.object("eraser").pose.translation();
+  const Vector3 expected = robotBaseFrame(scene, executor.arm().robotName()).linear() * Vector3(0.05, 0, 0);
+  EXPECT_LT((moved - expected).norm(), 1e-9);
+  std::vector<std::string> labels;
+  for (const MotionSegment& segment : record.actions[0].segments) labels.push_back(segment.label);
+  EXPECT_THAT(labels, ::testing::Contains("push eraser 0.050 m"));
+  Goal goal;
+  goal.kind = GoalKind::kDisplaced;
+  goal.object = "eraser";
+  goal.displacement = Vector3(0.05, 0, 0);
+  GoalCheckOptions options;
+  options.initialScene = &scene;
+  EXPECT_TRUE(checkGoalInScene(record.finalScene, goal, options).holds);
+  const ExecutionVerification verification = verifyExecution(executor.arm(), scene, record, {goal});
+  EXPECT_TRUE(verification.success) << verification.collision;
+}
+
+INSTANTIATE_TEST_SUITE_P(DeskRobots, ActionsOnRobot, ::testing::Values("panda", "ur5"));
+
+}  // namespace
+}  // namespace lang2manip::test

@@ -1,0 +1,108 @@
+// The verification before success is reported: a motion that enters an obstacle, an object that
+// moved without being acted on, and a goal that does not hold each make the run fail.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "execution_test_support.hpp"
+#include "lang2manip/execution/execution_verification.hpp"
+
+namespace lang2manip::test {
+namespace {
+
+using ::testing::HasSubstr;
+
+Goal markerInHolder() {
+  Goal goal;
+  goal.object = "marker";
+  goal.relation = SpatialRelation::kIn;
+  goal.target = "holder";
+  return goal;
+}
+
+class Verification : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto failure = executor_.execute(planOf({pickAction("marker"), placeAction("marker", SpatialRelation::kIn, "holder")}),
+                                           StopCondition::never());
+    ASSERT_FALSE(failure.has_value()) << failure->reason;
+    record_ = executor_.lastExecution();
+  }
+  TaskExecutor executor_{deskScene("panda"), testSettings()};
+  ExecutionRecord record_;
+};
+
+TEST_F(Verification, AnExecutedPlanIsVerified) {
+  const ExecutionVerification v = verifyExecution(executor_.arm(), executor_.initialScene(), record_, {markerInHolder()});
+  EXPECT_TRUE(v.success) << v.collision;
+  EXPECT_TRUE(v.goals.front().holds);
+}
+
+/// A configuration of the arm near `q` in which it touches the desk (seeded search).
+VectorX configurationInTheDesk(const ArmContext& arm, const Scene& world, VectorX q) {
+  const auto checker = arm.checkerFor(world);
+  const auto context = checker->makeContext();
+  const int robot = checker->robotIndex(arm.robotName());
+  std::uint64_t state = 12345;
+  for (int attempt = 0; attempt < 10000; ++attempt) {
+    for (int v : arm.armVariables()) {
+      state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+      const double u = static_cast<double>(state >> 11) / 9007199254740992.0;
+      q[v] = arm.model().lowerLimits()[v] + u * (arm.model().upperLimits()[v] - arm.model().lowerLimits()[v]);
+    }
+    for (const CollisionContact& c : checker->checkState(robot, q, {}, *context).contacts) {
+      if (c.second == "desk" || c.first == "desk") return q;
+    }
+  }
+  ADD_FAILURE() << "no configuration touching the desk found";
+  return q;
+}
+
+TEST_F(Verification, AMotionThroughTheDeskIsFound) {
+  MotionSegment& transit = record_.actions[1].segments.front();
+  transit.waypoints.insert(transit.waypoints.end() - 1, configurationInTheDesk(executor_.arm(), transit.world, transit.waypoints.back()));
+  const ExecutionVerification v = verifyExecution(executor_.arm(), executor_.initialScene(), record_, {markerInHolder()});
+  EXPECT_FALSE(v.success);
+  EXPECT_THAT(v.collision, HasSubstr("step 2 (place marker in holder)"));
+  EXPECT_THAT(v.collision, HasSubstr("transit holding marker"));
+  EXPECT_THAT(v.collision, HasSubstr("desk"));
+}
+
+TEST_F(Verification, AnObjectMovedByNoActionIsReported) {
+  record_.finalScene.object("eraser").pose.translation().x() += 0.01;
+  const ExecutionVerification v = verifyExecution(executor_.arm(), executor_.initialScene(), record_, {markerInHolder()});
+  EXPECT_FALSE(v.success);
+  ASSERT_EQ(v.disturbedObjects.size(), 1u);
+  EXPECT_THAT(v.disturbedObjects.front(), HasSubstr("eraser moved by 0.0100 m"));
+}
+
+TEST_F(Verification, AGoalThatDoesNotHoldFailsTheRun) {
+  Goal eraser = markerInHolder();
+  eraser.object = "eraser";
+  const ExecutionVerification v = verifyExecution(executor_.arm(), executor_.initialScene(), record_, {markerInHolder(), eraser});
+  EXPECT_FALSE(v.success);
+  EXPECT_FALSE(v.goals[1].holds);
+  EXPECT_THAT(v.goals[1].explanation, HasSubstr("eraser"));
+  EXPECT_FALSE(verifyExecution(executor_.arm(), executor_.initialScene(), record_, {}).success) << "no goal, no success";
+}
+
+TEST(GoalsImpliedByPlan, LastPlacementPushesHoldingAndConfiguration) {
+  SymbolicAction placeAtPose;
+  placeAtPose.type = ActionType::kPlace;
+  placeAtPose.object = "eraser";
+  placeAtPose.params.position = Vector3(0.3, 0.0, 0.0);
+  const Plan plan = planOf({pickAction("marker"), placeAction("marker", SpatialRelation::kOn, "desk"), pickAction("marker"),
+                            placeAction("marker", SpatialRelation::kIn, "holder"), pushAction("eraser", Vector3(0, 2, 0), 0.05),
+                            pickAction("eraser"), moveHomeAction()});
+  const std::vector<Goal> goals = goalsImpliedByPlan(plan);
+  ASSERT_EQ(goals.size(), 4u);
+  EXPECT_EQ(describeGoal(goals[0]), "marker in holder");
+  EXPECT_EQ(goals[1].kind, GoalKind::kDisplaced);
+  EXPECT_NEAR(goals[1].displacement.y(), 0.05, 1e-12);
+  EXPECT_EQ(goals[2].kind, GoalKind::kHolding);
+  EXPECT_EQ(goals[3].kind, GoalKind::kAtConfiguration);
+  EXPECT_TRUE(goalsImpliedByPlan(planOf({placeAtPose})).empty());
+}
+
+}  // namespace
+}  // namespace lang2manip::test
