@@ -17,12 +17,10 @@ build: deps
 	  -DLANG2MANIP_WERROR=$(WERROR) $(CMAKE_FLAGS)
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
-# The paper's task offline: the scene, the symbolic plan from the offline planner, and a verified
-# motion of the scene's query (grounding each action into motions is an open issue).
+# The paper's task offline: "put the marker and eraser in the holder" on the Panda desk scene,
+# planned, grounded into grasps, IK and motions, executed and verified; files in lang2manip-run/.
 demo: build
-	$(BUILD_DIR)/src/lang2manip/cli/lang2manip show
-	$(BUILD_DIR)/src/lang2manip/cli/lang2manip plan --task "put the marker and eraser in the holder"
-	$(BUILD_DIR)/src/lang2manip/cli/lang2manip solve
+	$(BUILD_DIR)/src/lang2manip/cli/lang2manip run --out lang2manip-run
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)

@@ -1,0 +1,165 @@
+// `lang2manip run`: the paper's task end to end (offline and through an LLM protocol on loopback),
+// the files it writes, determinism, a task that fails (partial results, exit status 2), and the
+// errors of its arguments.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli/cli_run.hpp"
+#include "fake_llm_server.hpp"
+#include "test_paths.hpp"
+
+namespace lang2manip::test {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using ::testing::HasSubstr;
+
+std::string readFile(const fs::path& file) {
+  std::ifstream in(file);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+json readJson(const fs::path& file) { return json::parse(readFile(file), nullptr, false); }
+
+json pick(const std::string& object) { return {{"action", "pick"}, {"object", object}}; }
+json placeIn(const std::string& object) {
+  return {{"action", "place"}, {"object", object}, {"params", {{"relation", "in"}, {"target", "holder"}}}};
+}
+
+void expectTimesIncrease(const json& trajectory) {
+  double last = -1.0;
+  for (const json& segment : trajectory["segments"]) {
+    for (const json& point : segment["points"]) {
+      const double t = point["time_from_start"]["sec"].get<double>() + point["time_from_start"]["nanosec"].get<double>() * 1e-9;
+      EXPECT_GE(t, last - 1e-9);
+      last = t;
+    }
+  }
+  EXPECT_NEAR(last, trajectory["duration"].get<double>(), 1e-6);
+}
+
+TEST(RunCli, ThePaperTaskOfflineSucceedsAndWritesEveryFile) {
+  const TempDirectory directory;
+  const RunResult result = run("run --out " + directory.path().string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("SUCCESS: \"put the marker and eraser in the holder\" on panda_desk"));
+  EXPECT_THAT(result.output, HasSubstr("goal marker in holder: holds"));
+  for (const char* file : {"plan.json", "observation.txt", "observation.json", "prompt.txt", "trajectory.json", "trajectory.csv", "report.json"}) {
+    EXPECT_TRUE(fs::exists(directory.path() / file)) << file;
+  }
+  const json report = readJson(directory.path() / "report.json");
+  ASSERT_TRUE(report.is_object());
+  EXPECT_TRUE(report["success"].get<bool>());
+  ASSERT_EQ(report["goals"].size(), 2u);
+  for (const json& goal : report["goals"]) EXPECT_TRUE(goal["holds"].get<bool>()) << goal.dump();
+  ASSERT_EQ(report["actions"].size(), 4u);
+  for (const json& action : report["actions"]) EXPECT_EQ(action["status"], "succeeded");
+  EXPECT_TRUE(report["verification"]["collision_free"].get<bool>());
+  EXPECT_TRUE(report["verification"]["disturbed_objects"].empty());
+  for (const char* stage : {"observation", "planning", "grasp", "ik", "motion", "verification", "total"}) {
+    EXPECT_TRUE(report["seconds"].contains(stage)) << stage;
+  }
+  EXPECT_GE(report["counts"]["motion_planner_calls"].get<int>(), 4);
+  EXPECT_GT(report["counts"]["ik_calls"].get<int>(), 0);
+  EXPECT_GT(report["counts"]["collision_checks"].get<long>(), 0);
+  EXPECT_EQ(report["counts"]["llm_calls"].get<int>(), 0);
+  EXPECT_TRUE(report["final_poses"].contains("marker"));
+  const json trajectory = readJson(directory.path() / "trajectory.json");
+  EXPECT_EQ(trajectory["joint_names"][0], "panda/panda_joint1");
+  ASSERT_EQ(trajectory["segments"].size(), 4u);
+  EXPECT_EQ(trajectory["segments"][2]["description"], "pick eraser");
+  expectTimesIncrease(trajectory);
+  EXPECT_EQ(readFile(directory.path() / "trajectory.csv").rfind("action,time,panda/panda_joint1,", 0), 0u);
+  EXPECT_EQ(readJson(directory.path() / "plan.json")["actions"].size(), 4u);
+  EXPECT_THAT(readFile(directory.path() / "prompt.txt"), HasSubstr("put the marker and eraser in the holder"));
+}
+
+TEST(RunCli, TheSameSeedGivesTheSameTrajectory) {
+  const TempDirectory first, second;
+  ASSERT_EQ(run("run ur5_desk --seed 5 --out " + first.path().string()).exitCode, 0);
+  ASSERT_EQ(run("run ur5_desk --seed 5 --out " + second.path().string()).exitCode, 0);
+  EXPECT_EQ(readFile(first.path() / "trajectory.json"), readFile(second.path() / "trajectory.json"));
+}
+
+TEST(RunCli, AnLlmPlanThatCannotBeGroundedIsRepaired) {
+  FakeLlmServer server(FakeLlmProtocol::kOpenAi);
+  json unreachable = {{"action", "place"}, {"object", "marker"}, {"params", {{"position", {1.6, 0.0, 0.0}}}}};
+  server.enqueueAnswer(json({{"actions", {pick("marker"), unreachable}}}).dump());
+  server.enqueueAnswer(json({{"actions", {pick("marker"), placeIn("marker"), pick("eraser"), placeIn("eraser")}}}).dump());
+  const TempDirectory directory;
+  const std::string environment = "env -u OPENAI_API_KEY OPENAI_BASE_URL=" + server.baseUrl() + " OPENAI_API_KEY=sk-test";
+  const RunResult result = run("run --llm openai:gpt-test --out " + directory.path().string(), true, environment);
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  const json report = readJson(directory.path() / "report.json");
+  ASSERT_EQ(report["rounds"].size(), 2u);
+  EXPECT_EQ(report["rounds"][0]["outcome"], "grounding failed");
+  EXPECT_THAT(report["rounds"][0]["failure"].get<std::string>(), HasSubstr("step 2"));
+  EXPECT_EQ(report["counts"]["llm_calls"].get<int>(), 2);
+  EXPECT_EQ(report["counts"]["executions"].get<int>(), 2);
+  EXPECT_EQ(report["task_planner"], "openai:gpt-test");
+  ASSERT_EQ(server.requests().size(), 2u);
+  EXPECT_THAT(server.requests()[1].body, HasSubstr("could not be executed"));
+}
+
+TEST(RunCli, AFailedTaskWritesItsPartialResultsAndExitsWithTwo) {
+  const TempDirectory directory;
+  const RunResult result =
+      run("run --task \"put the eraser 300 cm to the left of the holder\" --rounds 1 --out " + directory.path().string());
+  EXPECT_EQ(result.exitCode, 2) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("FAILED"));
+  EXPECT_THAT(result.output, HasSubstr("the task did not succeed"));
+  const json report = readJson(directory.path() / "report.json");
+  ASSERT_TRUE(report.is_object());
+  EXPECT_FALSE(report["success"].get<bool>());
+  ASSERT_EQ(report["actions"].size(), 2u);
+  EXPECT_EQ(report["actions"][0]["status"], "succeeded");
+  EXPECT_EQ(report["actions"][1]["status"], "failed");
+  EXPECT_EQ(report["actions"][1]["stage"], "placement");
+  EXPECT_THAT(report["actions"][1]["reason"].get<std::string>(), HasSubstr("eraser"));
+  EXPECT_EQ(readJson(directory.path() / "trajectory.json")["segments"].size(), 1u);
+  EXPECT_TRUE(fs::exists(directory.path() / "plan.json"));
+}
+
+TEST(RunCliBadInput, EveryArgumentErrorIsNamed) {
+  const TempDirectory directory;
+  const std::string out = " --out " + (directory.path() / "out").string();
+  RunResult result = run("run --task \"  \"" + out);
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.output, HasSubstr("--task must not be empty"));
+  result = run("run --planner NotAPlanner" + out);
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.output, HasSubstr("unknown planner \"NotAPlanner\""));
+  result = run("run --ik magic" + out);
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.output, HasSubstr("magic"));
+  result = run("run --arm tentacle" + out);
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.output, HasSubstr("unknown manipulator \"tentacle\""));
+  result = run("run --rounds 0" + out);
+  EXPECT_THAT(result.output, HasSubstr("--rounds 0: must be at least 1"));
+  result = run("run --time-limit -1" + out);
+  EXPECT_THAT(result.output, HasSubstr("--time-limit must be a positive number"));
+  result = run("run --seed -3" + out);
+  EXPECT_THAT(result.output, HasSubstr("--seed -3: must be >= 0"));
+  result = run("run no_such_problem" + out);
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.output, HasSubstr("no_such_problem"));
+  result = run("run --llm nonsense" + out);
+  EXPECT_EQ(result.exitCode, 1);
+  std::ofstream(directory.path() / "file") << "x";
+  result = run("run --out " + (directory.path() / "file").string());
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.output, HasSubstr("exists and is not a directory"));
+  EXPECT_FALSE(fs::exists(directory.path() / "out" / "report.json")) << "bad arguments write nothing";
+}
+
+}  // namespace
+}  // namespace lang2manip::test
