@@ -141,7 +141,8 @@ json runReportJson(const RunOutcome& outcome) {
   report["verification"] = {{"collision_free", outcome.verification.collision.empty()},
                             {"collision", outcome.verification.collision},
                             {"disturbed_objects", outcome.verification.disturbedObjects},
-                            {"motions_checked", outcome.verification.segmentsChecked}};
+                            {"motions_checked", outcome.verification.segmentsChecked},
+                            {"states_checked", outcome.verification.collisionChecks}};
   report["seconds"] = {{"observation", outcome.observationSeconds},
                        {"planning", llm.planningSeconds},
                        {"grasp", sum.times.grasp},
@@ -159,7 +160,7 @@ json runReportJson(const RunOutcome& outcome) {
                       {"llm_input_tokens", llm.inputTokens},
                       {"llm_output_tokens", llm.outputTokens},
                       {"ik_calls", sum.counters.ikCalls},
-                      {"collision_checks", sum.counters.collisionChecks}};
+                      {"collision_checks", sum.counters.collisionChecks + outcome.verification.collisionChecks}};
   return report;
 }
 

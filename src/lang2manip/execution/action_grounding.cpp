@@ -17,6 +17,7 @@ GroundingAttempt::GroundingAttempt(const ArmContext& arm, Scene start)
 bool GroundingAttempt::add(const ArmContext& arm, MotionResult result, ExecutionCounters& counters, StageTimes& times) {
   counters.plannerCalls += result.plannerCalls;
   counters.ikCalls += result.ikCalls;
+  counters.collisionChecks += result.collisionChecks;
   times.ik += result.ikSeconds;
   if (!result.ok()) {
     stage = result.stage;
@@ -29,11 +30,12 @@ bool GroundingAttempt::add(const ArmContext& arm, MotionResult result, Execution
   return true;
 }
 
-bool GroundingAttempt::add(const ArmContext& arm, MotionSegment segment) {
-  const std::string collision = findSegmentCollision(arm, segment, arm.settings().verificationResolution);
-  if (!collision.empty()) {
+bool GroundingAttempt::add(const ArmContext& arm, MotionSegment segment, ExecutionCounters& counters) {
+  const SegmentCheck check = checkSegment(arm, segment, arm.settings().verificationResolution);
+  counters.collisionChecks += check.checks;
+  if (!check.collision.empty()) {
     stage = "motion";
-    reason = collision;
+    reason = check.collision;
     return false;
   }
   q = segment.waypoints.back();

@@ -34,7 +34,7 @@ struct GroundingAttempt {
   /// when there is none. Counts the work in `counters` and `times`.
   bool add(const ArmContext& arm, MotionResult result, ExecutionCounters& counters, StageTimes& times);
   /// Appends a motion known to be valid up to its collision check, which is done here.
-  bool add(const ArmContext& arm, MotionSegment segment);
+  bool add(const ArmContext& arm, MotionSegment segment, ExecutionCounters& counters);
 };
 
 /// What every grounding step needs.

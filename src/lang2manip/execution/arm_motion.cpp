@@ -179,12 +179,14 @@ MotionResult planDirectTransit(const ArmContext& arm, const Scene& world, const 
   if (!plan.solved()) {
     MotionResult failure = failedMotion("motion", label + ": " + motionPlanStatusName(plan.status) + ": " + plan.message);
     failure.plannerCalls = 1;
+    failure.collisionChecks = plan.statistics.stateChecks;
     return failure;
   }
   MotionSegment segment;
   segment.label = label;
   segment.world = world;
   segment.planner = settings.planner();
+  result.collisionChecks = plan.statistics.stateChecks;
   for (const VectorX& x : plan.path) segment.waypoints.push_back(withArmValues(arm, start, x));
   result.segment = std::move(segment);
   return result;
@@ -203,11 +205,13 @@ MotionResult planTransitThroughHome(const ArmContext& arm, const Scene& world, c
   MotionResult first = planDirectTransit(arm, world, start, {home}, planner, label + " (to home)", stop);
   if (!first.ok()) {
     first.plannerCalls += direct.plannerCalls;
+    first.collisionChecks += direct.collisionChecks;
     first.reason = direct.reason + "; through home: " + first.reason;
     return first;
   }
   MotionResult second = planDirectTransit(arm, world, first.segment->waypoints.back(), goals, planner, label + " (from home)", stop);
   second.plannerCalls += first.plannerCalls + direct.plannerCalls;
+  second.collisionChecks += first.collisionChecks + direct.collisionChecks;
   if (!second.ok()) {
     second.reason = direct.reason + "; through home: " + second.reason;
     return second;
@@ -281,11 +285,13 @@ MotionResult planCartesian(const ArmContext& arm, const Scene& world, const Vect
     segment.waypoints.push_back(q);
   }
   result.ikSeconds = secondsSince(began);
-  const std::string collision = findSegmentCollision(arm, segment, s.verificationResolution);
-  if (!collision.empty()) {
-    MotionResult failure = failedMotion("motion", label + ": " + collision);
+  const SegmentCheck check = checkSegment(arm, segment, s.verificationResolution);
+  result.collisionChecks = check.checks;
+  if (!check.collision.empty()) {
+    MotionResult failure = failedMotion("motion", label + ": " + check.collision);
     failure.ikCalls = result.ikCalls;
     failure.ikSeconds = result.ikSeconds;
+    failure.collisionChecks = check.checks;
     return failure;
   }
   result.segment = std::move(segment);
@@ -314,10 +320,11 @@ MotionSegment gripperMotion(const ArmContext& arm, const Scene& world, const Vec
   return segment;
 }
 
-std::string findSegmentCollision(const ArmContext& arm, const MotionSegment& segment, double resolution) {
+SegmentCheck checkSegment(const ArmContext& arm, const MotionSegment& segment, double resolution) {
+  SegmentCheck result;
   if (!segment.carried.empty()) {
     std::string carried = findCarriedCollision(segment);
-    if (!carried.empty()) return segment.label + ": " + carried;
+    if (!carried.empty()) return {segment.label + ": " + carried, 0};
   }
   const auto checker = arm.checkerFor(robotCheckWorld(segment));
   const int robot = checker->robotIndex(arm.robotName());
@@ -329,14 +336,16 @@ std::string findSegmentCollision(const ArmContext& arm, const MotionSegment& seg
     const int steps = std::max(1, static_cast<int>(std::ceil(span / resolution)));
     for (int i = 0; i <= steps; ++i) {
       const VectorX q = q0 + (q1 - q0) * (static_cast<double>(i) / steps);
+      ++result.checks;
       if (checker->isStateValid(robot, q, *context)) continue;
       const auto forbidden = forbiddenContacts(*checker, robot, q, segment, *context);
       if (forbidden.empty()) continue;
-      return segment.label + ", waypoint " + std::to_string(w) + " " + armPart(armValues(arm, q)) + ": " +
-             contactsText(forbidden);
+      result.collision = segment.label + ", waypoint " + std::to_string(w) + " " + armPart(armValues(arm, q)) + ": " +
+                         contactsText(forbidden);
+      return result;
     }
   }
-  return {};
+  return result;
 }
 
 }  // namespace lang2manip

@@ -73,6 +73,7 @@ struct MotionResult {
   /// Work done.
   int plannerCalls = 0;
   int ikCalls = 0;
+  long collisionChecks = 0;
   double ikSeconds = 0.0;
 
   [[nodiscard]] bool ok() const noexcept { return segment.has_value(); }
@@ -115,9 +116,16 @@ MotionSegment gripperMotion(const ArmContext& arm, const Scene& world, const Vec
                             const std::string& label,
                             std::vector<std::pair<std::string, std::string>> allowedContacts = {});
 
-/// Empty when `segment` is collision-free in its world at `resolution` (but for its allowed
-/// contacts; a carried object's sweep is checked against the other objects); otherwise names
-/// the waypoint and the colliding pair.
-std::string findSegmentCollision(const ArmContext& arm, const MotionSegment& segment, double resolution);
+/// The outcome of checkSegment().
+struct SegmentCheck {
+  /// Empty when the segment is collision-free; otherwise names the waypoint and the pair.
+  std::string collision;
+  /// Robot states checked.
+  long checks = 0;
+};
+
+/// Checks `segment` in its world at `resolution` (but for its allowed contacts; a carried
+/// object's sweep is checked against the other objects).
+SegmentCheck checkSegment(const ArmContext& arm, const MotionSegment& segment, double resolution);
 
 }  // namespace lang2manip

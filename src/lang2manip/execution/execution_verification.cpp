@@ -18,12 +18,15 @@ namespace {
 constexpr double kPositionTolerance = 1e-3;
 constexpr double kRotationTolerance = 1e-2;
 
-std::string firstCollision(const ArmContext& arm, const ExecutionRecord& record, int& checked) {
+std::string firstCollision(const ArmContext& arm, const ExecutionRecord& record, ExecutionVerification& result) {
   for (const ActionExecution& action : record.actions) {
     for (const MotionSegment& segment : action.segments) {
-      ++checked;
-      const std::string problem = findSegmentCollision(arm, segment, arm.settings().verificationResolution);
-      if (!problem.empty()) return "step " + std::to_string(action.index + 1) + " (" + describeAction(action.action) + "): " + problem;
+      ++result.segmentsChecked;
+      const SegmentCheck check = checkSegment(arm, segment, arm.settings().verificationResolution);
+      result.collisionChecks += check.checks;
+      if (!check.collision.empty()) {
+        return "step " + std::to_string(action.index + 1) + " (" + describeAction(action.action) + "): " + check.collision;
+      }
     }
   }
   return {};
@@ -75,7 +78,7 @@ ExecutionVerification verifyExecution(const ArmContext& arm, const Scene& initia
                                       const std::vector<Goal>& goals) {
   const auto began = std::chrono::steady_clock::now();
   ExecutionVerification result;
-  result.collision = firstCollision(arm, record, result.segmentsChecked);
+  result.collision = firstCollision(arm, record, result);
   for (const Goal& goal : goals) result.goals.push_back(evaluate(initial, record, goal, arm.robotName()));
   result.disturbedObjects = disturbed(initial, record);
   bool goalsHold = !result.goals.empty();

@@ -27,6 +27,8 @@ struct ExecutionVerification {
   std::vector<std::string> disturbedObjects;
   /// Motion segments re-checked.
   int segmentsChecked = 0;
+  /// Robot states checked in them.
+  long collisionChecks = 0;
   double seconds = 0.0;
   /// The execution succeeded, its motions are collision-free, every goal holds and nothing else
   /// moved.

@@ -163,7 +163,7 @@ std::optional<GroundingAttempt> groundPush(const GroundingContext& c, const Scen
   const Pose end = shifted(push.contact, direction * (distance + arm.settings().pushStandoff));
 
   GroundingAttempt a(arm, world);
-  if (arm.gripperWidth(a.q) > 1e-4 && !a.add(arm, gripperMotion(arm, a.world, a.q, 0.0, "close gripper to push"))) {
+  if (arm.gripperWidth(a.q) > 1e-4 && !a.add(arm, gripperMotion(arm, a.world, a.q, 0.0, "close gripper to push"), c.counters)) {
     return finish(std::move(a), record);
   }
   const ReachabilityChecker reach = arm.reachIn(a.world);

@@ -57,7 +57,7 @@ std::optional<GroundingAttempt> tryPick(const GroundingContext& c, const Scene& 
   const std::string& name = grasp.object;
   GroundingAttempt a(arm, world);
   if (std::abs(arm.gripperWidth(a.q) - grasp.opening) > kWidthTolerance &&
-      !a.add(arm, gripperMotion(arm, a.world, a.q, grasp.opening, "open gripper for " + name))) {
+      !a.add(arm, gripperMotion(arm, a.world, a.q, grasp.opening, "open gripper for " + name), c.counters)) {
     return a;
   }
   if (!a.add(arm, planTransit(arm, a.world, a.q, grasp.preGraspSolutions, action.planner, "transit to pre-grasp of " + name, c.stop),
@@ -68,7 +68,7 @@ std::optional<GroundingAttempt> tryPick(const GroundingContext& c, const Scene& 
              record.times)) {
     return a;
   }
-  if (!a.add(arm, gripperMotion(arm, a.world, a.q, grasp.objectWidth, "close gripper on " + name, fingerContacts(arm, name)))) {
+  if (!a.add(arm, gripperMotion(arm, a.world, a.q, grasp.objectWidth, "close gripper on " + name, fingerContacts(arm, name)), c.counters)) {
     return a;
   }
   const SceneObject* support = currentSupport(a.world, a.world.object(name), kSupportTolerance);
@@ -112,7 +112,7 @@ std::optional<GroundingAttempt> tryPlace(const GroundingContext& c, const Scene&
     return a;
   }
   if (!a.add(arm, planCartesian(arm, a.world, a.q, place.placePose, "lower " + name), c.counters, record.times)) return a;
-  if (!a.add(arm, gripperMotion(arm, a.world, a.q, place.releaseOpening, "release " + name))) return a;
+  if (!a.add(arm, gripperMotion(arm, a.world, a.q, place.releaseOpening, "release " + name), c.counters)) return a;
   a.world.detach(name, place.objectPose);
   retreat(c, a, place, record);
   return a;
