@@ -34,6 +34,13 @@ json placeIn(const std::string& object) {
   return {{"action", "place"}, {"object", object}, {"params", {{"relation", "in"}, {"target", "holder"}}}};
 }
 
+/// Budgets of an optimized build; the sanitized binary runs about ten times slower.
+#if defined(__SANITIZE_ADDRESS__)
+const std::string kBudgets = " --time-limit 50 --ik-timeout 0.1";
+#else
+const std::string kBudgets;
+#endif
+
 void expectTimesIncrease(const json& trajectory) {
   double last = -1.0;
   for (const json& segment : trajectory["segments"]) {
@@ -48,7 +55,7 @@ void expectTimesIncrease(const json& trajectory) {
 
 TEST(RunCli, ThePaperTaskOfflineSucceedsAndWritesEveryFile) {
   const TempDirectory directory;
-  const RunResult result = run("run --out " + directory.path().string());
+  const RunResult result = run("run" + kBudgets + " --out " + directory.path().string());
   ASSERT_EQ(result.exitCode, 0) << result.output;
   EXPECT_THAT(result.output, HasSubstr("SUCCESS: \"put the marker and eraser in the holder\" on panda_desk"));
   EXPECT_THAT(result.output, HasSubstr("goal marker in holder: holds"));
@@ -84,8 +91,8 @@ TEST(RunCli, ThePaperTaskOfflineSucceedsAndWritesEveryFile) {
 
 TEST(RunCli, TheSameSeedGivesTheSameTrajectory) {
   const TempDirectory first, second;
-  ASSERT_EQ(run("run ur5_desk --seed 5 --out " + first.path().string()).exitCode, 0);
-  ASSERT_EQ(run("run ur5_desk --seed 5 --out " + second.path().string()).exitCode, 0);
+  ASSERT_EQ(run("run ur5_desk --seed 5" + kBudgets + " --out " + first.path().string()).exitCode, 0);
+  ASSERT_EQ(run("run ur5_desk --seed 5" + kBudgets + " --out " + second.path().string()).exitCode, 0);
   EXPECT_EQ(readFile(first.path() / "trajectory.json"), readFile(second.path() / "trajectory.json"));
 }
 
@@ -96,7 +103,7 @@ TEST(RunCli, AnLlmPlanThatCannotBeGroundedIsRepaired) {
   server.enqueueAnswer(json({{"actions", {pick("marker"), placeIn("marker"), pick("eraser"), placeIn("eraser")}}}).dump());
   const TempDirectory directory;
   const std::string environment = "env -u OPENAI_API_KEY OPENAI_BASE_URL=" + server.baseUrl() + " OPENAI_API_KEY=sk-test";
-  const RunResult result = run("run --llm openai:gpt-test --out " + directory.path().string(), true, environment);
+  const RunResult result = run("run --llm openai:gpt-test" + kBudgets + " --out " + directory.path().string(), true, environment);
   ASSERT_EQ(result.exitCode, 0) << result.output;
   const json report = readJson(directory.path() / "report.json");
   ASSERT_EQ(report["rounds"].size(), 2u);
@@ -112,7 +119,7 @@ TEST(RunCli, AnLlmPlanThatCannotBeGroundedIsRepaired) {
 TEST(RunCli, AFailedTaskWritesItsPartialResultsAndExitsWithTwo) {
   const TempDirectory directory;
   const RunResult result =
-      run("run --task \"put the eraser 300 cm to the left of the holder\" --rounds 1 --out " + directory.path().string());
+      run("run --task \"put the eraser 300 cm to the left of the holder\" --rounds 1" + kBudgets + " --out " + directory.path().string());
   EXPECT_EQ(result.exitCode, 2) << result.output;
   EXPECT_THAT(result.output, HasSubstr("FAILED"));
   EXPECT_THAT(result.output, HasSubstr("the task did not succeed"));
@@ -147,6 +154,8 @@ TEST(RunCliBadInput, EveryArgumentErrorIsNamed) {
   EXPECT_THAT(result.output, HasSubstr("--rounds 0: must be at least 1"));
   result = run("run --time-limit -1" + out);
   EXPECT_THAT(result.output, HasSubstr("--time-limit must be a positive number"));
+  result = run("run --ik-timeout 0" + out);
+  EXPECT_THAT(result.output, HasSubstr("--ik-timeout must be a positive number"));
   result = run("run --seed -3" + out);
   EXPECT_THAT(result.output, HasSubstr("--seed -3: must be >= 0"));
   result = run("run no_such_problem" + out);

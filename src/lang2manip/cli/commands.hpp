@@ -34,7 +34,7 @@ void addObserveCommand(CLI::App& app, std::ostream& out);
 void addPlanCommand(CLI::App& app, std::ostream& out);
 
 /// `lang2manip run [PROBLEM] [--task "..."] [--llm SPEC] [--planner NAME] [--ik NAME] [--arm NAME]
-/// [--seed N] [--time-limit S] [--rounds N] [--out DIR]`: plans the task (default: the paper's task
+/// [--seed N] [--time-limit S] [--ik-timeout S] [--rounds N] [--out DIR]`: plans the task (default: the paper's task
 /// on the paper's scene, offline), grounds and executes every action, verifies the result and
 /// writes plan.json, observation.{txt,json}, prompt.txt, trajectory.{json,csv} and report.json.
 /// A task that does not succeed still writes everything and ends with TaskFailedError.

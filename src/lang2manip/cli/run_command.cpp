@@ -41,6 +41,7 @@ struct RunOptions {
   int rounds = RepairOptions{}.maxRounds;
   long seed = 1;
   double timeLimit = ExecutionSettings{}.planningTimeSeconds;
+  double ikTimeout = ExecutionSettings{}.reach.ikTimeoutSeconds;
   std::string out = "lang2manip-run";
 };
 
@@ -53,6 +54,7 @@ void checkOptions(const RunOptions& options) {
   if (options.rounds < 1) throw InputError("run: --rounds " + std::to_string(options.rounds) + ": must be at least 1");
   if (options.seed < 0) throw InputError("run: --seed " + std::to_string(options.seed) + ": must be >= 0");
   if (!(options.timeLimit > 0.0)) throw InputError("run: --time-limit must be a positive number of seconds");
+  if (!(options.ikTimeout > 0.0)) throw InputError("run: --ik-timeout must be a positive number of seconds");
   if (options.out.empty()) throw InputError("run: --out must name a directory");
   if (!options.motionPlanner.empty()) (void)canonicalPlannerName(options.motionPlanner);
 }
@@ -64,6 +66,7 @@ ExecutionSettings executionSettings(const RunOptions& options) {
   if (!options.ik.empty()) settings.ikSolver = options.ik;
   settings.seed = static_cast<std::uint64_t>(options.seed);
   settings.planningTimeSeconds = options.timeLimit;
+  settings.reach.ikTimeoutSeconds = options.ikTimeout;
   return settings;
 }
 
@@ -186,6 +189,7 @@ void addRunCommand(CLI::App& app, std::ostream& out) {
   command->add_option("--rounds", options->rounds, "Task planner rounds at most (repairs included)")->capture_default_str();
   command->add_option("--seed", options->seed, "Random seed of planners, IK restarts and placement samples")->capture_default_str();
   command->add_option("--time-limit", options->timeLimit, "Seconds one motion query may take")->capture_default_str();
+  command->add_option("--ik-timeout", options->ikTimeout, "Seconds of IK search per pose")->capture_default_str();
   command->add_option("--out", options->out, "Output directory")->capture_default_str();
   command->callback([options, &out] { runTask(*options, out); });
 }

@@ -53,7 +53,7 @@ struct ExecutionSettings {
   PlacementSettings placement;
   /// IK for grasps, placements and goal poses: more solutions than the grounding modules'
   /// default, so that arms with many IK branches (UR5) find a collision-free one.
-  ReachSettings reach = {0.05, 6, 1};
+  ReachSettings reach = {0.01, 6, 1};
 };
 
 /// Throws InputError naming the field for a non-positive time or step, counts < 1, or a speed

@@ -115,7 +115,8 @@ struct PlacementCandidate {
   /// Gripper gap holding the object, and when releasing it.
   double heldWidth = 0.0;
   double releaseOpening = 0.0;
-  /// Collision-free configurations (robot holding the object) at placePose and prePlacePose.
+  /// Collision-free configurations (robot holding the object) at placePose (gripper opened to
+  /// releaseOpening) and prePlacePose (gripper at heldWidth).
   std::vector<VectorX> placeSolutions;
   std::vector<VectorX> prePlaceSolutions;
   /// Higher is better (earlier in the preference order of the relation, more IK solutions).

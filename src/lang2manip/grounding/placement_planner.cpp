@@ -125,7 +125,9 @@ bool tryPoseAt(Attempt& a, const PoseCandidate& pose, double drop, int& checks, 
     c.heldWidth = 2.0 * halfExtentAlong(a.object, Pose::Identity(), a.grasps[g].linear() * reach.gripper().closingAxis);
     c.releaseOpening = std::min(reach.gripper().maxOpening, c.heldWidth + 2.0 * s.releaseMargin);
     ++checks;
-    const ReachResult place = reach.reach(c.placePose, a.seed, c.heldWidth);
+    // Checked with the gripper opened for the release: fingers that open into a container's wall
+    // rule the pose out.
+    const ReachResult place = reach.reach(c.placePose, a.seed, c.releaseOpening);
     if (!place.reachable()) {
       plan.rejections.push_back({pose.label, PlacementFailure::kUnreachable, "place pose " + place.reason});
       continue;
