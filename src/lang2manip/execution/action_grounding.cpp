@@ -44,6 +44,24 @@ bool GroundingAttempt::add(const ArmContext& arm, MotionSegment segment, Executi
   return true;
 }
 
+bool addFirstCartesian(const GroundingContext& c, GroundingAttempt& a, const std::vector<Pose>& targets,
+                       const std::string& label, const CartesianAllowance& allowance, StageTimes& times) {
+  std::string failures;
+  std::string stage;
+  for (const Pose& target : targets) {
+    MotionResult motion = planCartesian(c.arm, a.world, a.q, target, label, allowance);
+    if (motion.ok()) return a.add(c.arm, std::move(motion), c.counters, times);
+    c.counters.ikCalls += motion.ikCalls;
+    c.counters.collisionChecks += motion.collisionChecks;
+    times.ik += motion.ikSeconds;
+    stage = motion.stage;
+    failures += (failures.empty() ? "" : "; ") + motion.reason;
+  }
+  a.stage = stage;
+  a.reason = targets.size() == 1 ? failures : "no " + label + " is free: " + failures;
+  return false;
+}
+
 namespace {
 
 std::optional<GroundingAttempt> groundByType(const GroundingContext& context, const Scene& world,

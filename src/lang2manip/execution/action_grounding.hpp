@@ -44,6 +44,11 @@ struct GroundingContext {
   const StopCondition& stop;
 };
 
+/// Moves the tool in a straight line from the end of `attempt` to the first of `targets` that
+/// can be reached that way; records every failure in the attempt when none can.
+bool addFirstCartesian(const GroundingContext& context, GroundingAttempt& attempt, const std::vector<Pose>& targets,
+                       const std::string& label, const CartesianAllowance& allowance, StageTimes& times);
+
 /// Grounds and executes `action` (number `index` in its plan) starting from `world`, which is
 /// updated to the world after it on success and left as it was on failure. Never throws for
 /// geometric or kinematic failures or unknown names: they are the record's failure.

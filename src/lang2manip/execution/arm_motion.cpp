@@ -41,6 +41,17 @@ std::string armPart(const VectorX& x) {
   return text + ")";
 }
 
+VectorX valuesOf(const std::vector<int>& variables, const VectorX& q) {
+  VectorX x(static_cast<Eigen::Index>(variables.size()));
+  for (std::size_t i = 0; i < variables.size(); ++i) x[static_cast<Eigen::Index>(i)] = q[variables[i]];
+  return x;
+}
+
+VectorX withValues(const std::vector<int>& variables, VectorX q, const VectorX& x) {
+  for (std::size_t i = 0; i < variables.size(); ++i) q[variables[i]] = x[static_cast<Eigen::Index>(i)];
+  return q;
+}
+
 VectorX armValues(const ArmContext& arm, const VectorX& q) {
   VectorX x(static_cast<Eigen::Index>(arm.armVariables().size()));
   for (std::size_t i = 0; i < arm.armVariables().size(); ++i) x[static_cast<Eigen::Index>(i)] = q[arm.armVariables()[i]];
@@ -154,10 +165,13 @@ namespace {
 
 MotionResult planDirectTransit(const ArmContext& arm, const Scene& world, const VectorX& start,
                                const std::vector<VectorX>& goals, const std::string& planner, const std::string& label,
-                               const StopCondition& stop) {
+                               const StopCondition& stop, const std::vector<std::string>& joints = {}) {
   const auto checker = arm.checkerFor(world);
-  std::vector<std::vector<std::string>> variables{arm.manipulator().armJoints};
-  auto space = std::make_shared<const JointPlanningSpace>(checker, std::vector<std::string>{arm.robotName()}, variables);
+  const std::vector<std::string>& planned = joints.empty() ? arm.manipulator().armJoints : joints;
+  std::vector<int> variables;
+  for (const std::string& joint : planned) variables.push_back(arm.model().variableIndex(joint));
+  auto space = std::make_shared<const JointPlanningSpace>(checker, std::vector<std::string>{arm.robotName()},
+                                                          std::vector<std::vector<std::string>>{planned});
   const std::string name = planner.empty() ? arm.settings().defaultPlanner : planner;
   PlannerSettings settings;
   settings.setPlanner(name);
@@ -166,13 +180,13 @@ MotionResult planDirectTransit(const ArmContext& arm, const Scene& world, const 
   options.verificationResolution = arm.settings().verificationResolution;
   MotionPlanner motion(space, options);
   std::vector<VectorX> goalPoints;
-  for (const VectorX& goal : goals) goalPoints.push_back(armValues(arm, goal));
+  for (const VectorX& goal : goals) goalPoints.push_back(valuesOf(variables, goal));
   if (stop.shouldStop()) return failedMotion("motion", label + ": stopped before planning");
   MotionResult result;
   result.plannerCalls = 1;
   MotionPlan plan;
   try {
-    plan = motion.solve(armValues(arm, start), goalPoints, settings, stop);
+    plan = motion.solve(valuesOf(variables, start), goalPoints, settings, stop);
   } catch (const InputError& error) {
     return failedMotion("motion", std::string(label) + ": " + error.what());
   }
@@ -187,7 +201,7 @@ MotionResult planDirectTransit(const ArmContext& arm, const Scene& world, const 
   segment.world = world;
   segment.planner = settings.planner();
   result.collisionChecks = plan.statistics.stateChecks;
-  for (const VectorX& x : plan.path) segment.waypoints.push_back(withArmValues(arm, start, x));
+  for (const VectorX& x : plan.path) segment.waypoints.push_back(withValues(variables, start, x));
   result.segment = std::move(segment);
   return result;
 }
@@ -227,9 +241,9 @@ MotionResult planTransitThroughHome(const ArmContext& arm, const Scene& world, c
 
 MotionResult planTransit(const ArmContext& arm, const Scene& world, const VectorX& start,
                          const std::vector<VectorX>& goals, const std::string& planner, const std::string& label,
-                         const StopCondition& stop) {
-  MotionResult direct = planDirectTransit(arm, world, start, goals, planner, label, stop);
-  if (direct.ok() || direct.stage != "motion" || !arm.homeArm() || stop.shouldStop()) return direct;
+                         const StopCondition& stop, const std::vector<std::string>& joints) {
+  MotionResult direct = planDirectTransit(arm, world, start, goals, planner, label, stop, joints);
+  if (direct.ok() || !joints.empty() || direct.stage != "motion" || !arm.homeArm() || stop.shouldStop()) return direct;
   return planTransitThroughHome(arm, world, start, goals, planner, label, stop, std::move(direct));
 }
 

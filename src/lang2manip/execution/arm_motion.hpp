@@ -79,15 +79,17 @@ struct MotionResult {
   [[nodiscard]] bool ok() const noexcept { return segment.has_value(); }
 };
 
-/// Plans the arm from `start` to any of `goals` (full configurations; the gripper and every other
-/// joint keep start's values) in `world` with `planner` (empty = the settings' default), within
+/// Plans the arm (or `joints` when given) from `start` to any of `goals` (full configurations;
+/// the gripper and every other joint keep start's values) in `world` with `planner` (empty = the settings' default), within
 /// the settings' time limit or until `stop`. The path is simplified and re-verified by the motion
 /// planner. A start or goal in collision is a failure naming the colliding pair, not an error.
 /// When no path is found and the robot has a "home" configuration, plans start -> home -> goal
-/// (a known free configuration often joins IK branches a direct query does not).
+/// (a known free configuration often joins IK branches a direct query does not); not when
+/// `joints` are given.
 MotionResult planTransit(const ArmContext& arm, const Scene& world, const VectorX& start,
                          const std::vector<VectorX>& goals, const std::string& planner,
-                         const std::string& label, const StopCondition& stop);
+                         const std::string& label, const StopCondition& stop,
+                         const std::vector<std::string>& joints = {});
 
 /// What a Cartesian motion may touch and carry (see MotionSegment).
 struct CartesianAllowance {

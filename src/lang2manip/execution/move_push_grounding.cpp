@@ -91,15 +91,37 @@ std::string metres(double value) {
   return text;
 }
 
+/// The joints a named configuration sets, but the executing arm's gripper (a held object stays
+/// held); for a robot with several arms "home" moves all of them.
+std::vector<std::string> namedConfigurationJoints(const ArmContext& arm, const std::string& name) {
+  std::vector<std::string> joints = arm.manipulator().armJoints;
+  const auto& gripper = arm.gripper().gripperJoints;
+  for (const NamedState& state : arm.model().semantics().namedStates) {
+    if (state.name != name) continue;
+    for (const auto& [joint, value] : state.values) {
+      const auto index = arm.model().findJoint(joint);
+      const bool variable = index && arm.model().variableOfJoint(*index) >= 0;
+      if (variable && std::find(joints.begin(), joints.end(), joint) == joints.end() &&
+          std::find(gripper.begin(), gripper.end(), joint) == gripper.end()) {
+        joints.push_back(joint);
+      }
+    }
+  }
+  return joints;
+}
+
 std::optional<GroundingAttempt> moveToConfiguration(const GroundingContext& c, const Scene& world, const SymbolicAction& action,
                                                     ActionExecution& record) {
   const ArmContext& arm = c.arm;
-  const VectorX named = arm.model().namedConfiguration(action.params.configuration);
+  const std::string& name = action.params.configuration;
+  const VectorX named = arm.model().namedConfiguration(name);
+  const std::vector<std::string> joints = namedConfigurationJoints(arm, name);
   GroundingAttempt a(arm, world);
   VectorX goal = a.q;
-  for (int variable : arm.armVariables()) goal[variable] = named[variable];
-  record.choice = action.params.configuration;
-  a.add(arm, planTransit(arm, a.world, a.q, {goal}, action.planner, "transit to " + action.params.configuration, c.stop),
+  for (const std::string& joint : joints) goal[arm.model().variableIndex(joint)] = named[arm.model().variableIndex(joint)];
+  record.choice = name;
+  a.add(arm, planTransit(arm, a.world, a.q, {goal}, action.planner, "transit to " + name, c.stop,
+                         joints.size() == arm.manipulator().armJoints.size() ? std::vector<std::string>{} : joints),
         c.counters, record.times);
   return finish(std::move(a), record);
 }
@@ -185,9 +207,11 @@ std::optional<GroundingAttempt> groundPush(const GroundingContext& c, const Scen
     return finish(std::move(a), record, "push");
   }
   a.world.object(object.name).pose = shifted(object.pose, direction * distance);
-  a.add(arm, planCartesian(arm, a.world, a.q, raised(end, arm.settings().pushRetreat), "retreat from " + object.name,
-                           fingersMayTouch(arm, object.name)),
-        c.counters, record.times);
+  const double rise = arm.settings().pushRetreat;
+  addFirstCartesian(c, a,
+                    {raised(end, rise), raised(shifted(end, -direction * rise * std::sqrt(0.5)), rise * std::sqrt(0.5)),
+                     raised(end, rise / 2.0)},
+                    "retreat from " + object.name, fingersMayTouch(arm, object.name), record.times);
   record.choice = "contact behind " + object.name + ", " + metres(distance);
   return finish(std::move(a), record);
 }

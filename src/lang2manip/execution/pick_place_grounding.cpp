@@ -80,26 +80,13 @@ std::optional<GroundingAttempt> tryPick(const GroundingContext& c, const Scene& 
   return a;
 }
 
-/// After a release: back along the approach axis, else straight up, else back and up; the
-/// first of them that can be moved to.
+/// After a release: back along the approach axis, else straight up, else back and up.
 void retreat(const GroundingContext& c, GroundingAttempt& a, const PlacementCandidate& place, ActionExecution& record) {
-  const ArmContext& arm = c.arm;
   const Vector3 back = place.retreatPose.translation() - place.placePose.translation();
-  const double distance = back.norm();
-  const Pose up = Pose(Eigen::Translation3d(Vector3::UnitZ() * distance)) * place.placePose;
-  const Pose backAndUp = Pose(Eigen::Translation3d((back + Vector3::UnitZ() * distance) * std::sqrt(0.5))) * place.placePose;
-  std::string failures;
-  for (const Pose& target : {place.retreatPose, up, backAndUp}) {
-    MotionResult motion = planCartesian(arm, a.world, a.q, target, "retreat from " + place.object, fingersMayTouch(arm, place.object));
-    if (motion.ok()) {
-      a.add(arm, std::move(motion), c.counters, record.times);
-      return;
-    }
-    c.counters.ikCalls += motion.ikCalls;
-    failures += (failures.empty() ? "" : "; ") + motion.reason;
-  }
-  a.stage = "motion";
-  a.reason = "no retreat from " + place.object + " is free: " + failures;
+  const Pose up = Pose(Eigen::Translation3d(Vector3::UnitZ() * back.norm())) * place.placePose;
+  const Pose backAndUp = Pose(Eigen::Translation3d((back + Vector3::UnitZ() * back.norm()) * std::sqrt(0.5))) * place.placePose;
+  addFirstCartesian(c, a, {place.retreatPose, up, backAndUp}, "retreat from " + place.object, fingersMayTouch(c.arm, place.object),
+                    record.times);
 }
 
 std::optional<GroundingAttempt> tryPlace(const GroundingContext& c, const Scene& world, const PlacementCandidate& place,
