@@ -81,22 +81,38 @@ struct Attempt {
 /// Tries every grasp at one object pose; appends a candidate or rejections.
 bool tryPoseAt(Attempt& a, const PoseCandidate& pose, double drop, int& checks, PlacementPlan& plan);
 
+/// True when, released `drop` above `pose` by some grasp, the fully open fingers either stay
+/// above the container's rim or fit inside its cavity (seen from above).
+bool fingersFit(const Attempt& a, const PoseCandidate& pose, const SceneObject& container, double drop) {
+  const AlignedBox3 cavity = transformedBox(*container.cavity, container.pose);
+  const double rim = container.worldBounds().max().z();
+  const Pose release = Pose(Eigen::Translation3d(Vector3::UnitZ() * drop)) * pose.pose;
+  for (const Pose& X_OG : a.grasps) {
+    const AlignedBox3 fingers = transformedBox(a.gripper.fingerBounds, release * X_OG);
+    const bool inside = fingers.min().x() >= cavity.min().x() && fingers.max().x() <= cavity.max().x() &&
+                        fingers.min().y() >= cavity.min().y() && fingers.max().y() <= cavity.max().y();
+    if (fingers.min().z() >= rim || inside) return true;
+  }
+  return false;
+}
+
 /// Release heights above `pose` to try: none but 0 outside a container; inside one, the
-/// settings' drop heights below the rim drop, then the rim drop (the lowest of the object and
-/// the fingers, for any of the grasps, rimClearance above the container's rim, so that the hand
-/// stays out of the opening).
+/// settings' drop heights below the rim drop at which the open fingers fit, then the rim drop
+/// (the lowest of the object and the fingers, for any of the grasps, rimClearance above the
+/// container's rim, so that the hand stays out of the opening).
 std::vector<double> dropHeightsFor(const Attempt& a, const PoseCandidate& pose) {
   if (a.request.target.relation != SpatialRelation::kIn) return {0.0};
   const PlacementSettings& s = a.request.settings;
-  const double rim = a.scene.object(pose.support).worldBounds().max().z();
+  const SceneObject& container = a.scene.object(pose.support);
+  const double rim = container.worldBounds().max().z();
   double lowest = boundsAtPose(a.object, pose.pose).min().z();
   for (const Pose& X_OG : a.grasps) lowest = std::min(lowest, transformedBox(a.gripper.fingerBounds, pose.pose * X_OG).min().z());
-  const double rimDrop = rim + s.rimClearance - lowest;
+  const double rimDrop = std::max(rim + s.rimClearance - lowest, 0.0);
   std::vector<double> drops;
   for (double drop : s.dropHeights) {
-    if (drop < rimDrop) drops.push_back(drop);
+    if (drop < rimDrop && (!container.cavity || fingersFit(a, pose, container, drop))) drops.push_back(drop);
   }
-  drops.push_back(std::max(rimDrop, 0.0));
+  drops.push_back(rimDrop);
   return drops;
 }
 
