@@ -15,19 +15,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-SceneObject box(const std::string& name, const Vector3& size, const Vector3& bottomCentre, bool movable) {
-  SceneObject object;
-  object.name = name;
-  object.kind = name;
-  object.movable = movable;
-  Shape shape;
-  shape.geometry = Box{size};
-  shape.origin.translation() = Vector3(0, 0, size.z() / 2.0);
-  object.collisions.push_back(shape);
-  object.pose.translation() = bottomCentre;
-  return object;
-}
-
 struct Failed {
   GroundingFailure failure;
   ExecutionRecord record;
@@ -43,8 +30,8 @@ Failed executeExpectingFailure(const Scene& scene, const Plan& plan) {
 TEST(ExecutionFailures, UnreachableObjectFailsAtTheGraspStage) {
   for (const std::string robot : {"panda", "ur5"}) {
     Scene scene = deskScene(robot);
-    scene.addObject(box("pedestal", Vector3(0.2, 0.2, 0.75), Vector3(1.2, 0.0, 0.0), false));
-    scene.addObject(box("far_block", Vector3(0.03, 0.03, 0.05), Vector3(1.2, 0.0, 0.75), true));
+    scene.addObject(fixedBox("pedestal", Vector3(0.2, 0.2, 0.75), Vector3(1.2, 0.0, 0.0)));
+    scene.addObject(boxObject("far_block", Vector3(0.03, 0.03, 0.05), Vector3(1.2, 0.0, 0.75)));
     const Failed f = executeExpectingFailure(scene, planOf({pickAction("far_block")}));
     EXPECT_EQ(f.failure.stage, "grasp") << robot;
     EXPECT_EQ(f.failure.object, "far_block");
@@ -56,7 +43,7 @@ TEST(ExecutionFailures, UnreachableObjectFailsAtTheGraspStage) {
 
 TEST(ExecutionFailures, FullHolderFailsAtThePlacementStageAfterThePick) {
   Scene scene = deskScene("panda");
-  scene.addObject(box("block", Vector3(0.055, 0.055, 0.09), Vector3(0.12, 0.02, 0.755), true));
+  scene.addObject(boxObject("block", Vector3(0.055, 0.055, 0.09), Vector3(0.12, 0.02, 0.755)));
   const Failed f = executeExpectingFailure(
       scene, planOf({pickAction("eraser"), placeAction("eraser", SpatialRelation::kIn, "holder"), moveHomeAction()}));
   EXPECT_EQ(f.failure.actionIndex, 1u);
@@ -72,7 +59,7 @@ TEST(ExecutionFailures, FullHolderFailsAtThePlacementStageAfterThePick) {
 
 TEST(ExecutionFailures, BlockedPlacementNamesTheBlocker) {
   Scene scene = deskScene("panda");
-  scene.addObject(box("stand", Vector3(0.08, 0.08, 0.08), Vector3(0.10, -0.25, 0.75), false));
+  scene.addObject(fixedBox("stand", Vector3(0.08, 0.08, 0.08), Vector3(0.10, -0.25, 0.75)));
   SymbolicAction place;
   place.type = ActionType::kPlace;
   place.object = "eraser";
@@ -85,7 +72,7 @@ TEST(ExecutionFailures, BlockedPlacementNamesTheBlocker) {
 TEST(ExecutionFailures, PushIntoAnObstacleFailsAtThePushStage) {
   Scene scene = deskScene("panda");
   // The eraser's front face is at x = 0.005; the wall stands 2 cm beyond it.
-  scene.addObject(box("wall", Vector3(0.02, 0.20, 0.06), Vector3(0.035, 0.17, 0.75), false));
+  scene.addObject(fixedBox("wall", Vector3(0.02, 0.20, 0.06), Vector3(0.035, 0.17, 0.75)));
   const Failed f = executeExpectingFailure(scene, planOf({pushAction("eraser", Vector3(1, 0, 0), 0.08)}));
   EXPECT_EQ(f.failure.stage, "push");
   EXPECT_THAT(f.failure.reason, HasSubstr("eraser would hit wall"));

@@ -6,9 +6,8 @@
 
 #include <string>
 
+#include "grounding/grounding_test_support.hpp"
 #include "lang2manip/execution/task_executor.hpp"
-#include "lang2manip/model/builtin_data.hpp"
-#include "lang2manip/model/kautham_problem.hpp"
 
 namespace lang2manip::test {
 
@@ -20,7 +19,12 @@ constexpr bool kSanitizedBuild = true;
 constexpr bool kSanitizedBuild = false;
 #endif
 
-inline Scene deskScene(const std::string& robot) { return readKauthamProblem(resolveProblem(robot + "_desk")).scene; }
+/// A box object (see boxObject()) that is fixed in place.
+inline SceneObject fixedBox(const std::string& name, const Vector3& size, const Vector3& bottomCentre) {
+  SceneObject object = boxObject(name, size, bottomCentre);
+  object.movable = false;
+  return object;
+}
 
 inline ExecutionSettings testSettings(const std::string& manipulator = {}) {
   ExecutionSettings settings;

@@ -65,7 +65,9 @@ TEST_P(PaperTask, SucceedsAndIsVerified) {
 INSTANTIATE_TEST_SUITE_P(BuiltinRobots, PaperTask,
                          ::testing::Values(RobotArm{"panda", ""}, RobotArm{"ur5", ""}, RobotArm{"iiwa14", ""},
                                            RobotArm{"yumi", "right_arm"}, RobotArm{"yumi", "left_arm"}, RobotArm{"tx90", ""}),
-                         [](const auto& info) { return info.param.robot + (info.param.arm.empty() ? "" : "_" + info.param.arm); });
+                         [](const ::testing::TestParamInfo<RobotArm>& test) {
+                           return test.param.robot + (test.param.arm.empty() ? "" : "_" + test.param.arm);
+                         });
 
 /// Planners whose every query runs to the time limit (they only stop there), or that need a
 /// goal sampler a joint goal set does not give; they still run, with a shorter limit.
@@ -88,7 +90,9 @@ TEST(PaperTaskPlanners, EveryRegisteredGeometricPlannerSucceedsOnThePanda) {
     EXPECT_TRUE(run.repair.succeeded() && run.verification.success) << planner << ": " << run.repair.failure;
     for (const ActionExecution& action : executor.lastExecution().actions) {
       for (const MotionSegment& segment : action.segments) {
-        if (!segment.planner.empty()) EXPECT_EQ(segment.planner, planner) << segment.label;
+        if (!segment.planner.empty()) {
+          EXPECT_EQ(segment.planner, planner) << segment.label;
+        }
       }
     }
   }

@@ -15,4 +15,8 @@ void addBenchIkCommand(CLI::App& bench, std::ostream& out);
 /// [--json] [--log FILE]`: the MotionBenchMaker Panda problems (docs/benchmarks.md).
 void addBenchMbmCommand(CLI::App& bench, std::ostream& out);
 
+/// `lang2manip bench task [PROBLEM] [--task "..."] [--trials N] [--spread M] [--turn RAD] [--seed N]
+/// [--baseline-ik NAME] [--json]`: randomized trials of a task (docs/benchmarks.md, task level).
+void addBenchTaskCommand(CLI::App& bench, std::ostream& out);
+
 }  // namespace lang2manip

@@ -97,6 +97,7 @@ Totals totals(const RunOutcome& outcome) {
   for (const ExecutionRecord& record : *outcome.executions) {
     sum.times += record.times;
     sum.counters.plannerCalls += record.counters.plannerCalls;
+    sum.counters.plannerSolved += record.counters.plannerSolved;
     sum.counters.ikCalls += record.counters.ikCalls;
     sum.counters.collisionChecks += record.counters.collisionChecks;
     sum.counters.graspPlans += record.counters.graspPlans;
@@ -154,6 +155,7 @@ json runReportJson(const RunOutcome& outcome) {
   report["counts"] = {{"planner_rounds", outcome.repair.rounds.size()},
                       {"executions", outcome.executions ? outcome.executions->size() : 0},
                       {"motion_planner_calls", sum.counters.plannerCalls},
+                      {"motion_planner_solved", sum.counters.plannerSolved},
                       {"grasp_plans", sum.counters.graspPlans},
                       {"placement_plans", sum.counters.placementPlans},
                       {"llm_calls", llm.llmCalls},

@@ -16,6 +16,7 @@ GroundingAttempt::GroundingAttempt(const ArmContext& arm, Scene start)
 
 bool GroundingAttempt::add(const ArmContext& arm, MotionResult result, ExecutionCounters& counters, StageTimes& times) {
   counters.plannerCalls += result.plannerCalls;
+  counters.plannerSolved += result.plannerSolved;
   counters.ikCalls += result.ikCalls;
   counters.collisionChecks += result.collisionChecks;
   times.ik += result.ikSeconds;

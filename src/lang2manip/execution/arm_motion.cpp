@@ -200,6 +200,7 @@ MotionResult planDirectTransit(const ArmContext& arm, const Scene& world, const 
   segment.label = label;
   segment.world = world;
   segment.planner = settings.planner();
+  result.plannerSolved = 1;
   result.collisionChecks = plan.statistics.stateChecks;
   for (const VectorX& x : plan.path) segment.waypoints.push_back(withValues(variables, start, x));
   result.segment = std::move(segment);
@@ -219,12 +220,14 @@ MotionResult planTransitThroughHome(const ArmContext& arm, const Scene& world, c
   MotionResult first = planDirectTransit(arm, world, start, {home}, planner, label + " (to home)", stop);
   if (!first.ok()) {
     first.plannerCalls += direct.plannerCalls;
+    first.plannerSolved = 0;
     first.collisionChecks += direct.collisionChecks;
     first.reason = direct.reason + "; through home: " + first.reason;
     return first;
   }
   MotionResult second = planDirectTransit(arm, world, first.segment->waypoints.back(), goals, planner, label + " (from home)", stop);
   second.plannerCalls += first.plannerCalls + direct.plannerCalls;
+  second.plannerSolved += first.plannerSolved;
   second.collisionChecks += first.collisionChecks + direct.collisionChecks;
   if (!second.ok()) {
     second.reason = direct.reason + "; through home: " + second.reason;

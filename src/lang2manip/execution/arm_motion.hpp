@@ -72,6 +72,7 @@ struct MotionResult {
   std::string reason;
   /// Work done.
   int plannerCalls = 0;
+  int plannerSolved = 0;
   int ikCalls = 0;
   long collisionChecks = 0;
   double ikSeconds = 0.0;

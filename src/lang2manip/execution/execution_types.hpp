@@ -53,7 +53,7 @@ struct ExecutionSettings {
   PlacementSettings placement;
   /// IK for grasps, placements and goal poses: more solutions than the grounding modules'
   /// default, so that arms with many IK branches (UR5) find a collision-free one.
-  ReachSettings reach = {0.01, 6, 1};
+  ReachSettings reach = {0.005, 3, 1};
 };
 
 /// Throws InputError naming the field for a non-positive time or step, counts < 1, or a speed
@@ -83,7 +83,9 @@ struct MotionSegment {
 
 /// Work counters, summed over actions and attempts.
 struct ExecutionCounters {
+  /// Motion planner queries, and those that found a verified path.
   int plannerCalls = 0;
+  int plannerSolved = 0;
   int ikCalls = 0;
   long collisionChecks = 0;
   int graspPlans = 0;

@@ -20,10 +20,6 @@ void checkLength(double value, const char* field) {
   }
 }
 
-/// "grasp" and "placement" stay; the motion stages of the execution layer map onto the
-/// repair loop's vocabulary as they are.
-std::string feedbackStage(const ActionExecution& action) { return action.stage.empty() ? "motion" : action.stage; }
-
 }  // namespace
 
 std::string actionStatusName(ActionStatus status) {
@@ -81,7 +77,7 @@ std::optional<GroundingFailure> TaskExecutor::execute(const Plan& plan, const St
     ActionExecution action = executeAction(context, world, plan.actions[i], i);
     record.times += action.times;
     if (action.status == ActionStatus::kFailed) {
-      record.failure = GroundingFailure{i, feedbackStage(action), plan.actions[i].object, action.reason};
+      record.failure = GroundingFailure{i, action.stage.empty() ? "motion" : action.stage, plan.actions[i].object, action.reason};
     }
     record.actions.push_back(std::move(action));
   }

@@ -19,7 +19,8 @@ namespace lang2manip {
 /// Why an action of a plan could not be grounded, reported by the execution layer.
 struct GroundingFailure {
   std::size_t actionIndex = 0;
-  /// "grasp", "placement", "ik", "motion", "push", "verification".
+  /// "grasp", "placement", "ik", "motion", "push", "precondition" (an action the world does not
+  /// allow: an unknown object, one already held, an unknown planner or configuration).
   std::string stage;
   std::string object;
   /// In words, naming objects: "no collision-free grasp of eraser: ...".
