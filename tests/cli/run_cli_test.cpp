@@ -91,8 +91,8 @@ TEST(RunCli, ThePaperTaskOfflineSucceedsAndWritesEveryFile) {
 
 TEST(RunCli, TheSameSeedGivesTheSameTrajectory) {
   const TempDirectory first, second;
-  ASSERT_EQ(run("run ur5_desk --seed 5" + kBudgets + " --out " + first.path().string()).exitCode, 0);
-  ASSERT_EQ(run("run ur5_desk --seed 5" + kBudgets + " --out " + second.path().string()).exitCode, 0);
+  ASSERT_EQ(run("run iiwa14_desk --seed 5" + kBudgets + " --out " + first.path().string()).exitCode, 0);
+  ASSERT_EQ(run("run iiwa14_desk --seed 5" + kBudgets + " --out " + second.path().string()).exitCode, 0);
   EXPECT_EQ(readFile(first.path() / "trajectory.json"), readFile(second.path() / "trajectory.json"));
 }
 
