@@ -52,16 +52,7 @@ VectorX withValues(const std::vector<int>& variables, VectorX q, const VectorX& 
   return q;
 }
 
-VectorX armValues(const ArmContext& arm, const VectorX& q) {
-  VectorX x(static_cast<Eigen::Index>(arm.armVariables().size()));
-  for (std::size_t i = 0; i < arm.armVariables().size(); ++i) x[static_cast<Eigen::Index>(i)] = q[arm.armVariables()[i]];
-  return x;
-}
-
-VectorX withArmValues(const ArmContext& arm, VectorX q, const VectorX& x) {
-  for (std::size_t i = 0; i < arm.armVariables().size(); ++i) q[arm.armVariables()[i]] = x[static_cast<Eigen::Index>(i)];
-  return q;
-}
+VectorX armValues(const ArmContext& arm, const VectorX& q) { return valuesOf(arm.armVariables(), q); }
 
 std::string contactsText(const std::vector<CollisionContact>& contacts) {
   std::string text;
@@ -128,6 +119,8 @@ ArmContext::ArmContext(const Scene& scene, ExecutionSettings settings) : setting
     if (state.name == kHomeConfiguration) homeArm_ = armValues(*this, model_->namedConfiguration(kHomeConfiguration));
   }
 }
+
+VectorX ArmContext::withArm(VectorX q, const VectorX& arm) const { return withValues(armVariables_, std::move(q), arm); }
 
 JointTrajectory ArmContext::timeParameterize(const std::vector<VectorX>& waypoints) const {
   std::vector<VectorX> path;
@@ -213,7 +206,7 @@ bool nearlyEqual(const VectorX& a, const VectorX& b) { return (a - b).cwiseAbs()
 MotionResult planTransitThroughHome(const ArmContext& arm, const Scene& world, const VectorX& start,
                                     const std::vector<VectorX>& goals, const std::string& planner, const std::string& label,
                                     const StopCondition& stop, MotionResult direct) {
-  const VectorX home = withArmValues(arm, start, *arm.homeArm());
+  const VectorX home = arm.withArm(start, *arm.homeArm());
   if (nearlyEqual(home, start) || std::any_of(goals.begin(), goals.end(), [&](const VectorX& g) { return nearlyEqual(armValues(arm, g), *arm.homeArm()); })) {
     return direct;
   }

@@ -33,6 +33,8 @@ class ArmContext {
   [[nodiscard]] const std::shared_ptr<const IkSolver>& ik() const noexcept { return ik_; }
   /// The arm joints of the robot's named configuration "home", when it has one.
   [[nodiscard]] const std::optional<VectorX>& homeArm() const noexcept { return homeArm_; }
+  /// `q` with the arm joints set to `arm` (values in manipulator().armJoints order).
+  [[nodiscard]] VectorX withArm(VectorX q, const VectorX& arm) const;
   /// Variable indices of the arm joints in the robot's configuration.
   [[nodiscard]] const std::vector<int>& armVariables() const noexcept { return armVariables_; }
 

@@ -38,8 +38,7 @@ const Attachment* heldByRobot(const Scene& world, const std::string& robot) {
 std::vector<VectorX> ikSeeds(const ArmContext& arm, const Scene& world) {
   std::vector<VectorX> seeds{robotConfiguration(arm, world)};
   if (arm.homeArm()) {
-    VectorX home = seeds.front();
-    for (std::size_t i = 0; i < arm.armVariables().size(); ++i) home[arm.armVariables()[i]] = (*arm.homeArm())[static_cast<Eigen::Index>(i)];
+    const VectorX home = arm.withArm(seeds.front(), *arm.homeArm());
     if ((home - seeds.front()).cwiseAbs().maxCoeff() > 1e-3) seeds.push_back(home);
   }
   return seeds;
