@@ -57,6 +57,16 @@ TEST(ExecutionFailures, FullHolderFailsAtThePlacementStageAfterThePick) {
   EXPECT_NE(f.record.finalScene.findAttachment("eraser"), nullptr) << "the world after the last action that succeeded";
 }
 
+TEST(ExecutionFailures, AnObjectTooLargeForTheContainerIsRefusedWithTheReason) {
+  Scene scene = deskScene("panda");
+  scene.addObject(boxObject("cube", Vector3(0.07, 0.07, 0.07), Vector3(0.1, -0.3, 0.75)));
+  const Failed f = executeExpectingFailure(scene, planOf({pickAction("cube"), placeAction("cube", SpatialRelation::kIn, "holder")}));
+  EXPECT_EQ(f.failure.actionIndex, 1u);
+  EXPECT_EQ(f.failure.stage, "placement");
+  EXPECT_THAT(f.failure.reason, HasSubstr("cube"));
+  EXPECT_THAT(f.failure.reason, HasSubstr("too large for the cavity of holder"));
+}
+
 TEST(ExecutionFailures, BlockedPlacementNamesTheBlocker) {
   Scene scene = deskScene("panda");
   scene.addObject(fixedBox("stand", Vector3(0.08, 0.08, 0.08), Vector3(0.10, -0.25, 0.75)));
