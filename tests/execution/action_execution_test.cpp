@@ -109,6 +109,27 @@ TEST_P(ActionsOnRobot, PushSlidesTheObjectByTheDistance) {
   EXPECT_TRUE(verification.success) << verification.collision;
 }
 
+TEST_P(ActionsOnRobot, EachActionIsPlannedWithItsOwnPlanner) {
+  TaskExecutor executor(deskScene(GetParam()), testSettings());
+  SymbolicAction pick = pickAction("marker");
+  pick.planner = "omplPRM";
+  SymbolicAction place = placeAction("marker", SpatialRelation::kIn, "holder");
+  place.planner = "BiTRRT";
+  SymbolicAction home = moveHomeAction();
+  const ExecutionRecord& record = run(executor, planOf({pick, place, home}));
+  ASSERT_TRUE(record.succeeded());
+  const std::vector<std::string> expected = {"PRM", "BiTRRT", "RRTConnect"};
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    int transits = 0;
+    for (const MotionSegment& segment : record.actions[i].segments) {
+      if (segment.planner.empty()) continue;
+      ++transits;
+      EXPECT_EQ(segment.planner, expected[i]) << segment.label;
+    }
+    EXPECT_GE(transits, 1) << "step " << i + 1;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(DeskRobots, ActionsOnRobot, ::testing::Values("panda", "ur5"));
 
 }  // namespace
