@@ -77,7 +77,22 @@ struct Figures {
   int plannerCalls = 0;
   int plannerSolved = 0;
   std::vector<double> seconds;
+  /// "trial 7: <why>" for each trial that did not succeed.
+  std::vector<std::string> failures;
 };
+
+/// Why a trial failed: the repair loop's failure, or what verification found.
+std::string trialFailure(const RepairResult& repair, const ExecutionVerification& verification) {
+  if (!repair.succeeded()) {
+    return repair.rounds.empty() || repair.rounds.back().attempt.failure.empty() ? repair.failure : repair.rounds.back().attempt.failure;
+  }
+  if (!verification.collision.empty()) return "collision: " + verification.collision;
+  if (!verification.disturbedObjects.empty()) return "disturbed: " + verification.disturbedObjects.front();
+  for (const GoalOutcome& goal : verification.goals) {
+    if (!goal.holds) return "goal " + describeGoal(goal.goal) + " does not hold: " + goal.explanation;
+  }
+  return "not verified";
+}
 
 void runTrial(const Scene& scene, const BenchTaskOptions& options, const std::string& ik, Figures& figures) {
   ExecutionSettings settings;
@@ -92,11 +107,13 @@ void runTrial(const Scene& scene, const BenchTaskOptions& options, const std::st
   request.scene = &scene;
   request.robot = executor.arm().robotName();
   const RepairResult repair = planWithRepair(planner, request, &executor, RepairOptions{}, StopCondition::never());
-  bool success = false;
+  ExecutionVerification verification;
   if (repair.succeeded()) {
     const auto goals = understandInstruction(options.task, describeObjects(scene, request.robot)).goals;
-    success = verifyExecution(executor.arm(), scene, executor.lastExecution(), goals).success;
+    verification = verifyExecution(executor.arm(), scene, executor.lastExecution(), goals);
   }
+  const bool success = repair.succeeded() && verification.success;
+  if (!success) figures.failures.push_back("trial " + std::to_string(figures.trials + 1) + ": " + trialFailure(repair, verification));
   figures.seconds.push_back(std::chrono::duration<double>(Clock::now() - began).count());
   ++figures.trials;
   figures.successes += success ? 1 : 0;
@@ -127,7 +144,8 @@ nlohmann::json figuresJson(const Figures& f) {
           {"motion_queries_solved", f.plannerSolved},
           {"seconds_median", percentile(f.seconds, 0.5)},
           {"seconds_p95", percentile(f.seconds, 0.95)},
-          {"seconds_mean", mean(f.seconds)}};
+          {"seconds_mean", mean(f.seconds)},
+          {"failures", f.failures}};
 }
 
 void printFigures(const Figures& f, std::ostream& out) {
@@ -140,6 +158,7 @@ void printFigures(const Figures& f, std::ostream& out) {
                 f.plannerSolved, f.plannerCalls, 100.0 * f.plannerSolved / std::max(1, f.plannerCalls), f.firstRoundAccepted,
                 f.trials, 1000.0 * percentile(f.seconds, 0.5), 1000.0 * percentile(f.seconds, 0.95));
   out << line;
+  for (std::size_t i = 0; i < f.failures.size() && i < 5; ++i) out << "    " << f.failures[i].substr(0, 300) << '\n';
 }
 
 void checkOptions(const BenchTaskOptions& options) {
