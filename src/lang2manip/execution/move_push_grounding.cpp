@@ -23,9 +23,9 @@ std::optional<GroundingAttempt> refuse(ActionExecution& record, const std::strin
   return std::nullopt;
 }
 
-std::optional<GroundingAttempt> finish(GroundingAttempt attempt, ActionExecution& record, const std::string& failedStage = {}) {
+std::optional<GroundingAttempt> finish(GroundingAttempt attempt, ActionExecution& record) {
   if (attempt.stage.empty()) return attempt;
-  return refuse(record, failedStage.empty() ? attempt.stage : failedStage, attempt.reason);
+  return refuse(record, attempt.stage, attempt.reason);
 }
 
 /// R_WG with the tool's approach axis pointing down and its closing axis across `direction`.
@@ -146,6 +146,48 @@ std::optional<GroundingAttempt> moveToPose(const GroundingContext& c, const Scen
   return finish(std::move(a), record);
 }
 
+/// One push with the tool at `contact` (see action_grounding.hpp); the attempt says why not.
+GroundingAttempt tryPush(const GroundingContext& c, const Scene& world, const SceneObject& object, const Vector3& direction,
+                         double distance, const Pose& contact, const SymbolicAction& action, ActionExecution& record) {
+  const ArmContext& arm = c.arm;
+  const Pose above = raised(contact, arm.settings().pushApproachHeight);
+  const Pose end = shifted(contact, direction * (distance + arm.settings().pushStandoff));
+  GroundingAttempt a(arm, world);
+  if (arm.gripperWidth(a.q) > 1e-4 && !a.add(arm, gripperMotion(arm, a.world, a.q, 0.0, "close gripper to push"), c.counters)) {
+    return a;
+  }
+  const ReachabilityChecker reach = arm.reachIn(a.world);
+  const ReachResult start = reach.reach(above, a.q, 0.0);
+  c.counters.ikCalls += reach.statistics().ikCalls;
+  c.counters.collisionChecks += reach.statistics().collisionChecks;
+  if (!start.reachable()) {
+    a.stage = "ik";
+    a.reason = "the pose above the contact: " + start.reason;
+    return a;
+  }
+  if (!a.add(arm, planTransit(arm, a.world, a.q, start.solutions, action.planner, "transit above " + object.name, c.stop),
+             c.counters, record.times) ||
+      !a.add(arm, planCartesian(arm, a.world, a.q, contact, "descend behind " + object.name), c.counters, record.times)) {
+    return a;
+  }
+  CartesianAllowance carry;
+  carry.carried = object.name;
+  carry.carriedStart = object.pose;
+  carry.carriedDisplacement = direction * distance;
+  if (!a.add(arm, planCartesian(arm, a.world, a.q, end, "push " + object.name + " " + metres(distance), carry), c.counters,
+             record.times)) {
+    a.stage = "push";
+    return a;
+  }
+  a.world.object(object.name).pose = shifted(object.pose, direction * distance);
+  const double rise = arm.settings().pushRetreat;
+  addFirstCartesian(c, a,
+                    {raised(end, rise), raised(shifted(end, -direction * rise * std::sqrt(0.5)), rise * std::sqrt(0.5)),
+                     raised(end, rise / 2.0)},
+                    "retreat from " + object.name, fingersMayTouch(arm, object.name), record.times);
+  return a;
+}
+
 }  // namespace
 
 std::optional<GroundingAttempt> groundMove(const GroundingContext& c, const Scene& world, const SymbolicAction& action,
@@ -181,39 +223,21 @@ std::optional<GroundingAttempt> groundPush(const GroundingContext& c, const Scen
   direction.normalize();
   const double distance = *action.params.distance;
   const PushGeometry push = pushGeometry(arm, world, object, direction);
-  const Pose above = raised(push.contact, arm.settings().pushApproachHeight);
-  const Pose end = shifted(push.contact, direction * (distance + arm.settings().pushStandoff));
-
-  GroundingAttempt a(arm, world);
-  if (arm.gripperWidth(a.q) > 1e-4 && !a.add(arm, gripperMotion(arm, a.world, a.q, 0.0, "close gripper to push"), c.counters)) {
-    return finish(std::move(a), record);
+  // The fingers are symmetric: the tool turned half a turn about its approach axis pushes alike
+  // and may be reachable where the first is not.
+  Pose turned = push.contact;
+  turned.linear() = push.contact.linear() * Eigen::AngleAxisd(M_PI, arm.gripper().approachAxis).toRotationMatrix();
+  std::string failures, stage;
+  for (const Pose& contact : {push.contact, turned}) {
+    GroundingAttempt a = tryPush(c, world, object, direction, distance, contact, action, record);
+    if (a.stage.empty()) {
+      record.choice = "contact behind " + object.name + ", " + metres(distance);
+      return a;
+    }
+    stage = a.stage;
+    failures += (failures.empty() ? "" : "; ") + a.reason;
   }
-  const ReachabilityChecker reach = arm.reachIn(a.world);
-  const ReachResult start = reach.reach(above, a.q, 0.0);
-  c.counters.ikCalls += reach.statistics().ikCalls;
-  c.counters.collisionChecks += reach.statistics().collisionChecks;
-  if (!start.reachable()) return refuse(record, "ik", "push of " + object.name + ": the pose above the contact: " + start.reason);
-  if (!a.add(arm, planTransit(arm, a.world, a.q, start.solutions, action.planner, "transit above " + object.name, c.stop),
-             c.counters, record.times) ||
-      !a.add(arm, planCartesian(arm, a.world, a.q, push.contact, "descend behind " + object.name), c.counters, record.times)) {
-    return finish(std::move(a), record);
-  }
-  CartesianAllowance carry;
-  carry.carried = object.name;
-  carry.carriedStart = object.pose;
-  carry.carriedDisplacement = direction * distance;
-  if (!a.add(arm, planCartesian(arm, a.world, a.q, end, "push " + object.name + " " + metres(distance), carry), c.counters,
-             record.times)) {
-    return finish(std::move(a), record, "push");
-  }
-  a.world.object(object.name).pose = shifted(object.pose, direction * distance);
-  const double rise = arm.settings().pushRetreat;
-  addFirstCartesian(c, a,
-                    {raised(end, rise), raised(shifted(end, -direction * rise * std::sqrt(0.5)), rise * std::sqrt(0.5)),
-                     raised(end, rise / 2.0)},
-                    "retreat from " + object.name, fingersMayTouch(arm, object.name), record.times);
-  record.choice = "contact behind " + object.name + ", " + metres(distance);
-  return finish(std::move(a), record);
+  return refuse(record, stage, "push of " + object.name + ": " + failures);
 }
 
 }  // namespace lang2manip
