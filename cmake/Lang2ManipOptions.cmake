@@ -16,6 +16,9 @@ if(LANG2MANIP_SANITIZE)
   # planning and IK loops several times faster than -O0; the sanitizers see the same code.
   add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer
                       -fno-sanitize-recover=undefined -O1)
+  # GCC 12 with the sanitizers at -O1 reports false -Wmaybe-uninitialized in libstdc++'s <regex>
+  # (GCC's manual warns that the sanitizers can cause false warnings).
+  target_compile_options(lang2manip_warnings INTERFACE $<$<CXX_COMPILER_ID:GNU>:-Wno-maybe-uninitialized>)
   add_link_options(-fsanitize=address,undefined)
   # Eigen 3.4 switches to its own offset-pointer aligned_malloc under AddressSanitizer; Debian's
   # liborocos-kdl (not instrumented) then frees our Eigen buffers with plain free() (bad-free in
