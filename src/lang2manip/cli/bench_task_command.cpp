@@ -17,13 +17,12 @@
 #include "lang2manip/cli/bench_commands.hpp"
 #include "lang2manip/cli/bench_statistics.hpp"
 #include "lang2manip/cli/problem_loading.hpp"
+#include "lang2manip/cli/task_run.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/core/random.hpp"
 #include "lang2manip/core/rotation.hpp"
 #include "lang2manip/execution/execution_verification.hpp"
 #include "lang2manip/execution/task_executor.hpp"
-#include "lang2manip/language/instruction.hpp"
-#include "lang2manip/language/object_descriptor.hpp"
 #include "lang2manip/language/offline_task_planner.hpp"
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/symbolic/repair_loop.hpp"
@@ -102,19 +101,11 @@ void runTrial(const Scene& scene, const BenchTaskOptions& options, const std::st
   const auto began = Clock::now();
   TaskExecutor executor(scene, settings);
   OfflineTaskPlanner planner;
-  PlanningRequest request;
-  request.task = options.task;
-  request.scene = &scene;
-  request.robot = executor.arm().robotName();
-  const RepairResult repair = planWithRepair(planner, request, &executor, RepairOptions{}, StopCondition::never());
-  ExecutionVerification verification;
-  if (repair.succeeded()) {
-    const auto goals = understandInstruction(options.task, describeObjects(scene, request.robot)).goals;
-    verification = verifyExecution(executor.arm(), scene, executor.lastExecution(), goals);
-  }
-  const bool success = repair.succeeded() && verification.success;
-  if (!success) figures.failures.push_back("trial " + std::to_string(figures.trials + 1) + ": " + trialFailure(repair, verification));
-  figures.seconds.push_back(std::chrono::duration<double>(Clock::now() - began).count());
+  const TaskRun run = planExecuteAndVerify(planner, executor, options.task, RepairOptions{}.maxRounds);
+  const RepairResult& repair = run.repair;
+  const bool success = run.success();
+  if (!success) figures.failures.push_back("trial " + std::to_string(figures.trials + 1) + ": " + trialFailure(repair, run.verification));
+  figures.seconds.push_back(secondsSince(began));
   ++figures.trials;
   figures.successes += success ? 1 : 0;
   figures.firstRoundAccepted += !repair.rounds.empty() && repair.rounds.front().outcome == RoundOutcome::kAccepted ? 1 : 0;

@@ -11,10 +11,9 @@
 #include "lang2manip/cli/problem_loading.hpp"
 #include "lang2manip/cli/run_report.hpp"
 #include "lang2manip/cli/task_planner_choice.hpp"
+#include "lang2manip/cli/task_run.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/execution/task_executor.hpp"
-#include "lang2manip/language/instruction.hpp"
-#include "lang2manip/language/object_descriptor.hpp"
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/planning/planner_registry.hpp"
 #include "lang2manip/symbolic/llm_task_planner.hpp"
@@ -44,8 +43,6 @@ struct RunOptions {
   double ikTimeout = ExecutionSettings{}.reach.ikTimeoutSeconds;
   std::string out = "lang2manip-run";
 };
-
-double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 void checkOptions(const RunOptions& options) {
   if (options.task.find_first_not_of(" \t\r\n") == std::string::npos) {
@@ -87,19 +84,6 @@ void writeFile(const fs::path& path, const std::string& text) {
   file << text;
   file.close();
   if (!file) throw InputError("run: cannot write " + path.string());
-}
-
-/// The goals the instruction states (offline understanding), else those the plan implies.
-void chooseGoals(const std::string& task, const Scene& scene, const std::string& robot, const Plan* plan,
-                 RunOutcome& outcome) {
-  try {
-    outcome.goals = understandInstruction(task, describeObjects(scene, robot)).goals;
-    outcome.goalSource = "instruction";
-    return;
-  } catch (const PlanningError&) {
-  }
-  outcome.goalSource = "plan";
-  if (plan != nullptr) outcome.goals = goalsImpliedByPlan(*plan);
 }
 
 void writeInputs(const fs::path& out, const RunOptions& options, const Scene& scene, const std::string& robot,
@@ -151,19 +135,13 @@ void runTask(const RunOptions& options, std::ostream& out) {
   outcome.seed = options.seed;
   writeInputs(directory, options, scene, outcome.robot, outcome.observationSeconds);
 
-  PlanningRequest request;
-  request.task = options.task;
-  request.scene = &scene;
-  request.robot = outcome.robot;
-  RepairOptions repair;
-  repair.maxRounds = options.rounds;
-  outcome.repair = planWithRepair(selected.planner(), request, &executor, repair, StopCondition::never());
+  TaskRun run = planExecuteAndVerify(selected.planner(), executor, options.task, options.rounds);
+  outcome.repair = std::move(run.repair);
+  outcome.goals = std::move(run.goals);
+  outcome.goalSource = std::move(run.goalSource);
+  outcome.verification = std::move(run.verification);
   outcome.executions = &executor.executions();
   if (!executor.executions().empty()) outcome.execution = &executor.lastExecution();
-  chooseGoals(options.task, scene, outcome.robot, outcome.repair.plan ? &*outcome.repair.plan : nullptr, outcome);
-  if (outcome.execution != nullptr) {
-    outcome.verification = verifyExecution(executor.arm(), scene, *outcome.execution, outcome.goals);
-  }
   outcome.totalSeconds = secondsSince(began);
   writeOutputs(directory, outcome);
   out << runSummary(outcome) << "  wrote " << directory.string() << "/ (plan.json, trajectory.json, trajectory.csv, report.json)\n";

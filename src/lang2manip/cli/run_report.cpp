@@ -96,12 +96,7 @@ Totals totals(const RunOutcome& outcome) {
   if (outcome.executions == nullptr) return sum;
   for (const ExecutionRecord& record : *outcome.executions) {
     sum.times += record.times;
-    sum.counters.plannerCalls += record.counters.plannerCalls;
-    sum.counters.plannerSolved += record.counters.plannerSolved;
-    sum.counters.ikCalls += record.counters.ikCalls;
-    sum.counters.collisionChecks += record.counters.collisionChecks;
-    sum.counters.graspPlans += record.counters.graspPlans;
-    sum.counters.placementPlans += record.counters.placementPlans;
+    sum.counters += record.counters;
   }
   return sum;
 }

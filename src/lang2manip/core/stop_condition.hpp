@@ -40,4 +40,9 @@ class StopCondition {
   std::vector<CancelFlag> flags_;
 };
 
+/// Seconds of the steady clock since `start`.
+inline double secondsSince(StopCondition::Clock::time_point start) {
+  return std::chrono::duration<double>(StopCondition::Clock::now() - start).count();
+}
+
 }  // namespace lang2manip

@@ -11,15 +11,37 @@ const VectorX& robotConfiguration(const ArmContext& arm, const Scene& world) {
   return world.robot(arm.robotName()).configuration;
 }
 
-GroundingAttempt::GroundingAttempt(const ArmContext& arm, Scene start)
-    : world(std::move(start)), q(robotConfiguration(arm, world)) {}
+std::optional<GroundingAttempt> refuse(ActionExecution& record, const std::string& stage, std::string reason) {
+  record.stage = stage;
+  record.reason = std::move(reason);
+  return std::nullopt;
+}
 
-bool GroundingAttempt::add(const ArmContext& arm, MotionResult result, ExecutionCounters& counters, StageTimes& times) {
+const Attachment* heldByRobot(const Scene& world, const std::string& robot) {
+  for (const Attachment& attachment : world.attachments()) {
+    if (attachment.robot == robot) return &attachment;
+  }
+  return nullptr;
+}
+
+namespace {
+
+/// Adds the work of `result` (found or not) to the counters and times.
+void countWork(const MotionResult& result, ExecutionCounters& counters, StageTimes& times) {
   counters.plannerCalls += result.plannerCalls;
   counters.plannerSolved += result.plannerSolved;
   counters.ikCalls += result.ikCalls;
   counters.collisionChecks += result.collisionChecks;
   times.ik += result.ikSeconds;
+}
+
+}  // namespace
+
+GroundingAttempt::GroundingAttempt(const ArmContext& arm, Scene start)
+    : world(std::move(start)), q(robotConfiguration(arm, world)) {}
+
+bool GroundingAttempt::add(const ArmContext& arm, MotionResult result, ExecutionCounters& counters, StageTimes& times) {
+  countWork(result, counters, times);
   if (!result.ok()) {
     stage = result.stage;
     reason = result.reason;
@@ -52,9 +74,7 @@ bool addFirstCartesian(const GroundingContext& c, GroundingAttempt& a, const std
   for (const Pose& target : targets) {
     MotionResult motion = planCartesian(c.arm, a.world, a.q, target, label, allowance);
     if (motion.ok()) return a.add(c.arm, std::move(motion), c.counters, times);
-    c.counters.ikCalls += motion.ikCalls;
-    c.counters.collisionChecks += motion.collisionChecks;
-    times.ik += motion.ikSeconds;
+    countWork(motion, c.counters, times);
     stage = motion.stage;
     failures += (failures.empty() ? "" : "; ") + motion.reason;
   }
@@ -102,8 +122,7 @@ ActionExecution executeAction(const GroundingContext& context, Scene& world, con
     fail(record, "precondition", describeAction(action) + ": " + error.what());
     return record;
   }
-  record.times.motion = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count() -
-                        record.times.grasp - record.times.placement - record.times.ik;
+  record.times.motion = secondsSince(began) - record.times.grasp - record.times.placement - record.times.ik;
   if (!done) {
     record.status = ActionStatus::kFailed;
     return record;

@@ -20,10 +20,6 @@ constexpr double kSlideLift = 0.001;
 /// Step of the carried object's sweep check (m).
 constexpr double kSweepStep = 0.002;
 
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 MotionResult failedMotion(const std::string& stage, std::string reason) {
   MotionResult result;
   result.stage = stage;

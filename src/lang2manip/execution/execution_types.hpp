@@ -90,6 +90,8 @@ struct ExecutionCounters {
   long collisionChecks = 0;
   int graspPlans = 0;
   int placementPlans = 0;
+
+  ExecutionCounters& operator+=(const ExecutionCounters& other);
 };
 
 /// Seconds per stage.

@@ -84,7 +84,7 @@ ExecutionVerification verifyExecution(const ArmContext& arm, const Scene& initia
   bool goalsHold = !result.goals.empty();
   for (const GoalOutcome& goal : result.goals) goalsHold = goalsHold && goal.holds;
   result.success = record.succeeded() && result.collision.empty() && goalsHold && result.disturbedObjects.empty();
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  result.seconds = secondsSince(began);
   return result;
 }
 

@@ -11,17 +11,10 @@
 namespace lang2manip {
 namespace {
 
-constexpr double kSupportTolerance = 0.015;
 /// The fingertips pass this far above the support while pushing, at most, and at most this
 /// fraction of the object's height.
 constexpr double kFingertipClearance = 0.005;
 constexpr double kFingertipHeightFraction = 0.4;
-
-std::optional<GroundingAttempt> refuse(ActionExecution& record, const std::string& stage, std::string reason) {
-  record.stage = stage;
-  record.reason = std::move(reason);
-  return std::nullopt;
-}
 
 std::optional<GroundingAttempt> finish(GroundingAttempt attempt, ActionExecution& record) {
   if (attempt.stage.empty()) return attempt;
@@ -209,10 +202,8 @@ std::optional<GroundingAttempt> groundPush(const GroundingContext& c, const Scen
   const SceneObject& object = world.object(action.object);
   if (world.findAttachment(object.name) != nullptr) return refuse(record, "precondition", "cannot push " + object.name + ": it is held");
   if (!object.movable) return refuse(record, "precondition", "cannot push " + object.name + ": it is not movable");
-  for (const Attachment& attachment : world.attachments()) {
-    if (attachment.robot == arm.robotName()) {
-      return refuse(record, "precondition", "cannot push " + object.name + ": the gripper holds " + attachment.object);
-    }
+  if (const Attachment* held = heldByRobot(world, arm.robotName())) {
+    return refuse(record, "precondition", "cannot push " + object.name + ": the gripper holds " + held->object);
   }
   if (!action.params.direction || !action.params.distance || !(*action.params.distance > 0.0)) {
     return refuse(record, "precondition", "push of " + object.name + " needs a direction and a positive distance");

@@ -10,26 +10,12 @@
 namespace lang2manip {
 namespace {
 
-/// How far an object's bottom may be from its support's top (m).
-constexpr double kSupportTolerance = 0.015;
 /// The gripper is opened before a transit when it is farther than this from the wanted gap (m).
 constexpr double kWidthTolerance = 1e-4;
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 void countReach(const ReachabilityChecker& reach, ExecutionCounters& counters) {
   counters.ikCalls += reach.statistics().ikCalls;
   counters.collisionChecks += reach.statistics().collisionChecks;
-}
-
-/// Whatever the robot's gripper already holds, or nullptr.
-const Attachment* heldByRobot(const Scene& world, const std::string& robot) {
-  for (const Attachment& attachment : world.attachments()) {
-    if (attachment.robot == robot) return &attachment;
-  }
-  return nullptr;
 }
 
 /// Where the IK searches of grasps and placements start: the current configuration, then the
@@ -42,12 +28,6 @@ std::vector<VectorX> ikSeeds(const ArmContext& arm, const Scene& world) {
     if ((home - seeds.front()).cwiseAbs().maxCoeff() > 1e-3) seeds.push_back(home);
   }
   return seeds;
-}
-
-std::optional<GroundingAttempt> refuse(ActionExecution& record, const std::string& stage, std::string reason) {
-  record.stage = stage;
-  record.reason = std::move(reason);
-  return std::nullopt;
 }
 
 std::optional<GroundingAttempt> tryPick(const GroundingContext& c, const Scene& world, const GraspCandidate& grasp,

@@ -27,9 +27,6 @@ namespace ob = ompl::base;
 namespace og = ompl::geometric;
 using Clock = std::chrono::steady_clock;
 
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 class LogOutputHandler final : public ompl::msg::OutputHandler {
  public:

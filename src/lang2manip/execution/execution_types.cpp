@@ -1,0 +1,71 @@
+#include "lang2manip/execution/execution_types.hpp"
+
+#include <cmath>
+
+#include "lang2manip/core/error.hpp"
+
+namespace lang2manip {
+namespace {
+
+void checkPositive(double value, const char* field) {
+  if (!(std::isfinite(value) && value > 0.0)) {
+    throw InputError(std::string("execution settings: ") + field + " must be a positive number (got " + std::to_string(value) + ")");
+  }
+}
+
+void checkLength(double value, const char* field) {
+  if (!(std::isfinite(value) && value >= 0.0)) {
+    throw InputError(std::string("execution settings: ") + field + " must be a finite length >= 0 (got " + std::to_string(value) + ")");
+  }
+}
+
+}  // namespace
+
+std::string actionStatusName(ActionStatus status) {
+  switch (status) {
+    case ActionStatus::kSucceeded: return "succeeded";
+    case ActionStatus::kFailed: return "failed";
+    case ActionStatus::kNotRun: return "not run";
+  }
+  return "unknown";
+}
+
+StageTimes& StageTimes::operator+=(const StageTimes& other) {
+  grasp += other.grasp;
+  placement += other.placement;
+  ik += other.ik;
+  motion += other.motion;
+  return *this;
+}
+
+ExecutionCounters& ExecutionCounters::operator+=(const ExecutionCounters& other) {
+  plannerCalls += other.plannerCalls;
+  plannerSolved += other.plannerSolved;
+  ikCalls += other.ikCalls;
+  collisionChecks += other.collisionChecks;
+  graspPlans += other.graspPlans;
+  placementPlans += other.placementPlans;
+  return *this;
+}
+
+void checkExecutionSettings(const ExecutionSettings& s) {
+  checkPositive(s.planningTimeSeconds, "planningTimeSeconds");
+  checkPositive(s.cartesianStep, "cartesianStep");
+  checkPositive(s.cartesianAngleStep, "cartesianAngleStep");
+  checkPositive(s.maxJointStep, "maxJointStep");
+  checkPositive(s.verificationResolution, "verificationResolution");
+  checkLength(s.pushApproachHeight, "pushApproachHeight");
+  checkLength(s.pushStandoff, "pushStandoff");
+  checkLength(s.pushRetreat, "pushRetreat");
+  checkPositive(s.reach.ikTimeoutSeconds, "reach.ikTimeoutSeconds");
+  if (s.maxGraspAttempts < 1) throw InputError("execution settings: maxGraspAttempts must be >= 1");
+  if (s.maxPlacementAttempts < 1) throw InputError("execution settings: maxPlacementAttempts must be >= 1");
+  if (s.reach.ikSolutions < 1) throw InputError("execution settings: reach.ikSolutions must be >= 1");
+  if (!(s.speedScale > 0.0 && s.speedScale <= 1.0)) {
+    throw InputError("execution settings: speedScale must be in (0, 1] (got " + std::to_string(s.speedScale) + ")");
+  }
+  checkGraspSettings(s.grasp);
+  checkPlacementSettings(s.placement);
+}
+
+}  // namespace lang2manip
