@@ -56,7 +56,7 @@ TEST(Cli, ShowJsonHasRobotsObjectsAndQueries) {
 TEST(Cli, CheckReportsEachQueryStateOfTheDefaultProblem) {
   const RunResult result = run("check");
   EXPECT_EQ(result.exitCode, 0) << result.output;
-  EXPECT_THAT(result.output, HasSubstr("problem panda_desk: all states collision-free"));
+  EXPECT_THAT(result.output, HasSubstr("problem panda_desk: all states valid (collision-free, within the joint limits)"));
   EXPECT_THAT(result.output, HasSubstr("query 1 start: valid"));
   EXPECT_THAT(result.output, HasSubstr("query 1 goal: valid"));
 }
@@ -64,7 +64,8 @@ TEST(Cli, CheckReportsEachQueryStateOfTheDefaultProblem) {
 TEST(Cli, CheckNamesTheCollidingPairsOfAConfiguration) {
   // Home with joint 6 at its lower limit folds the wrist into link 5.
   const RunResult text = run("check panda_desk --robot panda --config 0 -0.785 0 -2.356 0 -0.0175 0.785 0.04");
-  EXPECT_EQ(text.exitCode, 0) << text.output;
+  EXPECT_EQ(text.exitCode, 2) << text.output;
+  EXPECT_THAT(text.output, HasSubstr("check: 1 of 1 checked states are invalid"));
   EXPECT_THAT(text.output, HasSubstr("configuration of panda: INVALID"));
   EXPECT_THAT(text.output, HasSubstr("panda/panda_link5 - panda/panda_link7: penetration"));
   const RunResult json = run("check --json --config 0 1.7628 0 -2.356 0 1.571 0.785 0.04", false);

@@ -52,6 +52,16 @@ double axisThreshold(const std::string& solver) {
   return solver == "dls" ? 0.97 : 0.0;
 }
 
+/// Targets of the joint-limit test, and the successes each solver must reach among them (the
+/// limits are narrowed to +-0.4 rad about the middle; measured with seed 3: dls and kdl_restarts
+/// 20, kdl 17).
+constexpr int kLimitSamples = 20;
+int limitedThreshold(const std::string& solver) {
+  static const std::map<std::string, int> thresholds = {{"dls", 19}, {"kdl_restarts", 18}, {"kdl", 13}};
+  const auto found = thresholds.find(solver);
+  return found == thresholds.end() ? 18 : found->second;
+}
+
 class IkSolverConformance : public ::testing::TestWithParam<std::string> {
  protected:
   [[nodiscard]] std::unique_ptr<IkSolver> solver() const { return makeIkSolver(GetParam()); }
@@ -140,7 +150,7 @@ TEST_P(IkSolverConformance, RespectsGivenJointLimits) {
   const VectorX upper = model.upperLimits().array().min(middle.array() + 0.4).matrix();
   Random random(3);
   int successes = 0;
-  for (int sample = 0; sample < 10; ++sample) {
+  for (int sample = 0; sample < kLimitSamples; ++sample) {
     const VectorX q = random.uniformVector(lower, upper);
     IkRequest query = request(model, "");
     query.lowerLimits = lower;
@@ -150,9 +160,7 @@ TEST_P(IkSolverConformance, RespectsGivenJointLimits) {
     successes += result.status == IkStatus::kSuccess ? 1 : 0;
     expectValid(query, manipulator, result, lower, upper);
   }
-  if (GetParam() == "dls") {
-    EXPECT_GE(successes, 9);
-  }
+  EXPECT_GE(successes, limitedThreshold(GetParam())) << successes << " of " << kLimitSamples;
 }
 
 TEST_P(IkSolverConformance, ReportsUnreachableTargets) {

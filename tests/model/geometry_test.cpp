@@ -149,5 +149,49 @@ TEST(Geometry, BoundsOfScaledShapeAreScaled) {
   expectBounds(after, 2.5 * before.min(), 2.5 * before.max(), 1e-12);
 }
 
+std::string rangeError(const Shape& shape) {
+  try {
+    requireShapeInRange(shape, "link \"a\" collision 1", SourceLocation{"m.urdf", 4});
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  return "(no error)";
+}
+
+TEST(GeometryRange, AcceptsEveryShapeWithinTheRangeAndZeroSizes) {
+  EXPECT_EQ(rangeError(shapeAt(Box{Vector3(kMaxModelLength, kMinModelLength, 0.0)}, Pose::Identity())), "(no error)");
+  EXPECT_EQ(rangeError(shapeAt(Sphere{0.0}, Pose::Identity())), "(no error)");
+  MeshGeometry mirrored;
+  mirrored.scale = Vector3(-1, 0.001, 1000);
+  EXPECT_EQ(rangeError(shapeAt(mirrored, poseOf(Vector3(-kMaxModelLength, 0, 0), Eigen::AngleAxisd(1.0, Vector3::UnitY())))),
+            "(no error)");
+}
+
+TEST(GeometryRange, RefusesEveryDimensionPositionAndScaleOutsideIt) {
+  const Pose far = poseOf(Vector3(0, 1.5e4, 0), Eigen::AngleAxisd(0.0, Vector3::UnitZ()));
+  EXPECT_EQ(rangeError(shapeAt(Box{Vector3(1, 1e300, 1)}, Pose::Identity())),
+            "m.urdf:4: link \"a\" collision 1 box size 1e+300 m is outside [1e-06, 10000] m");
+  EXPECT_THAT(rangeError(shapeAt(Box{Vector3(1, -1, 1)}, Pose::Identity())), HasSubstr("box size -1 m is outside"));
+  EXPECT_THAT(rangeError(shapeAt(Sphere{1e-7}, Pose::Identity())), HasSubstr("sphere radius 1e-07 m"));
+  EXPECT_THAT(rangeError(shapeAt(Cylinder{1e308, 1}, Pose::Identity())), HasSubstr("cylinder radius 1e+308 m"));
+  EXPECT_THAT(rangeError(shapeAt(Cylinder{1, 2e4}, Pose::Identity())), HasSubstr("cylinder length 20000 m"));
+  EXPECT_THAT(rangeError(shapeAt(Sphere{1}, far)), HasSubstr("origin (0, 15000, 0) m is more than 10000 m"));
+  MeshGeometry huge;
+  huge.scale = Vector3(1, 1e300, 1);
+  EXPECT_THAT(rangeError(shapeAt(huge, Pose::Identity())), HasSubstr("mesh scale 1e+300 is outside"));
+  MeshGeometry flat;
+  flat.scale = Vector3(1, 0, 1);
+  EXPECT_THAT(rangeError(shapeAt(flat, Pose::Identity())), HasSubstr("mesh scale 0 is outside"));
+  // A loaded mesh whose scaled vertices reach beyond the range (the tetrahedron spans 1 m).
+  auto farMesh = std::make_shared<TriangleMesh>();
+  farMesh->vertices = {Vector3(0, 0, 0), Vector3(1, 0, 0), Vector3(0, 0, 3e5)};
+  farMesh->triangles = {{0, 1, 2}};
+  MeshGeometry vast;
+  vast.mesh = farMesh;
+  vast.scale = Vector3(1, 1, 0.1);
+  EXPECT_THAT(rangeError(shapeAt(vast, Pose::Identity())), HasSubstr("scaled mesh corner"));
+  EXPECT_THAT(rangeError(shapeAt(Box{Vector3::Constant(std::nan(""))}, Pose::Identity())), HasSubstr("box size nan"));
+}
+
 }  // namespace
 }  // namespace lang2manip

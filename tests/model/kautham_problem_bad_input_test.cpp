@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "kautham_test_support.hpp"
+#include "lang2manip/core/log.hpp"
 #include "lang2manip/model/kautham_problem.hpp"
 
 namespace lang2manip {
@@ -70,7 +71,7 @@ TEST_F(KauthamBadInputTest, ProblemWithoutRobot) {
 TEST_F(KauthamBadInputTest, ModelReferenceThatResolvesNowhereListsThePathsTried) {
   const std::string text = writeProblem("  <Robot robot=\"robots/none.urdf\"/>\n");
   EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "none.urdf"))),
-                                 HasSubstr("\"robots/none.urdf\" resolves nowhere"),
+                                 HasSubstr("\"robots/none.urdf\" resolves to no readable file"),
                                  HasSubstr((sceneDirectory() / "robots" / "none.urdf").string()),
                                  HasSubstr((root() / "models" / "robots" / "none.urdf").string())));
 }
@@ -85,7 +86,7 @@ TEST_F(KauthamBadInputTest, MissingControlFile) {
   const std::string text =
       writeProblem(std::string(kArmRobot) + "  <Controls robot=\"controls/none.cntr\"/>\n");
   EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "<Controls"))),
-                                 HasSubstr("\"controls/none.cntr\" resolves nowhere")));
+                                 HasSubstr("\"controls/none.cntr\" resolves to no readable file")));
 }
 
 TEST_F(KauthamBadInputTest, MalformedControlFileNamesItsLine) {
@@ -218,6 +219,46 @@ TEST_F(KauthamBadInputTest, RobotControlsOutOfRangeAtMappingTime) {
                 (void)robotStatesFromControls(problem, {0.5, -0.1}, "my values");
               }),
               AllOf(HasSubstr("my values"), HasSubstr("control \"b\""), HasSubstr("outside [0, 1]")));
+}
+
+TEST_F(KauthamBadInputTest, ModelReferenceToADirectorySaysSo) {
+  writeProblem("  <Robot robot=\"robots\"/>\n");
+  EXPECT_THAT(readError(), AllOf(HasSubstr("\"robots\" resolves to no readable file"),
+                                 HasSubstr("robots (is a directory, not a file)")));
+}
+
+TEST_F(KauthamBadInputTest, HomeFarOutsideTheModelRange) {
+  const std::string text = writeProblem(
+      "  <Robot robot=\"robots/arm.urdf\">\n    <Home X=\"1e300\" Y=\"0\" Z=\"0\"/>\n  </Robot>\n");
+  EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "<Home"))),
+                                 HasSubstr("<Home> X Y Z"), HasSubstr("more than 10000 m from the origin")));
+}
+
+TEST_F(KauthamBadInputTest, ObstacleWithAHugeBoxNamesItsFileAndLink) {
+  const std::string urdf = test::boxUrdf("slab", "1e300 1 1");
+  writeModel("obstacles/slab.urdf", urdf);
+  writeProblem(std::string(kArmRobot) + "  <Obstacle obstacle=\"obstacles/slab.urdf\"/>\n");
+  const std::filesystem::path model = (root() / "models" / "obstacles" / "slab.urdf").lexically_normal();
+  EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(model, lineOf(urdf, "<link"))),
+                                 HasSubstr("link \"body\" collision 1 box size 1e+300 m is outside [1e-06, 10000] m")));
+}
+
+TEST_F(KauthamBadInputTest, ZeroRotationAxisInHomeIsNoRotationWithAWarning) {
+  std::vector<std::string> warnings;
+  setLogSink([&](LogLevel, std::string_view message) {
+    if (message.find("rotation axis") != std::string_view::npos) warnings.emplace_back(message);
+  });
+  const std::string text = writeProblem(
+      "  <Robot robot=\"robots/arm.urdf\">\n    <Home X=\"1\" WX=\"0\" WY=\"0\" WZ=\"0\" TH=\"1.5\"/>\n"
+      "  </Robot>\n  <Obstacle obstacle=\"obstacles/crate.urdf\">\n"
+      "    <Home WX=\"0\" WY=\"0\" WZ=\"0\" TH=\"0\"/>\n  </Obstacle>\n" + std::string(kArmControls));
+  const KauthamProblem problem = read();
+  setLogSink({});
+  EXPECT_TRUE(problem.scene.robots()[0].basePose.linear().isIdentity(0.0));
+  ASSERT_EQ(warnings.size(), 1U);
+  EXPECT_THAT(warnings[0], AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "<Home"))),
+                                 HasSubstr("zero rotation axis"), HasSubstr("TH=1.5"),
+                                 HasSubstr("no rotation, as Kautham does")));
 }
 
 }  // namespace

@@ -181,7 +181,7 @@ TEST(MeshLoaderErrors, MissingFile) {
   const std::string path = meshFile("no_such_mesh.stl").string();
   const std::string message = loadError(path);
   EXPECT_THAT(message, HasSubstr(path));
-  EXPECT_THAT(message, HasSubstr("not found"));
+  EXPECT_THAT(message, HasSubstr("mesh file does not exist"));
 }
 
 TEST(MeshLoaderErrors, EmptyPath) { EXPECT_THAT(loadError(""), HasSubstr("mesh path is empty")); }
@@ -190,7 +190,13 @@ TEST(MeshLoaderErrors, DirectoryIsNotAMesh) {
   const test::TempDirectory directory;
   const fs::path path = directory.path() / "folder.stl";
   fs::create_directory(path);
-  EXPECT_THAT(loadError(path.string()), HasSubstr("not a regular file"));
+  EXPECT_THAT(loadError(path.string()), HasSubstr("mesh file is a directory, not a file"));
+}
+
+TEST(MeshLoaderErrors, DeviceIsNotAMesh) {
+  const test::TempDirectory directory;
+  std::filesystem::create_symlink("/dev/zero", directory.path() / "zero.stl");
+  EXPECT_THAT(loadError((directory.path() / "zero.stl").string()), HasSubstr("zero.stl: mesh file is a character device"));
 }
 
 TEST(MeshLoaderErrors, UnreadableFile) {

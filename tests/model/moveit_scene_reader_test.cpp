@@ -232,7 +232,7 @@ TEST(MoveItSceneReaderTest, RequestFileForScene) {
 TEST(MoveItSceneReaderTest, MissingFileAndModelAreReported) {
   const std::string message =
       inputErrorOf([] { (void)readTestProblem("good_scene.yaml", "no_such_request.yaml"); });
-  EXPECT_THAT(message, HasSubstr("no_such_request.yaml: cannot open the file"));
+  EXPECT_THAT(message, HasSubstr("no_such_request.yaml: YAML file does not exist"));
   const std::string noModel = inputErrorOf([] {
     (void)readMoveItProblem(moveitData("good_scene.yaml"), moveitData("good_request.yaml"),
                             nullptr);
@@ -283,6 +283,8 @@ std::vector<BadCase> badScenes() {
       {"bad_nan_position.yaml", 9, pose + ".position[1]", "must be a finite number, got .nan"},
       {"bad_inf_dimension.yaml", 7, dims + "[1]", "must be a finite number, got -.inf"},
       {"bad_negative_dimension.yaml", 7, dims + "[2]", "a dimension must be positive"},
+      {"bad_huge_dimension.yaml", 7, dims + "[0]", "dimension 1e+308 m is outside [1e-06, 10000] m"},
+      {"bad_far_position.yaml", 9, pose + ".position", "position (0, 1e+300, 0) m is more than 10000 m"},
       {"bad_zero_quaternion.yaml", 10, pose + ".orientation", "has zero length"},
       {"bad_orientation_count.yaml", 10, pose + ".orientation",
        "expected 4 numbers [x, y, z, w], got 3"},

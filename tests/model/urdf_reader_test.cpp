@@ -109,7 +109,7 @@ TEST(UrdfReader, ResolvesRelativeAndPackageMeshes) {
   options.packagePaths = {directory.path() / "pkgs"};
   EXPECT_NO_THROW(readUrdfFile(directory.path() / "robot" / "pkg.urdf", options));
   EXPECT_THAT(errorMessage([&] { readUrdfFile(directory.path() / "robot" / "pkg.urdf"); }),
-              HasSubstr("mesh \"package://mypkg/meshes/t.stl\" resolves nowhere"));
+              HasSubstr("mesh \"package://mypkg/meshes/t.stl\" resolves to no readable file (no package search path given)"));
   // A package found as an ancestor directory of the URDF.
   writeText(directory.path() / "pkgs" / "mypkg" / "urdf" / "r.urdf", meshUrdf("package://mypkg/meshes/t.stl"));
   EXPECT_NO_THROW(readUrdfFile(directory.path() / "pkgs" / "mypkg" / "urdf" / "r.urdf"));
@@ -119,7 +119,15 @@ TEST(UrdfReader, ReportsMissingMeshAndMeshWithoutTriangles) {
   const test::TempDirectory directory;
   writeText(directory.path() / "missing.urdf", meshUrdf("meshes/none.stl"));
   EXPECT_THAT(errorMessage([&] { readUrdfFile(directory.path() / "missing.urdf"); }),
-              HasSubstr("(link \"base\"): mesh \"meshes/none.stl\" resolves nowhere (tried: "));
+              HasSubstr("(link \"base\"): mesh \"meshes/none.stl\" resolves to no readable file (tried: "));
+  // A reference to something that is not a regular file says what it is.
+  writeText(directory.path() / "device.urdf", meshUrdf("/dev/zero"));
+  EXPECT_THAT(errorMessage([&] { readUrdfFile(directory.path() / "device.urdf"); }),
+              HasSubstr("tried: /dev/zero (is a character device, not a regular file)"));
+  std::filesystem::create_directory(directory.path() / "folder.stl");
+  writeText(directory.path() / "folder.urdf", meshUrdf("folder.stl"));
+  EXPECT_THAT(errorMessage([&] { readUrdfFile(directory.path() / "folder.urdf"); }),
+              HasSubstr("folder.stl (is a directory, not a file)"));
   writeText(directory.path() / "empty.obj", "v 0 0 0\nv 1 0 0\n");
   writeText(directory.path() / "empty.urdf", meshUrdf("empty.obj"));
   EXPECT_THAT(errorMessage([&] { readUrdfFile(directory.path() / "empty.urdf"); }),
@@ -179,16 +187,89 @@ INSTANTIATE_TEST_SUITE_P(
                 "bad.urdf:2: <visual> has no <geometry>"},
         BadUrdf{"DuplicateLink", "<robot name=\"r\"><link name=\"a\"/>\n<link name=\"a\"/></robot>",
                 "bad.urdf:2: link \"a\" is defined twice"},
+        BadUrdf{"TabInLinkName", "<robot name=\"r\">\n<link name=\"a\tb\"/></robot>",
+                "bad.urdf:2: link name \"a b\" contains whitespace or a control character"},
+        BadUrdf{"CarriageReturnInLinkName", "<robot name=\"r\">\n<link name=\"a\rb\"/></robot>",
+                "bad.urdf:2: link name"},
+        BadUrdf{"EscapedTabInLinkName", "<robot name=\"r\">\n<link name=\"a&#9;b\"/></robot>",
+                "bad.urdf:2: link name \"a\\tb\" contains whitespace"},
+        BadUrdf{"EscapedCarriageReturnInLinkName", "<robot name=\"r\">\n<link name=\"a&#13;\"/></robot>",
+                "bad.urdf:2: link name \"a\\r\" contains whitespace"},
+        BadUrdf{"TrailingSpaceInLinkName", "<robot name=\"r\">\n<link name=\"a \"/></robot>",
+                "bad.urdf:2: link name \"a \" contains whitespace"},
+        BadUrdf{"ControlCharacterInLinkName", "<robot name=\"r\">\n<link name=\"a&#1;\"/></robot>",
+                "bad.urdf:2: link name \"a\\x01\" contains whitespace or a control character"},
+        BadUrdf{"EmptyLinkName", "<robot name=\"r\">\n<link name=\"\"/></robot>",
+                "bad.urdf:2: link name is empty"},
+        BadUrdf{"TabInJointName",
+                "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/>\n<joint name=\"j\t1\" type=\"fixed\">"
+                "<parent link=\"a\"/><child link=\"b\"/></joint></robot>",
+                "bad.urdf:2: joint name \"j 1\" contains whitespace"},
+        BadUrdf{"TabInParentLink",
+                "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/><joint name=\"j\" type=\"fixed\">\n"
+                "<parent link=\"a&#9;\"/><child link=\"b\"/></joint></robot>",
+                "bad.urdf:2: joint \"j\" parent link \"a\\t\" contains whitespace"},
+        BadUrdf{"TabInMimicJoint",
+                "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/><link name=\"c\"/>"
+                "<joint name=\"j\" type=\"prismatic\"><parent link=\"a\"/><child link=\"b\"/>"
+                "<limit lower=\"0\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>"
+                "<joint name=\"k\" type=\"prismatic\"><parent link=\"a\"/><child link=\"c\"/>"
+                "<limit lower=\"0\" upper=\"1\" effort=\"1\" velocity=\"1\"/>\n<mimic joint=\"j&#9;\"/>"
+                "</joint></robot>",
+                "bad.urdf:2: joint \"k\" mimic joint \"j\\t\" contains whitespace"},
+        BadUrdf{"MimicOfUnknownJoint",
+                "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/>"
+                "<joint name=\"k\" type=\"prismatic\"><parent link=\"a\"/><child link=\"b\"/>"
+                "<limit lower=\"0\" upper=\"1\" effort=\"1\" velocity=\"1\"/>\n<mimic joint=\"ghost\"/>"
+                "</joint></robot>",
+                "bad.urdf:2: joint \"k\" mimics joint \"ghost\", which is not defined"},
+        BadUrdf{"HugeBox",
+                "<robot name=\"r\">\n<link name=\"a\"><collision><geometry><box size=\"1e300 1 1\"/>"
+                "</geometry></collision></link></robot>",
+                "bad.urdf:2: link \"a\" collision 1 box size 1e+300 m is outside [1e-06, 10000] m"},
+        BadUrdf{"HugeCylinder",
+                "<robot name=\"r\">\n<link name=\"a\"><visual><geometry><cylinder radius=\"0.1\" "
+                "length=\"1e308\"/></geometry></visual></link></robot>",
+                "bad.urdf:2: link \"a\" visual 1 cylinder length 1e+308 m is outside"},
+        BadUrdf{"TinySphere",
+                "<robot name=\"r\">\n<link name=\"a\"><collision><geometry><sphere radius=\"1e-9\"/>"
+                "</geometry></collision></link></robot>",
+                "bad.urdf:2: link \"a\" collision 1 sphere radius 1e-09 m is outside"},
+        BadUrdf{"FarShapeOrigin",
+                "<robot name=\"r\">\n<link name=\"a\"><collision><origin xyz=\"0 0 2e4\"/><geometry>"
+                "<sphere radius=\"1\"/></geometry></collision></link></robot>",
+                "bad.urdf:2: link \"a\" collision 1 origin (0, 0, 20000) m is more than 10000 m from the origin"},
+        BadUrdf{"FarJointOrigin",
+                "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/>\n<joint name=\"j\" type=\"fixed\">"
+                "<origin xyz=\"1e300 0 0\"/><parent link=\"a\"/><child link=\"b\"/></joint></robot>",
+                "bad.urdf:2: joint \"j\" origin (1e+300, 0, 0) m is more than 10000 m"},
+        BadUrdf{"HugePrismaticLimit",
+                "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/><joint name=\"j\" type=\"prismatic\">"
+                "<parent link=\"a\"/><child link=\"b\"/><limit lower=\"0\" upper=\"1e300\" velocity=\"1\" "
+                "effort=\"1\"/></joint></robot>",
+                "joint \"j\" limits (lower, upper, 0) (0, 1e+300, 0) m is more than 10000 m"},
         BadUrdf{"BadJointType",
                 "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/><joint name=\"j\" type=\"wobbly\">"
                 "<parent link=\"a\"/><child link=\"b\"/></joint></robot>",
                 "urdfdom rejected the URDF"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
+TEST(UrdfReader, RefusesDeeplyNestedXmlBeforeAnyRecursiveReader) {
+  std::string nested;
+  for (int i = 0; i < 100000; ++i) nested += "<a>";
+  for (int i = 0; i < 100000; ++i) nested += "</a>";
+  const std::string xml = "<robot name=\"r\">\n<link name=\"l\">" + nested + "</link></robot>";
+  EXPECT_THAT(errorMessage([&] { readUrdfString(xml, "deep.urdf", "."); }),
+              HasSubstr("deep.urdf:2: URDF nests elements more than 100 levels deep"));
+}
+
 TEST(UrdfReader, ReportsMissingFile) {
   EXPECT_THAT(errorMessage([] { readUrdfFile("/nonexistent/robot.urdf"); }),
               HasSubstr("/nonexistent/robot.urdf: URDF file does not exist"));
-  EXPECT_THAT(errorMessage([] { readUrdfFile("/tmp"); }), HasSubstr("is a directory"));
+  EXPECT_THAT(errorMessage([] { readUrdfFile("/tmp"); }), HasSubstr("/tmp: URDF file is a directory, not a file"));
+  // Read whole, a device would never end: refused before reading.
+  EXPECT_THAT(errorMessage([] { readUrdfFile("/dev/zero"); }),
+              HasSubstr("/dev/zero: URDF file is a character device, not a regular file"));
 }
 
 TEST(UrdfReader, ReadsSiblingSrdfOrInfersSemantics) {

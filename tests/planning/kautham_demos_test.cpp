@@ -13,19 +13,33 @@ namespace lang2manip {
 namespace {
 
 
+/// The geometric demos with OMPL parameters that lang2manip maps today, and the two constrained
+/// demos (refused as not supported). ../shared/data/kautham also holds PRM demos with Kautham-only
+/// parameters, control and ODE demos and <Benchmark> files: the robot-agnostic issue (12) covers
+/// them; the model tests load every one of them.
 std::vector<std::filesystem::path> demoProblems(const std::filesystem::path& shared) {
+  const char* const kDemos[] = {
+      "OMPL_constr_demos/UR5/ur5_table_constr_box.xml",
+      "OMPL_constr_demos/UR5/ur5_table_constr_orientation.xml",
+      "OMPL_geo_demos/Cube_Maze_R2/OMPL_RRTconnect_bigcube-maze2D_R2.xml",
+      "OMPL_geo_demos/TX90_IOC/OMPL_RRTConnect_TX90_TwoCan.xml",
+      "OMPL_geo_demos/TX90_IOC/OMPL_RRTConnect_TX90_gripper_TwoCan.xml",
+      "OMPL_geo_demos/Table_Rooms_R2/OMPL_RRTconnect_table_rooms_R2_ab.xml",
+      "OMPL_geo_demos/UR3e/ur3e_fib_upc.xml",
+      "OMPL_geo_demos/UR5/ur5_table.xml",
+      "OMPL_geo_demos/boxes_world_R2/OMPL_RRTconnect_boxes_world_R2.xml",
+      "OMPL_geo_demos/boxes_world_R3/OMPL_RRTconnect_boxes_world_R3.xml",
+  };
   std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(shared / "kautham")) {
-    const auto& path = entry.path();
-    if (path.extension() == ".xml" && path.string().find("/models/") == std::string::npos) files.push_back(path);
-  }
-  std::sort(files.begin(), files.end());
+  for (const char* demo : kDemos) files.push_back(shared / "kautham" / demo);
   return files;
 }
 
 TEST(KauthamDemos, GeometricQueriesAreSolvedWithinTheirTimeLimit) {
   LANG2MANIP_REQUIRE_SHARED_DATA(shared);
+  int queries = 0;
   int solved = 0;
+  std::string unsolved;
   int constrained = 0;
   for (const std::filesystem::path& file : demoProblems(shared)) {
     SCOPED_TRACE(file.string());
@@ -49,13 +63,18 @@ TEST(KauthamDemos, GeometricQueriesAreSolvedWithinTheirTimeLimit) {
       session.setQuery(problem.queries[q].init, problem.queries[q].goal);
       // RRT with Kautham's small ranges varies a lot from run to run (UR5: 1 ms to over 1 s), so
       // a query counts as solvable within its limit when one of three runs solves it.
+      ++queries;
       const MotionPlan* solvedPlan = nullptr;
+      std::string reason;
       for (int attempt = 0; attempt < 3 && solvedPlan == nullptr; ++attempt) {
         const MotionPlan& plan = session.solve();
         if (plan.solved()) solvedPlan = &plan;
+        reason = plan.message;
       }
-      EXPECT_NE(solvedPlan, nullptr) << "query " << q << ": " << session.solve().message;
-      if (solvedPlan == nullptr) continue;
+      if (solvedPlan == nullptr) {
+        unsolved += "\n  " + file.string() + " query " + std::to_string(q + 1) + ": " + reason;
+        continue;
+      }
       const MotionPlan& plan = *solvedPlan;
       ++solved;
       EXPECT_LE(plan.statistics.planningSeconds, timeLimit + 0.5);
@@ -63,7 +82,10 @@ TEST(KauthamDemos, GeometricQueriesAreSolvedWithinTheirTimeLimit) {
     }
   }
   EXPECT_EQ(constrained, 2);
-  EXPECT_GE(solved, 8);
+  // Every geometric query of the demos (there are kDemoQueries) is solved in one of three runs.
+  constexpr int kDemoQueries = 8;
+  EXPECT_GE(queries, kDemoQueries);
+  EXPECT_EQ(solved, queries) << "unsolved:" << unsolved;
 }
 
 }  // namespace

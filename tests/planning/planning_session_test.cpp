@@ -118,6 +118,19 @@ TEST(KauthamPose, AxisAngleAsKauthamWritesIt) {
   EXPECT_TRUE(pose.translation().isApprox(Vector3(1, 2, 3)));
   EXPECT_TRUE((pose.linear() * Vector3::UnitX()).isApprox(Vector3::UnitY()));
   EXPECT_THROW((void)kauthamPose({1, 2, 3}), InputError);
+  EXPECT_TRUE(kauthamPose({0, 0, 0, 0, 0, 0, 0}).linear().isIdentity(0.0));
+  EXPECT_NE(test::errorMessage([] { (void)kauthamPose({0, 0, 0, 0, 0, 0, 1.0}); }).find("zero rotation axis"),
+            std::string::npos);
+}
+
+TEST_F(PandaDeskSession, PosesFarOutsideTheModelRangeAreRefused) {
+  Pose far = session.getObstaclePos("eraser");
+  far.translation().x() = 1e300;
+  EXPECT_NE(test::errorMessage([&] { session.setObstaclePos("eraser", far); }).find("more than 10000 m"),
+            std::string::npos);
+  EXPECT_NE(test::errorMessage([&] { session.setRobotPos("panda", far); }).find("base position of \"panda\""),
+            std::string::npos);
+  EXPECT_TRUE(session.solve().solved());
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include "lang2manip/cli/collision_queries.hpp"
 #include "lang2manip/cli/commands.hpp"
 #include "lang2manip/collision/fcl_collision_checker.hpp"
+#include "lang2manip/core/error.hpp"
 #include "lang2manip/model/builtin_data.hpp"
 
 namespace lang2manip {
@@ -20,19 +21,38 @@ struct CheckOptions {
   bool json = false;
 };
 
-json checkEntry(const std::string& what, const CollisionReport& report) {
+/// A checked state: valid when collision-free and within every joint's limits.
+json checkEntry(const std::string& what, const CollisionReport& report,
+                const std::vector<std::string>& limitViolations) {
   json entry = collisionReportJson(report);
   entry["state"] = what;
+  entry["collision_free"] = report.valid;
+  entry["limit_violations"] = limitViolations;
+  entry["valid"] = report.valid && limitViolations.empty();
   return entry;
+}
+
+/// The limit violations of every robot of `states` (robot-prefixed when the scene has several).
+std::vector<std::string> limitViolations(const Scene& scene, const RobotStates& states) {
+  std::vector<std::string> violations;
+  for (std::size_t r = 0; r < scene.robots().size(); ++r) {
+    const SceneRobot& robot = scene.robots()[r];
+    for (const std::string& violation : robot.model->limitViolations(states.configurations[r])) {
+      violations.push_back(scene.robots().size() > 1 ? robot.name + ": " + violation : violation);
+    }
+  }
+  return violations;
 }
 
 /// The given configuration of one robot (the others at the problem's scene state).
 json checkConfiguration(const CheckOptions& options, const CollisionChecker& checker) {
   const int robot = options.robotGiven ? checker.robotIndex(options.robot) : 0;
   const VectorX q = Eigen::Map<const VectorX>(options.config.data(), static_cast<Eigen::Index>(options.config.size()));
+  const RobotModel& model = *checker.scene().robots()[static_cast<std::size_t>(robot)].model;
+  model.checkConfiguration(q, "--config");
   const auto context = checker.makeContext();
   const CollisionReport report = checker.checkState(robot, q, CollisionRequest{true}, *context);
-  json entry = checkEntry("configuration", report);
+  json entry = checkEntry("configuration", report, model.limitViolations(q));
   entry["robot"] = checker.scene().robots()[static_cast<std::size_t>(robot)].name;
   entry["configuration"] = options.config;
   return json::array({entry});
@@ -43,15 +63,18 @@ json checkProblemQueries(const LoadedProblem& loaded, const CollisionChecker& ch
   const std::vector<QueryCollisions> results = checkQueries(loaded, checker);
   for (std::size_t i = 0; i < results.size(); ++i) {
     const std::string query = "query " + std::to_string(i + 1);
-    checks.push_back(checkEntry(query + " start", results[i].start));
-    checks.push_back(checkEntry(query + " goal", results[i].goal));
+    const auto& [start, goal] = loaded.queries[i];
+    checks.push_back(checkEntry(query + " start", results[i].start, limitViolations(checker.scene(), start)));
+    checks.push_back(checkEntry(query + " goal", results[i].goal, limitViolations(checker.scene(), goal)));
   }
   return checks;
 }
 
 std::string checkText(const json& report) {
   std::string text = "problem " + report["problem"].get<std::string>() + ": " +
-                     (report["valid"].get<bool>() ? "all states collision-free" : "COLLISION") + "\n";
+                     (report["valid"].get<bool>()
+                          ? "all states valid (collision-free, within the joint limits)"
+                          : "INVALID STATES") + "\n";
   for (const json& check : report["checks"]) {
     text += check["state"].get<std::string>() +
             (check.contains("robot") ? " of " + check["robot"].get<std::string>() : "") + ": " +
@@ -62,7 +85,10 @@ std::string checkText(const json& report) {
       text += "  " + contact["first"].get<std::string>() + " - " + contact["second"].get<std::string>() +
               ": penetration " + depth + " m\n";
     }
-    if (check["valid"].get<bool>() && check.contains("closest")) {
+    for (const json& violation : check["limit_violations"]) {
+      text += "  outside the joint limits: " + violation.get<std::string>() + "\n";
+    }
+    if (check["collision_free"].get<bool>() && check.contains("closest")) {
       char distance[64];
       std::snprintf(distance, sizeof distance, "%.4f", check["minimum_distance"].get<double>());
       text += "  clearance " + std::string(distance) + " m (" + check["closest"][0].get<std::string>() +
@@ -74,14 +100,22 @@ std::string checkText(const json& report) {
 
 void runCheck(const CheckOptions& options, std::ostream& out) {
   const LoadedProblem loaded = loadProblem(options.problem, options.robot);
+  if (options.config.empty() && loaded.queries.empty()) {
+    throw InputError("nothing was checked: problem " + loaded.name +
+                     " has no query; give a configuration with --config");
+  }
   const FclCollisionChecker checker(loaded.problem.scene);
   json report{{"problem", loaded.name}, {"file", loaded.file}, {"checker", "fcl"}};
   report["checks"] = options.config.empty() ? checkProblemQueries(loaded, checker)
                                             : checkConfiguration(options, checker);
-  bool valid = true;
-  for (const json& check : report["checks"]) valid = valid && check["valid"].get<bool>();
-  report["valid"] = valid;
+  std::size_t invalid = 0;
+  for (const json& check : report["checks"]) invalid += check["valid"].get<bool>() ? 0 : 1;
+  report["valid"] = invalid == 0;
   out << (options.json ? report.dump(2) + "\n" : checkText(report));
+  if (invalid > 0) {
+    throw TaskFailedError("check: " + std::to_string(invalid) + " of " +
+                          std::to_string(report["checks"].size()) + " checked states are invalid");
+  }
 }
 
 }  // namespace

@@ -15,7 +15,9 @@ void addProblemsCommand(CLI::App& app, std::ostream& out);
 void addShowCommand(CLI::App& app, std::ostream& out);
 
 /// `lang2manip check [PROBLEM] [--robot NAME --config q1 q2 ...] [--json]`: whether each query's
-/// start and goal (or the given configuration) is collision-free, naming the colliding pairs.
+/// start and goal (or the given configuration) is valid: collision-free (naming the colliding
+/// pairs) and within the joint limits (naming the joints outside). Ends with TaskFailedError
+/// (exit status 2) when any checked state is invalid, InputError when nothing can be checked.
 void addCheckCommand(CLI::App& app, std::ostream& out);
 
 /// `lang2manip solve [PROBLEM] [--planner NAME] [--param NAME=VALUE ...] [--json] [--out FILE]`:

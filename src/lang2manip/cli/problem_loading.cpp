@@ -15,6 +15,7 @@ LoadedProblem loadMoveIt(const std::filesystem::path& sceneFile, const std::stri
   loaded.file = sceneFile.string();
   loaded.format = "moveit";
   loaded.problem = kauthamProblemFromScene(moveit.scene, loaded.name);
+  loaded.problem.queries.push_back(kauthamQueryFromStates(loaded.problem, {moveit.start}, {moveit.goal}));
   const Pose base = moveit.scene.robots().front().basePose;
   loaded.queries.push_back({RobotStates{{moveit.start}, {base}}, RobotStates{{moveit.goal}, {base}}});
   return loaded;

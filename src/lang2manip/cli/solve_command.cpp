@@ -71,6 +71,10 @@ json queryJson(std::size_t index, const PlanningSession& session, const MotionPl
 }
 
 std::string queryText(const json& query) {
+  if (query["status"] == "invalid_query") {
+    return "query " + std::to_string(query["query"].get<int>()) + ": not planned: " +
+           query["message"].get<std::string>() + "\n";
+  }
   const json& statistics = query["statistics"];
   char line[512];
   std::snprintf(line, sizeof line,
@@ -90,6 +94,43 @@ std::string queryText(const json& query) {
                 statistics["simplify_seconds"].get<double>() * 1e3, query["duration"].get<double>(),
                 query["trajectory"]["points"].size());
   return text + line;
+}
+
+/// Why query `q` cannot be planned (a start or goal outside the joint limits or in collision),
+/// or empty after making it the session's query.
+std::string queryRejection(const LoadedProblem& loaded, PlanningSession& session, std::size_t q) {
+  const Scene& scene = session.problem().scene;
+  const auto& [start, goal] = loaded.queries[q];
+  for (const auto& [states, what] : {std::pair{&start, "start"}, std::pair{&goal, "goal"}}) {
+    for (std::size_t r = 0; r < scene.robots().size(); ++r) {
+      const std::vector<std::string> violations =
+          scene.robots()[r].model->limitViolations(states->configurations[r]);
+      if (!violations.empty()) {
+        return std::string(what) + " is outside the joint limits of \"" + scene.robots()[r].name +
+               "\": " + violations.front() +
+               (violations.size() > 1 ? " (and " + std::to_string(violations.size() - 1) + " more)" : "");
+      }
+    }
+  }
+  try {
+    const KauthamQuery& query = session.problem().queries[q];
+    session.setQuery(query.init, query.goal);
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  return {};
+}
+
+json rejectedQueryJson(std::size_t index, const PlanningSession& session, const std::string& reason) {
+  return {{"query", index + 1},
+          {"status", "invalid_query"},
+          {"message", reason},
+          {"planner", session.plannerSettings().planner()},
+          {"statistics", statisticsJson(MotionPlanStatistics{})},
+          {"path_dof_names", session.pathDofNames()},
+          {"path", json::array()},
+          {"trajectory", json()},
+          {"duration", 0.0}};
 }
 
 void writeOutputs(const std::string& out, const json& report, const std::vector<JointTrajectory>& trajectories) {
@@ -124,7 +165,12 @@ void runSolve(const SolveOptions& options, std::ostream& out) {
   std::vector<JointTrajectory> trajectories;
   for (std::size_t q = 0; q < queries.size(); ++q) {
     if (options.query != 0 && static_cast<int>(q) + 1 != options.query) continue;
-    session.setQuery(queries[q].init, queries[q].goal);
+    const std::string rejection = queryRejection(loaded, session, q);
+    if (!rejection.empty()) {
+      report["queries"].push_back(rejectedQueryJson(q, session, rejection));
+      trajectories.emplace_back();
+      continue;
+    }
     const MotionPlan& plan = session.solve();
     report["queries"].push_back(queryJson(q, session, plan));
     trajectories.push_back(plan.trajectory);
@@ -139,7 +185,7 @@ void runSolve(const SolveOptions& options, std::ostream& out) {
     out << "problem " << loaded.name << " (" << loaded.file << ")\n";
     for (const json& query : report["queries"]) out << queryText(query);
   }
-  if (!solved) throw InputError("not every query was solved");
+  if (!solved) throw TaskFailedError("solve: not every query was solved");
 }
 
 }  // namespace

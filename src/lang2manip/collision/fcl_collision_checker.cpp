@@ -107,8 +107,9 @@ void FclCollisionChecker::placeRobot(int robot, const VectorX& q, const Pose& X_
 }
 
 bool FclCollisionChecker::boxesOverlap(const Context& context, std::size_t a, std::size_t b) noexcept {
-  return ((context.centers[a] - context.centers[b]).cwiseAbs() - context.halfExtents[a] -
-          context.halfExtents[b]).maxCoeff() <= 0.0;
+  // Written so that a NaN (a pose gone wrong) counts as overlapping: FCL then decides.
+  return !(((context.centers[a] - context.centers[b]).cwiseAbs() - context.halfExtents[a] -
+            context.halfExtents[b]).maxCoeff<Eigen::PropagateNaN>() > 0.0);
 }
 
 bool FclCollisionChecker::pairCollides(int first, int second, Context& context) const noexcept {
@@ -185,7 +186,17 @@ void FclCollisionChecker::closestPair(Context& context, CollisionReport& report)
     const double d = fcl::distance(a.shape.geometry.get(), context.poses[static_cast<std::size_t>(pair.first)],
                                    b.shape.geometry.get(), context.poses[static_cast<std::size_t>(pair.second)],
                                    request, result);
-    if (d < report.minimumDistance) {
+    if (!(d > 0.0)) {
+      // FCL answers -1 (or NaN) when it finds the pair overlapping although collide() did not:
+      // the state is never reported free on an inconclusive answer.
+      report.valid = false;
+      report.contacts.push_back(CollisionContact{bodyName(a.body), bodyName(b.body), 0.0});
+      report.minimumDistance = 0.0;
+      report.closestFirst = bodyName(a.body);
+      report.closestSecond = bodyName(b.body);
+      continue;
+    }
+    if (report.valid && d < report.minimumDistance) {
       report.minimumDistance = d;
       report.closestFirst = bodyName(a.body);
       report.closestSecond = bodyName(b.body);

@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/file_checks.hpp"
 #include "lang2manip/model/xml_document.hpp"
 
 namespace lang2manip {
@@ -71,8 +72,8 @@ std::filesystem::path resolveProblem(const std::string& nameOrPath) {
     if (problem.shortName == nameOrPath) return problem.file;
     names.push_back(problem.shortName);
   }
-  if (path.has_parent_path() || path.extension() == ".xml") {
-    throw InputError(SourceLocation{nameOrPath, 0}, "problem file does not exist");
+  if (path.has_parent_path() || path.has_extension() || std::filesystem::exists(path, error)) {
+    throw InputError(SourceLocation{nameOrPath, 0}, "problem file " + notRegularFileReason(path));
   }
   throw InputError("\"" + nameOrPath + "\" is neither a problem file nor a built-in problem; " +
                    "built-in problems: " + joined(names));

@@ -1,6 +1,7 @@
 #include "lang2manip/model/geometry.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <type_traits>
 
@@ -45,7 +46,66 @@ AlignedBox3 meshBounds(const MeshGeometry& mesh, const Pose& X_FG) {
   return box;
 }
 
+std::string lengthText(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+std::string rangeText() {
+  return "[" + lengthText(kMinModelLength) + ", " + lengthText(kMaxModelLength) + "] m";
+}
+
 }  // namespace
+
+std::string dimensionRangeProblem(double value) {
+  if (value == 0.0 || (value >= kMinModelLength && value <= kMaxModelLength)) return {};
+  return lengthText(value) + " m is outside " + rangeText();
+}
+
+std::string positionRangeProblem(const Vector3& position) {
+  if (position.cwiseAbs().maxCoeff<Eigen::PropagateNaN>() <= kMaxModelLength) return {};
+  return "(" + lengthText(position.x()) + ", " + lengthText(position.y()) + ", " +
+         lengthText(position.z()) + ") m is more than " + lengthText(kMaxModelLength) +
+         " m from the origin";
+}
+
+void requireDimensionInRange(double value, std::string_view what, const SourceLocation& where) {
+  const std::string problem = dimensionRangeProblem(value);
+  if (!problem.empty()) throw InputError(where, std::string(what) + " " + problem);
+}
+
+void requirePositionInRange(const Vector3& position, std::string_view what, const SourceLocation& where) {
+  const std::string problem = positionRangeProblem(position);
+  if (!problem.empty()) throw InputError(where, std::string(what) + " " + problem);
+}
+
+void requireShapeInRange(const Shape& shape, std::string_view what, const SourceLocation& where) {
+  const std::string name(what);
+  requirePositionInRange(shape.origin.translation(), name + " origin", where);
+  if (const auto* box = std::get_if<Box>(&shape.geometry)) {
+    for (int i = 0; i < 3; ++i) requireDimensionInRange(box->size[i], name + " box size", where);
+  } else if (const auto* sphere = std::get_if<Sphere>(&shape.geometry)) {
+    requireDimensionInRange(sphere->radius, name + " sphere radius", where);
+  } else if (const auto* cylinder = std::get_if<Cylinder>(&shape.geometry)) {
+    requireDimensionInRange(cylinder->radius, name + " cylinder radius", where);
+    requireDimensionInRange(cylinder->length, name + " cylinder length", where);
+  } else {
+    const auto& mesh = std::get<MeshGeometry>(shape.geometry);
+    for (int i = 0; i < 3; ++i) {
+      // A mirroring (negative) scale is allowed; its magnitude is a length factor.
+      if (!(std::abs(mesh.scale[i]) >= kMinModelLength && std::abs(mesh.scale[i]) <= kMaxModelLength)) {
+        throw InputError(where, name + " mesh scale " + lengthText(mesh.scale[i]) + " is outside +-" +
+                                    rangeText());
+      }
+    }
+    const AlignedBox3 bounds = shapeBounds(Shape{shape.geometry, Pose::Identity(), {}, {}});
+    if (!bounds.isEmpty()) {
+      requirePositionInRange(bounds.min(), name + " scaled mesh corner", where);
+      requirePositionInRange(bounds.max(), name + " scaled mesh corner", where);
+    }
+  }
+}
 
 AlignedBox3 shapeBounds(const Shape& shape) {
   const Pose& X_FG = shape.origin;

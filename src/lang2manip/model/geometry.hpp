@@ -4,8 +4,10 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 
+#include "lang2manip/core/error.hpp"
 #include "lang2manip/core/types.hpp"
 #include "lang2manip/model/triangle_mesh.hpp"
 
@@ -50,6 +52,29 @@ struct Shape {
   /// The name given in the model file, if any.
   std::string name;
 };
+
+/// The lengths (m) a model may hold. Every non-zero dimension (box size, radius, cylinder length,
+/// mesh scale and scaled mesh extent) lies in [kMinModelLength, kMaxModelLength] and every
+/// position coordinate within +-kMaxModelLength: beyond them FCL's arithmetic loses collisions
+/// (a 1e300 m box is reported free). A zero dimension is a shape with no volume (never collides).
+inline constexpr double kMinModelLength = 1e-6;
+inline constexpr double kMaxModelLength = 1e4;
+
+/// "<value> m is outside [1e-06, 10000] m" unless `value` is 0 or within the range (then empty).
+std::string dimensionRangeProblem(double value);
+
+/// "(x, y, z) m is more than 10000 m from the origin", or empty within the range.
+std::string positionRangeProblem(const Vector3& position);
+
+/// Throws InputError "<where>: <what> <value> m is outside [1e-06, 10000] m" unless `value` is 0
+/// or within [kMinModelLength, kMaxModelLength] (negative values are refused too).
+void requireDimensionInRange(double value, std::string_view what, const SourceLocation& where);
+
+/// Throws InputError unless every coordinate of `position` lies within +-kMaxModelLength.
+void requirePositionInRange(const Vector3& position, std::string_view what, const SourceLocation& where);
+
+/// Checks every dimension of `shape`, its origin and, for a loaded mesh, its scaled extent.
+void requireShapeInRange(const Shape& shape, std::string_view what, const SourceLocation& where);
 
 /// Bounds of `shape` in the frame it belongs to (origin applied): exact for boxes, spheres and
 /// cylinders in any orientation; for meshes, the bounds of the scaled, placed vertices (an empty

@@ -68,6 +68,8 @@ struct KauthamReadOptions {
 /// Reads a Kautham problem XML. Throws InputError naming the file, the line where known and what
 /// is wrong (missing file, malformed XML, model reference that resolves nowhere, unknown DOF or
 /// control names, wrong number of query values, non-finite numbers, a control file not .cntr).
+/// A <Home> whose rotation axis is zero (WX=WY=WZ=0) means no rotation whatever its TH, as in
+/// Kautham; a non-zero TH then logs a warning naming the file and line.
 KauthamProblem readKauthamProblem(const std::filesystem::path& file,
                                   const KauthamReadOptions& options = {});
 
@@ -96,7 +98,14 @@ std::filesystem::path writeKauthamProblem(const KauthamProblem& problem,
                                           const std::string& stem);
 
 /// A KauthamProblem for a Scene that did not come from a Kautham file (default controls, no
-/// planner, one query whose init and goal are the scene's configurations).
+/// planner, no query: add them with kauthamQueryFromStates).
 KauthamProblem kauthamProblemFromScene(const Scene& scene, const std::string& name);
+
+/// The query, in `problem`'s robot controls, from configuration `init` to `goal` (one per scene
+/// robot). Controls must be the default ones (one per joint variable, kauthamProblemFromScene).
+/// A configuration outside the joint limits maps to control values outside [0,1], which the
+/// planning session refuses. Throws InputError for the wrong number of robots or values.
+KauthamQuery kauthamQueryFromStates(const KauthamProblem& problem, const std::vector<VectorX>& init,
+                                    const std::vector<VectorX>& goal);
 
 }  // namespace lang2manip

@@ -2,6 +2,8 @@
 #include <cmath>
 #include <set>
 
+#include "lang2manip/core/file_checks.hpp"
+#include "lang2manip/core/log.hpp"
 #include "lang2manip/core/rotation.hpp"
 #include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/model/kautham_dof_target.hpp"
@@ -45,14 +47,15 @@ class ProblemReader {
                                 const std::string& what) const {
     if (reference.empty()) throw InputError(document_.where(node), what + " reference is empty");
     std::error_code error;
-    std::string tried;
+    std::vector<std::filesystem::path> candidates;
     for (const std::filesystem::path& prefix : prefixes_) {
       const std::filesystem::path candidate = (prefix / reference).lexically_normal();
       if (std::filesystem::is_regular_file(candidate, error)) return candidate;
-      tried += (tried.empty() ? "" : ", ") + candidate.string();
+      candidates.push_back(candidate);
     }
-    throw InputError(document_.where(node), what + " \"" + reference + "\" resolves nowhere (tried: " +
-                                                tried + ")");
+    throw InputError(document_.where(node), what + " \"" + reference +
+                                                "\" resolves to no readable file (" +
+                                                triedCandidates(candidates) + ")");
   }
 
   Pose readHome(const pugi::xml_node& entity) const {
@@ -64,7 +67,13 @@ class ProblemReader {
     const Vector3 axis(document_.numberAttribute(home, "WX", 0.0),
                        document_.numberAttribute(home, "WY", 0.0),
                        document_.numberAttribute(home, "WZ", 0.0));
-    return makePose(translation, quaternionFromKauthamAxisAngle(axis, document_.numberAttribute(home, "TH", 0.0)));
+    requirePositionInRange(translation, "<Home> X Y Z", document_.where(home));
+    const double angle = document_.numberAttribute(home, "TH", 0.0);
+    if (axis.isZero(0.0) && angle != 0.0) {
+      logWarning(document_.where(home).toString() + ": <Home> has the zero rotation axis WX=WY=WZ=0 with TH=" +
+                 exactNumber(angle) + ": taken as no rotation, as Kautham does");
+    }
+    return makePose(translation, quaternionFromKauthamAxisAngle(axis, angle));
   }
 
 

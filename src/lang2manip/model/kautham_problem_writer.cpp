@@ -89,9 +89,12 @@ std::string obstacleXml(const Scene& scene, const SceneObject& object,
   return xml + "  </Obstacle>\n";
 }
 
-// Normalized values of `problem`'s scene configurations under default controls `controls`.
+// Normalized values of `problem`'s scene configurations under default controls `controls`;
+// `clamp` keeps them in [0,1] (a file Kautham reads), otherwise a value outside the limits maps
+// outside [0,1] (so a query outside the limits is refused, not moved inside them).
 std::vector<double> normalizedControls(const KauthamProblem& problem, const ControlSet& controls,
-                                       const std::vector<VectorX>& configurations) {
+                                       const std::vector<VectorX>& configurations, bool clamp = true) {
+  const auto limited = [clamp](double value) { return clamp ? std::clamp(value, 0.0, 1.0) : value; };
   const std::vector<DofTarget> targets = resolveDofTargets(problem, controls, true);
   std::vector<double> values;
   for (std::size_t d = 0; d < targets.size(); ++d) {
@@ -101,13 +104,13 @@ std::vector<double> normalizedControls(const KauthamProblem& problem, const Cont
                               robot.basePose).translation();
       const auto axis = static_cast<Eigen::Index>(targets[d].kind) - 1;
       const auto& range = axis == 0 ? robot.baseLimits.x : axis == 1 ? robot.baseLimits.y : robot.baseLimits.z;
-      values.push_back(std::clamp((offset[axis] - range->first) / (range->second - range->first), 0.0, 1.0));
+      values.push_back(limited((offset[axis] - range->first) / (range->second - range->first)));
       continue;
     }
     const RobotModel& model = *robot.model;
     const auto [lower, upper] = kauthamJointRange(model, targets[d].variable);
     const double q = configurations[static_cast<std::size_t>(targets[d].entity)][targets[d].variable];
-    values.push_back(upper > lower ? std::clamp((q - lower) / (upper - lower), 0.0, 1.0) : 0.5);
+    values.push_back(upper > lower ? limited((q - lower) / (upper - lower)) : 0.5);
   }
   return values;
 }
@@ -148,6 +151,25 @@ std::string plannerXml(const KauthamProblem& problem, const KauthamProblem& targ
 }
 
 }  // namespace
+
+KauthamQuery kauthamQueryFromStates(const KauthamProblem& problem, const std::vector<VectorX>& init,
+                                    const std::vector<VectorX>& goal) {
+  for (const auto* states : {&init, &goal}) {
+    if (states->size() != problem.scene.robots().size()) {
+      throw InputError("a query needs one configuration per robot (" +
+                       std::to_string(problem.scene.robots().size()) + "), got " +
+                       std::to_string(states->size()));
+    }
+    for (std::size_t r = 0; r < states->size(); ++r) {
+      const SceneRobot& robot = problem.scene.robots()[r];
+      robot.model->checkConfiguration((*states)[r], "query configuration of \"" + robot.name + "\"");
+    }
+  }
+  KauthamQuery query;
+  query.init = normalizedControls(problem, problem.robotControls, init, false);
+  query.goal = normalizedControls(problem, problem.robotControls, goal, false);
+  return query;
+}
 
 KauthamProblem kauthamProblemFromScene(const Scene& scene, const std::string& name) {
   KauthamProblem problem;

@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/file_checks.hpp"
 #include "lang2manip/model/assimp_mesh_reader.hpp"
 #include "lang2manip/model/coin_mesh_reader.hpp"
 #include "lang2manip/model/mesh_builder.hpp"
@@ -29,12 +30,8 @@ std::string joined(const std::vector<std::string>& items, const std::string& sep
 }
 
 void checkReadableFile(const fs::path& path, const std::string& name) {
-  std::error_code error;
-  const fs::file_status status = fs::status(path, error);
-  if (error || !fs::exists(status)) throw InputError(SourceLocation{name, 0}, "mesh file not found");
-  if (!fs::is_regular_file(status)) {
-    throw InputError(SourceLocation{name, 0}, "mesh path is not a regular file");
-  }
+  const std::string reason = notRegularFileReason(path);
+  if (!reason.empty()) throw InputError(SourceLocation{name, 0}, "mesh file " + reason);
   if (!std::ifstream(path, std::ios::binary).is_open()) {
     throw InputError(SourceLocation{name, 0}, "mesh file cannot be opened for reading");
   }

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/model/geometry.hpp"
 #include "lang2manip/model/moveit_yaml.hpp"
 
 namespace lang2manip {
@@ -49,6 +50,8 @@ std::vector<double> dimensions(const YamlValue& value, std::size_t count,
   for (const YamlValue& item : items) {
     result.push_back(item.number());
     if (result.back() <= 0.0) item.fail("a dimension must be positive");
+    const std::string problem = dimensionRangeProblem(result.back());
+    if (!problem.empty()) item.fail("dimension " + problem);
   }
   return result;
 }

@@ -5,6 +5,8 @@
 
 #include "lang2manip/core/rotation.hpp"
 #include "lang2manip/core/text_parsing.hpp"
+#include "lang2manip/model/geometry.hpp"
+#include "lang2manip/model/xml_document.hpp"
 
 namespace lang2manip::moveit_yaml {
 namespace {
@@ -37,7 +39,10 @@ std::vector<double> components(const YamlValue& value, std::string_view keys) {
 
 Vector3 readPosition(const YamlValue& value) {
   const std::vector<double> c = components(value, "xyz");
-  return {c[0], c[1], c[2]};
+  const Vector3 position(c[0], c[1], c[2]);
+  const std::string problem = positionRangeProblem(position);
+  if (!problem.empty()) value.fail("position " + problem);
+  return position;
 }
 
 Quaternion readOrientation(const YamlValue& value) {
@@ -48,10 +53,9 @@ Quaternion readOrientation(const YamlValue& value) {
 }
 
 YAML::Node loadYaml(const std::filesystem::path& file, const std::string& name) {
+  const std::string text = readTextFile(file, "YAML file");
   try {
-    return YAML::LoadFile(file.string());
-  } catch (const YAML::BadFile&) {
-    throw InputError(SourceLocation{name, 0}, "cannot open the file");
+    return YAML::Load(text);
   } catch (const YAML::ParserException& error) {
     throw InputError(SourceLocation{name, lineOf(error.mark)}, "malformed YAML: " + error.msg);
   }

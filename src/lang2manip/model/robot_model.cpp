@@ -1,6 +1,7 @@
 #include "lang2manip/model/robot_model.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <deque>
 #include <numbers>
 
@@ -19,6 +20,15 @@ std::string jointTypeName(JointType type) {
     case JointType::kPlanar: return "planar";
   }
   return "unknown";
+}
+
+void requireLinkInRange(const Link& link, const SourceLocation& where) {
+  for (std::size_t i = 0; i < link.collisions.size(); ++i) {
+    requireShapeInRange(link.collisions[i], "link \"" + link.name + "\" collision " + std::to_string(i + 1), where);
+  }
+  for (std::size_t i = 0; i < link.visuals.size(); ++i) {
+    requireShapeInRange(link.visuals[i], "link \"" + link.name + "\" visual " + std::to_string(i + 1), where);
+  }
 }
 
 namespace {
@@ -41,6 +51,7 @@ void checkPoseFinite(const Pose& pose, const std::string& what, const SourceLoca
 void checkJoint(Joint& joint, const SourceLocation& where) {
   const std::string what = "joint \"" + joint.name + "\"";
   checkPoseFinite(joint.origin, what + " origin", where);
+  requirePositionInRange(joint.origin.translation(), what + " origin", where);
   if (!joint.axis.allFinite() || joint.axis.norm() < 1e-12) {
     throw InputError(where, what + " has a zero or non-finite axis");
   }
@@ -56,6 +67,9 @@ void checkJoint(Joint& joint, const SourceLocation& where) {
   const JointLimits& limits = joint.limits;
   for (const double value : {limits.lower, limits.upper, limits.velocity, limits.effort}) {
     requireFinite(value, what + " limit", where);
+  }
+  if (joint.type == JointType::kPrismatic) {
+    requirePositionInRange(Vector3(limits.lower, limits.upper, 0.0), what + " limits (lower, upper, 0)", where);
   }
   if (isMovable(joint.type) && limits.lower > limits.upper) {
     throw InputError(where, what + " has lower limit " + std::to_string(limits.lower) +
@@ -77,6 +91,7 @@ RobotModel::RobotModel(RobotModelData data) : data_(std::move(data)) {
       throw InputError(where, "link \"" + data_.links[i].name + "\" is defined twice");
     }
   }
+  for (const Link& link : data_.links) requireLinkInRange(link, where);
   for (Joint& joint : data_.joints) checkJoint(joint, where);
   orderTopologically();
   indexVariables();
@@ -289,6 +304,23 @@ void RobotModel::checkConfiguration(const VectorX& q, const std::string& what) c
                        variableNames()[static_cast<std::size_t>(i)] + "\" is not finite");
     }
   }
+}
+
+std::vector<std::string> RobotModel::limitViolations(const VectorX& q, double tolerance) const {
+  checkConfiguration(q, "configuration");
+  std::vector<std::string> violations;
+  for (int v = 0; v < variableCount(); ++v) {
+    const Joint& joint = data_.joints[static_cast<std::size_t>(variables_[static_cast<std::size_t>(v)])];
+    if (joint.type == JointType::kContinuous) continue;
+    const double value = q[v];
+    const bool below = value < lower_[v] - tolerance;
+    if (!below && value <= upper_[v] + tolerance) continue;
+    char text[160];
+    std::snprintf(text, sizeof text, " = %.6g is %s its %s limit %.6g", value, below ? "below" : "above",
+                  below ? "lower" : "upper", below ? lower_[v] : upper_[v]);
+    violations.push_back(joint.name + text);
+  }
+  return violations;
 }
 
 VectorX RobotModel::namedConfiguration(const std::string& name) const {

@@ -55,6 +55,10 @@ struct Link {
   std::vector<Shape> collisions;
 };
 
+/// Throws InputError at `where` unless every shape of `link` is within the model length range
+/// (requireShapeInRange in geometry.hpp).
+void requireLinkInRange(const Link& link, const SourceLocation& where);
+
 /// The plain data a RobotModel is built from; readers fill it, RobotModel validates it.
 struct RobotModelData {
   std::string name;
@@ -132,6 +136,11 @@ class RobotModel {
 
   /// Throws InputError unless `q` has variableCount() finite values (`what` names it).
   void checkConfiguration(const VectorX& q, const std::string& what) const;
+
+  /// One description per variable of `q` outside its joint's limits by more than `tolerance`
+  /// ("panda_joint4 = 0.1 is above its upper limit -0.0698"); continuous joints have none.
+  /// Empty when `q` is within the limits. `q` is checked as in checkConfiguration().
+  [[nodiscard]] std::vector<std::string> limitViolations(const VectorX& q, double tolerance = 1e-9) const;
 
   /// The named state `name` (SRDF group_state) as a full configuration starting from the middle
   /// configuration; throws InputError listing the named states when unknown.

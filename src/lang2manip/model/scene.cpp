@@ -57,6 +57,17 @@ auto findByName(std::vector<Item>& items, const std::string& name) {
 
 void checkPose(const Pose& pose, const std::string& what) {
   if (!pose.matrix().allFinite()) throw InputError(what + " has a non-finite pose");
+  requirePositionInRange(pose.translation(), what + " position", SourceLocation{});
+}
+
+void checkShapes(const SceneObject& object) {
+  const SourceLocation where{object.modelSource, 0};
+  for (std::size_t i = 0; i < object.collisions.size(); ++i) {
+    requireShapeInRange(object.collisions[i], "object \"" + object.name + "\" collision " + std::to_string(i + 1), where);
+  }
+  for (std::size_t i = 0; i < object.visuals.size(); ++i) {
+    requireShapeInRange(object.visuals[i], "object \"" + object.name + "\" visual " + std::to_string(i + 1), where);
+  }
 }
 
 }  // namespace
@@ -78,6 +89,7 @@ void Scene::addObject(SceneObject object) {
     throw InputError("the scene already has an entity named \"" + object.name + "\"");
   }
   checkPose(object.pose, "object \"" + object.name + "\"");
+  checkShapes(object);
   objects_.push_back(std::move(object));
 }
 

@@ -7,6 +7,7 @@
 #include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include "lang2manip/core/file_checks.hpp"
 #include "lang2manip/core/rotation.hpp"
 #include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/model/mesh_loader.hpp"
@@ -202,6 +203,21 @@ RobotSemantics semanticsFor(const RobotModelData& data, const std::filesystem::p
   return inferSemantics(data);
 }
 
+/// urdfdom's link or joint for the element `node` names; the two XML readers agree on every name
+/// checkUrdfStructure accepts, so a miss is reported, never dereferenced.
+template <typename Map>
+const typename Map::mapped_type::element_type& urdfdomElement(const Map& elements,
+                                                               const XmlDocument& document,
+                                                               const pugi::xml_node& node,
+                                                               const char* kind) {
+  const auto found = elements.find(node.attribute("name").value());
+  if (found == elements.end() || !found->second) {
+    throw InputError(document.where(node), std::string("urdfdom read no ") + kind + " named \"" +
+                                               node.attribute("name").value() + "\"");
+  }
+  return *found->second;
+}
+
 RobotModelPtr readUrdf(const XmlDocument& document, const std::filesystem::path& urdfPath,
                        const std::filesystem::path& directory, const UrdfReadOptions& options) {
   requireFinite(options.scale, "URDF scale", SourceLocation{document.sourceName(), 0});
@@ -217,11 +233,14 @@ RobotModelPtr readUrdf(const XmlDocument& document, const std::filesystem::path&
   data.source = document.sourceName();
   // Links in file order (urdfdom keeps a map; the file order is what users recognise).
   for (const pugi::xml_node& node : document.root().children("link")) {
-    data.links.push_back(linkFromUrdf(*urdf->getLink(node.attribute("name").value()), context));
+    data.links.push_back(linkFromUrdf(urdfdomElement(urdf->links_, document, node, "link"), context));
+    requireLinkInRange(data.links.back(), document.where(node));
   }
   for (const pugi::xml_node& node : document.root().children("joint")) {
-    data.joints.push_back(jointFromUrdf(*urdf->joints_.at(node.attribute("name").value()),
+    data.joints.push_back(jointFromUrdf(urdfdomElement(urdf->joints_, document, node, "joint"),
                                         options.scale, options.ignoreMimic));
+    requirePositionInRange(data.joints.back().origin.translation(),
+                           "joint \"" + data.joints.back().name + "\" origin", document.where(node));
   }
   data.semantics = semanticsFor(data, urdfPath, options);
   return std::make_shared<const RobotModel>(std::move(data));
@@ -263,12 +282,9 @@ std::filesystem::path resolveMeshReference(const std::string& reference,
   for (const std::filesystem::path& candidate : candidates) {
     if (std::filesystem::is_regular_file(candidate, error)) return candidate.lexically_normal();
   }
-  std::string tried;
-  for (const std::filesystem::path& candidate : candidates) {
-    tried += (tried.empty() ? "" : ", ") + candidate.lexically_normal().string();
-  }
-  throw InputError(where, "mesh \"" + reference + "\" resolves nowhere (tried: " +
-                              (tried.empty() ? "no package search path given" : tried) + ")");
+  throw InputError(where, "mesh \"" + reference + "\" resolves to no readable file (" +
+                              (candidates.empty() ? "no package search path given"
+                                                  : triedCandidates(candidates)) + ")");
 }
 
 RobotModelPtr readUrdfFile(const std::filesystem::path& path, const UrdfReadOptions& options) {

@@ -1,5 +1,6 @@
 #include "lang2manip/model/urdf_structure_check.hpp"
 
+#include <cstdio>
 #include <map>
 #include <set>
 #include <string>
@@ -28,6 +29,42 @@ const std::map<std::string, std::vector<const char*>>& numericAttributes() {
       {"dynamics", {"damping", "friction"}},
   };
   return attributes;
+}
+
+/// `name` with control characters shown as escapes (\t, \r, \n, \xNN), for messages.
+std::string visibleName(const std::string& name) {
+  std::string shown;
+  for (const char c : name) {
+    if (c == '\t') shown += "\\t";
+    else if (c == '\r') shown += "\\r";
+    else if (c == '\n') shown += "\\n";
+    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+      shown += escaped;
+    } else {
+      shown += c;
+    }
+  }
+  return shown;
+}
+
+/// The value of a name attribute (a link, a joint, or a reference to one). urdfdom's XML reader
+/// and pugixml normalise whitespace inside attributes differently (a tab is kept by one and
+/// turned into a space by the other), so a name with whitespace or control characters would name
+/// different things in the two: such names are rejected, with the file, line and name.
+std::string checkedName(const XmlDocument& urdf, const pugi::xml_node& node, const char* attribute,
+                        const std::string& what) {
+  const std::string name = urdf.requiredAttribute(node, attribute);
+  if (name.empty()) throw InputError(urdf.where(node), what + " is empty");
+  for (const char c : name) {
+    if (static_cast<unsigned char>(c) <= 0x20 || c == 0x7f) {
+      throw InputError(urdf.where(node), what + " \"" + visibleName(name) +
+                                             "\" contains whitespace or a control character; URDF "
+                                             "names may not (urdfdom would read it differently)");
+    }
+  }
+  return name;
 }
 
 void checkNumbers(const XmlDocument& urdf, const pugi::xml_node& element) {
@@ -85,7 +122,7 @@ std::vector<JointLinks> readJointLinks(const XmlDocument& urdf,
   std::vector<JointLinks> joints;
   std::set<std::string> names;
   for (const pugi::xml_node& joint : urdf.root().children("joint")) {
-    JointLinks entry{urdf.requiredAttribute(joint, "name"), "", "", urdf.lineOf(joint)};
+    JointLinks entry{checkedName(urdf, joint, "name", "joint name"), "", "", urdf.lineOf(joint)};
     if (!names.insert(entry.name).second) {
       throw InputError(urdf.where(joint), "joint \"" + entry.name + "\" is defined twice");
     }
@@ -96,8 +133,11 @@ std::vector<JointLinks> readJointLinks(const XmlDocument& urdf,
       throw InputError(urdf.where(joint),
                        "joint \"" + entry.name + "\" needs both <parent> and <child>");
     }
-    entry.parent = urdf.requiredAttribute(parent, "link");
-    entry.child = urdf.requiredAttribute(child, "link");
+    entry.parent = checkedName(urdf, parent, "link", "joint \"" + entry.name + "\" parent link");
+    entry.child = checkedName(urdf, child, "link", "joint \"" + entry.name + "\" child link");
+    if (const pugi::xml_node mimic = joint.child("mimic")) {
+      checkedName(urdf, mimic, "joint", "joint \"" + entry.name + "\" mimic joint");
+    }
     for (const pugi::xml_node& end : {parent, child}) {
       const std::string link = end.attribute("link").value();
       if (!links.count(link)) {
@@ -106,6 +146,14 @@ std::vector<JointLinks> readJointLinks(const XmlDocument& urdf,
       }
     }
     joints.push_back(entry);
+  }
+  for (const pugi::xml_node& joint : urdf.root().children("joint")) {
+    const pugi::xml_node mimic = joint.child("mimic");
+    if (mimic && !names.count(mimic.attribute("joint").value())) {
+      throw InputError(urdf.where(mimic), "joint \"" + std::string(joint.attribute("name").value()) +
+                                              "\" mimics joint \"" + mimic.attribute("joint").value() +
+                                              "\", which is not defined");
+    }
   }
   return joints;
 }
@@ -162,7 +210,7 @@ void checkUrdfStructure(const XmlDocument& urdf) {
   checkNumbers(urdf, robot);
   std::map<std::string, int> links;
   for (const pugi::xml_node& link : robot.children("link")) {
-    const std::string name = urdf.requiredAttribute(link, "name");
+    const std::string name = checkedName(urdf, link, "name", "link name");
     if (!links.emplace(name, urdf.lineOf(link)).second) {
       throw InputError(urdf.where(link), "link \"" + name + "\" is defined twice");
     }

@@ -5,26 +5,44 @@
 #include <fstream>
 #include <sstream>
 
+#include "lang2manip/core/file_checks.hpp"
 #include "lang2manip/core/text_parsing.hpp"
 
 namespace lang2manip {
 
 std::string readTextFile(const std::filesystem::path& path, const std::string& what) {
+  requireRegularFile(path, what);
   std::error_code error;
-  if (!std::filesystem::exists(path, error)) {
-    throw InputError(SourceLocation{path.string(), 0}, what + " does not exist");
-  }
-  if (std::filesystem::is_directory(path, error)) {
-    throw InputError(SourceLocation{path.string(), 0}, what + " is a directory, not a file");
+  const std::uintmax_t size = std::filesystem::file_size(path, error);
+  if (!error && size > kMaxTextFileBytes) {
+    throw InputError(SourceLocation{path.string(), 0},
+                     what + " is " + std::to_string(size >> 20) + " MiB, more than the " +
+                         std::to_string(kMaxTextFileBytes >> 20) + " MiB read as text");
   }
   std::ifstream stream(path, std::ios::binary);
   std::ostringstream contents;
   if (!stream || !(contents << stream.rdbuf())) {
-    if (stream && std::filesystem::file_size(path, error) == 0) return {};
+    if (stream && !error && size == 0) return {};
     throw InputError(SourceLocation{path.string(), 0}, what + " cannot be read");
   }
   return contents.str();
 }
+
+namespace {
+
+/// Stops pugixml's (iterative) traversal at the first node nested deeper than kMaxXmlDepth, so
+/// that the recursive readers after it (urdfdom's TinyXML among them) never see such a document.
+class DepthLimit final : public pugi::xml_tree_walker {
+ public:
+  bool for_each(pugi::xml_node& node) override {
+    if (depth() < kMaxXmlDepth) return true;
+    tooDeep = node;
+    return false;
+  }
+  pugi::xml_node tooDeep;
+};
+
+}  // namespace
 
 XmlDocument XmlDocument::loadFile(const std::filesystem::path& path, const std::string& what) {
   XmlDocument document;
@@ -60,6 +78,11 @@ void XmlDocument::parse(const std::string& what) {
   }
   if (!document_->document_element()) {
     throw InputError(SourceLocation{sourceName_, 0}, what + " has no XML root element");
+  }
+  DepthLimit depthLimit;
+  if (!document_->traverse(depthLimit)) {
+    throw InputError(where(depthLimit.tooDeep), what + " nests elements more than " +
+                                                    std::to_string(kMaxXmlDepth) + " levels deep");
   }
 }
 

@@ -14,7 +14,11 @@
 
 namespace lang2manip {
 
-/// A parsed XML file that can say on which line a node starts.
+/// Deepest element nesting accepted in any XML input (URDF, SRDF, Kautham files nest under 10).
+inline constexpr int kMaxXmlDepth = 100;
+
+/// A parsed XML file that can say on which line a node starts. Documents nested deeper than
+/// kMaxXmlDepth are refused at load.
 class XmlDocument {
  public:
   /// Reads and parses `path`. Throws InputError "<path>: cannot read ..." or
@@ -58,7 +62,8 @@ std::string xmlEscaped(const std::string& text);
 /// `value` with enough digits (%.17g) to read back exactly.
 std::string exactNumber(double value);
 
-/// Reads a whole file; throws InputError "<what> <path>: file does not exist" / "cannot be read".
+/// Reads a whole file; throws InputError "<path>: <what> does not exist" (or "is a directory, not a
+/// file", "is a character device, ...", "cannot be read", too large: see kMaxTextFileBytes).
 std::string readTextFile(const std::filesystem::path& path, const std::string& what);
 
 }  // namespace lang2manip

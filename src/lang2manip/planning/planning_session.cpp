@@ -18,6 +18,10 @@ Pose kauthamPose(const std::vector<double>& values) {
   for (const double value : values) {
     if (!std::isfinite(value)) throw InputError("a Kautham pose has a value that is not finite");
   }
+  if (values[3] == 0.0 && values[4] == 0.0 && values[5] == 0.0 && values[6] != 0.0) {
+    throw InputError("a Kautham pose has the zero rotation axis (0 0 0) with angle " +
+                     std::to_string(values[6]) + ": give a rotation axis, or angle 0 for no rotation");
+  }
   return makePose(Vector3(values[0], values[1], values[2]),
                   quaternionFromKauthamAxisAngle(Vector3(values[3], values[4], values[5]), values[6]));
 }
@@ -118,7 +122,7 @@ VectorX PlanningSession::checkedPoint(const std::vector<double>& controls, const
     for (const CollisionContact& contact : report.contacts) {
       pairs += (pairs.empty() ? "" : ", ") + contact.first + " touches " + contact.second;
     }
-    throw InputError(what + " is in collision: " + pairs + "; the previous query is kept");
+    throw InputError(what + " is in collision: " + pairs);
   }
   return x;
 }
@@ -194,6 +198,7 @@ void PlanningSession::setObstaclesConfig(const std::vector<double>& controls) {
 
 void PlanningSession::setObstaclePos(const std::string& obstacle, const Pose& pose) {
   if (!pose.matrix().allFinite()) throw InputError("obstacle pose of \"" + obstacle + "\" is not finite");
+  requirePositionInRange(pose.translation(), "obstacle position of \"" + obstacle + "\"", SourceLocation{});
   openedProblem().scene.object(obstacle).pose = pose;
   worldChanged();
 }
@@ -204,6 +209,7 @@ Pose PlanningSession::getObstaclePos(const std::string& obstacle) const {
 
 void PlanningSession::setRobotPos(const std::string& robot, const Pose& pose) {
   if (!pose.matrix().allFinite()) throw InputError("base pose of \"" + robot + "\" is not finite");
+  requirePositionInRange(pose.translation(), "base position of \"" + robot + "\"", SourceLocation{});
   KauthamProblem& opened = openedProblem();
   opened.scene.robot(robot).basePose = pose;
   for (KauthamEntity& entity : opened.robots) {

@@ -19,7 +19,8 @@
 namespace lang2manip {
 
 /// A pose from Kautham's seven numbers: x y z, then an axis (ax ay az) and an angle in radians.
-/// Throws InputError unless there are seven finite values.
+/// Throws InputError unless there are seven finite values, and for the zero axis with a non-zero
+/// angle (a problem file's <Home> takes that as no rotation, as Kautham does, with a warning).
 Pose kauthamPose(const std::vector<double>& values);
 
 class PlanningSession {
@@ -48,7 +49,8 @@ class PlanningSession {
   [[nodiscard]] const PlannerSettings& plannerSettings() const noexcept { return settings_; }
 
   /// Start and goal in the problem's robot controls. A point of the wrong size, outside [0,1] or
-  /// in collision (the colliding pair is named) is rejected and the previous query is kept.
+  /// in collision (the colliding pair is named) is rejected with InputError; the session then
+  /// keeps its previous query.
   void setQuery(const std::vector<double>& init, const std::vector<double>& goal);
   void setInit(const std::vector<double>& init);
   void setGoal(const std::vector<double>& goal);

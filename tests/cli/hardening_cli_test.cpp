@@ -1,0 +1,126 @@
+// The command line on hostile input: states outside the limits, nothing to check, names that
+// two XML readers read differently, paths that are not files, MoveIt scenes solved end to end.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli_run.hpp"
+#include "test_paths.hpp"
+
+namespace lang2manip::test {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+void writeFile(const std::filesystem::path& path, const std::string& text) {
+  std::filesystem::create_directories(path.parent_path());
+  std::ofstream(path) << text;
+}
+
+std::string builtinPandaUrdf() {
+  return (testDataDirectory() / ".." / ".." / "data" / "models" / "robots" / "panda" / "panda.urdf")
+      .lexically_normal()
+      .string();
+}
+
+TEST(CheckCli, ValuesOutsideTheJointLimitsAreInvalidAndExitTwo) {
+  // Joint 4's upper limit is -0.0698: 0.5 is outside although the arm collides with nothing.
+  const RunResult text = run("check --config 0 -0.785 0 0.5 0 1.571 0.785 0.04");
+  EXPECT_EQ(text.exitCode, 2) << text.output;
+  EXPECT_THAT(text.output, HasSubstr("configuration of panda: INVALID"));
+  EXPECT_THAT(text.output,
+              HasSubstr("outside the joint limits: panda_joint4 = 0.5 is above its upper limit -0.0698"));
+  const RunResult json = run("check --json --config 0 -0.785 0 -2.356 0 1.571 0.785 0.09", false);
+  EXPECT_EQ(json.exitCode, 2);
+  const nlohmann::json report = nlohmann::json::parse(json.output);
+  EXPECT_FALSE(report["valid"].get<bool>());
+  EXPECT_TRUE(report["checks"][0]["collision_free"].get<bool>());
+  ASSERT_EQ(report["checks"][0]["limit_violations"].size(), 1U);
+  EXPECT_THAT(report["checks"][0]["limit_violations"][0].get<std::string>(), HasSubstr("panda_finger_joint1 = 0.09"));
+}
+
+TEST(CheckCli, AValidConfigurationExitsZero) {
+  const RunResult result = run("check --config 0 -0.785 0 -2.356 0 1.571 0.785 0.04");
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("configuration of panda: valid"));
+}
+
+TEST(CheckCli, SaysWhenNothingWasChecked) {
+  const TempDirectory directory;
+  const auto problem = directory.path() / "noquery.xml";
+  writeFile(problem, "<?xml version=\"1.0\"?>\n<Problem name=\"noquery\">\n  <Robot robot=\"" +
+                         builtinPandaUrdf() + "\"/>\n</Problem>\n");
+  const RunResult result = run("check " + problem.string());
+  EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("nothing was checked: problem noquery has no query; give a configuration with --config"));
+}
+
+TEST(CliPaths, ADirectoryOrADeviceGivenAsAFileSaysWhatItIs) {
+  const TempDirectory directory;
+  RunResult result = run("show " + directory.path().string());
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.output, HasSubstr(directory.path().string() + ": problem file is a directory, not a file"));
+  EXPECT_THAT(result.output, Not(HasSubstr("does not exist")));
+  result = run("show /dev/zero");
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.output, HasSubstr("/dev/zero: problem file is a character device, not a regular file"));
+}
+
+TEST(CliUrdfNames, WhitespaceInANameIsAnErrorWithFileAndLineNeverACrash) {
+  const TempDirectory directory;
+  const std::string links[] = {"a\tb", "a\rb", "a&#9;b", "a&#13;", " a"};
+  for (const std::string& name : links) {
+    const auto urdf = directory.path() / "robot.urdf";
+    writeFile(urdf, "<robot name=\"r\">\n<link name=\"" + name + "\"/>\n</robot>\n");
+    const auto problem = directory.path() / "problem.xml";
+    writeFile(problem, "<?xml version=\"1.0\"?>\n<Problem name=\"p\">\n  <Robot robot=\"" + urdf.string() +
+                           "\"/>\n</Problem>\n");
+    for (const char* command : {"show", "check", "run"}) {
+      const RunResult result = run(std::string(command) + " " + problem.string());
+      EXPECT_EQ(result.exitCode, 1) << command << " " << name << ": " << result.output;
+      EXPECT_THAT(result.output, HasSubstr(urdf.string() + ":2: link name"));
+      EXPECT_THAT(result.output, HasSubstr("contains whitespace or a control character"));
+    }
+  }
+}
+
+TEST(SolveCli, SolvesAMotionBenchMakerSceneEndToEnd) {
+  LANG2MANIP_REQUIRE_SHARED_DATA(shared);
+  const auto scene = shared / "mbm/panda/table_pick_panda/scene0001.yaml";
+  const RunResult result = run("solve " + scene.string() + " --seed 2 --json", false);
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  const nlohmann::json report = nlohmann::json::parse(result.output);
+  ASSERT_EQ(report["queries"].size(), 1U);
+  const nlohmann::json& query = report["queries"][0];
+  EXPECT_EQ(query["status"], "solved") << query["message"];
+  EXPECT_EQ(query["path_dof_names"].size(), 8U);
+  ASSERT_GE(query["path"].size(), 2U);
+  EXPECT_TRUE(report["solved"].get<bool>());
+}
+
+TEST(SolveCli, AQueryThatCannotBePlannedIsReportedAndExitsTwo) {
+  LANG2MANIP_REQUIRE_SHARED_DATA(shared);
+  // The goal collides with the built-in Panda's enclosing capsules.
+  const auto colliding = shared / "mbm/panda/bookshelf_small_panda/scene0009.yaml";
+  RunResult result = run("solve " + colliding.string());
+  EXPECT_EQ(result.exitCode, 2) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("query 1: not planned: goal is in collision: panda/panda_link5 touches panda/panda_link7"));
+  EXPECT_THAT(result.output, Not(HasSubstr("previous query")));
+  EXPECT_EQ(run("check " + colliding.string()).exitCode, 2);
+  // The goal lies just outside the built-in Panda's joint limits.
+  const auto outside = shared / "mbm/panda/table_pick_panda/scene0031.yaml";
+  result = run("solve " + outside.string() + " --json", false);
+  EXPECT_EQ(result.exitCode, 2) << result.output;
+  const nlohmann::json report = nlohmann::json::parse(result.output);
+  EXPECT_EQ(report["queries"][0]["status"], "invalid_query");
+  EXPECT_THAT(report["queries"][0]["message"].get<std::string>(), HasSubstr("outside the joint limits of \"panda\""));
+  result = run("check " + outside.string());
+  EXPECT_EQ(result.exitCode, 2);
+  EXPECT_THAT(result.output, HasSubstr("outside the joint limits: panda_joint"));
+}
+
+}  // namespace
+}  // namespace lang2manip::test
