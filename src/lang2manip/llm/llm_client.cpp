@@ -1,5 +1,7 @@
 #include "lang2manip/llm/llm_client.hpp"
 
+#include <limits>
+
 namespace lang2manip {
 
 std::string finishReasonName(FinishReason reason) {
@@ -11,6 +13,17 @@ std::string finishReasonName(FinishReason reason) {
     case FinishReason::kOther: return "other";
   }
   return "other";
+}
+
+std::optional<long> addTokenCounts(std::optional<long> a, std::optional<long> b) noexcept {
+  if (!a || !b) return std::nullopt;
+  constexpr long kMax = std::numeric_limits<long>::max();
+  if (*a > 0 && *b > kMax - *a) return kMax;
+  return *a + *b;
+}
+
+std::string tokenCountText(const std::optional<long>& count) {
+  return count ? std::to_string(*count) : std::string("unknown");
 }
 
 namespace {
