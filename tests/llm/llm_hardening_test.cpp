@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "fake_llm_server.hpp"
@@ -310,6 +311,17 @@ std::string protocolName(const ::testing::TestParamInfo<FakeLlmProtocol>& param)
 }
 
 INSTANTIATE_TEST_SUITE_P(AllProtocols, LlmHardeningTest, ::testing::ValuesIn(allFakeLlmProtocols()), protocolName);
+
+TEST(TokenCountTest, SumsAreUnknownWithAnUnknownPartAndSaturate) {
+  constexpr long kMax = std::numeric_limits<long>::max();
+  EXPECT_EQ(addTokenCounts(3L, 4L), 7L);
+  EXPECT_EQ(addTokenCounts(std::nullopt, 4L), std::nullopt);
+  EXPECT_EQ(addTokenCounts(3L, std::nullopt), std::nullopt);
+  EXPECT_EQ(addTokenCounts(kMax, 1L), kMax);
+  EXPECT_EQ(addTokenCounts(std::numeric_limits<long>::min(), -1L), std::numeric_limits<long>::min());
+  EXPECT_EQ(tokenCountText(std::nullopt), "unknown");
+  EXPECT_EQ(tokenCountText(0L), "0");
+}
 
 TEST(SecretRedactorTest, ReplacesEveryFormAndIgnoresTooShortSecrets) {
   std::vector<std::string> secrets{"short", "abc\"def/ghi-123"};

@@ -17,9 +17,11 @@ std::string finishReasonName(FinishReason reason) {
 
 std::optional<long> addTokenCounts(std::optional<long> a, std::optional<long> b) noexcept {
   if (!a || !b) return std::nullopt;
-  constexpr long kMax = std::numeric_limits<long>::max();
-  if (*a > 0 && *b > kMax - *a) return kMax;
-  return *a + *b;
+  long sum = 0;
+  if (__builtin_add_overflow(*a, *b, &sum)) {
+    return *a > 0 ? std::numeric_limits<long>::max() : std::numeric_limits<long>::min();
+  }
+  return sum;
 }
 
 std::string tokenCountText(const std::optional<long>& count) {
