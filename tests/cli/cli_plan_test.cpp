@@ -257,6 +257,35 @@ TEST(CliPlan, BadRoundsAndTimeoutsAreRejected) {
   EXPECT_THAT(result.output, HasSubstr("--task is required"));
 }
 
+TEST(CliPlan, ResponseSizeLimitIsAnOptionAndAClearError) {
+  FakeLlmServer server(FakeLlmProtocol::kOllama);
+  server.enqueueAnswer(R"({"reasoning": ")" + std::string(10000, 'x') + R"(", "actions": []})");
+  RunResult result =
+      run("plan " + kPaperTask + " --llm ollama:m --llm-max-response-bytes 2000", true, environmentFor(server));
+  EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("is larger than the response size limit of 2000 bytes"));
+  for (const char* bytes : {"0", "-5"}) {
+    result = run("plan " + kPaperTask + " --llm ollama:m --llm-max-response-bytes " + bytes, true, kCleanEnvironment);
+    EXPECT_EQ(result.exitCode, 1) << bytes;
+    EXPECT_THAT(result.output, HasSubstr(std::string("--llm-max-response-bytes ") + bytes + ": must be a positive"));
+  }
+  result = run("plan " + kPaperTask + " --llm-max-response-bytes 100", true, kCleanEnvironment);
+  EXPECT_THAT(result.output, HasSubstr("needs an LLM task planner"));
+}
+
+TEST(CliPlan, TokenCountsTheServerDidNotGiveArePrintedAsUnknown) {
+  FakeLlmServer server(FakeLlmProtocol::kOpenAi);
+  FakeHttpResponse noUsage;
+  noUsage.body = json{{"choices", {{{"message", {{"role", "assistant"}, {"content", kPaperPlan}}}, {"finish_reason", "stop"}}}},
+                      {"usage", {{"prompt_tokens", -1}, {"completion_tokens", 1e300}}}}
+                     .dump();
+  server.enqueue(noUsage);
+  const RunResult result = run("plan " + kPaperTask + " --llm openai:test-model", true, environmentFor(server));
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("tokens: unknown in / unknown out"));
+  EXPECT_THAT(result.output, Not(HasSubstr("-9223372036854775808")));
+}
+
 TEST(CliPlan, HangingServerEndsAtTheTimeoutWithAClearError) {
   FakeLlmServer server(FakeLlmProtocol::kOpenAi);
   for (int i = 0; i < 4; ++i) server.enqueueHang(30.0);

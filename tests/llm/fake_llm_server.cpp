@@ -2,6 +2,11 @@
 
 #include <httplib.h>
 
+#include <algorithm>
+#include <atomic>
+
+#include "lang2manip/core/json_limits.hpp"
+
 #include <chrono>
 #include <condition_variable>
 #include <deque>
@@ -139,7 +144,9 @@ FakeHttpResponse fakeAnswer(FakeLlmProtocol protocol, const std::string& content
       });
     case FakeLlmProtocol::kAnthropic:
       return bodyMaker([content](const FakeReceivedRequest& request) {
-        const json input = json::parse(content, nullptr, false);
+        // Deep content stays text: copying or dumping it as a value would exhaust the stack.
+        const bool deep = findJsonLimitViolation(content, JsonLimits{}).has_value();
+        const json input = deep ? json() : json::parse(content, nullptr, false);
         if (!input.is_object()) {
           return anthropicBody(request, {{"type", "text"}, {"text", content}}, "end_turn", content);
         }
@@ -247,6 +254,7 @@ struct FakeLlmServer::State {
   std::deque<FakeHttpResponse> script;
   FakeHttpResponse fallback;
   std::vector<FakeReceivedRequest> received;
+  std::shared_ptr<std::atomic<std::size_t>> chunkedBytes = std::make_shared<std::atomic<std::size_t>>(0);
 
   void handle(const httplib::Request& httpRequest, httplib::Response& httpResponse);
 };
@@ -279,7 +287,30 @@ void FakeLlmServer::State::handle(const httplib::Request& httpRequest,
   httpResponse.status = response.status;
   for (const auto& [name, value] : response.headers) httpResponse.set_header(name, value);
   const std::string body = response.makeBody ? response.makeBody(request) : response.body;
-  httpResponse.set_content(body, "application/json");
+  if (response.chunkedFillerBytes == 0) {
+    httpResponse.set_content(body, "application/json");
+    return;
+  }
+  const std::size_t total = body.size() + response.chunkedFillerBytes;
+  httpResponse.set_chunked_content_provider(
+      "application/json", [body, total, sent = std::size_t{0}, counter = chunkedBytes](
+                              std::size_t /*offset*/, httplib::DataSink& sink) mutable {
+        constexpr std::size_t kChunk = 16 * 1024;
+        if (sent >= total) {
+          sink.done();
+          return true;
+        }
+        std::string chunk;
+        if (sent < body.size()) {
+          chunk = body.substr(sent, kChunk);
+        } else {
+          chunk.assign(std::min(kChunk, total - sent), ' ');
+        }
+        if (!sink.write(chunk.data(), chunk.size())) return false;
+        sent += chunk.size();
+        *counter += chunk.size();
+        return true;
+      });
 }
 
 FakeLlmServer::FakeLlmServer(FakeLlmProtocol protocol) : FakeLlmServer(protocol, FakeTlsFiles{}) {}
@@ -382,6 +413,8 @@ std::size_t FakeLlmServer::requestCount() const {
   std::lock_guard lock(state_->mutex);
   return state_->received.size();
 }
+
+std::size_t FakeLlmServer::chunkedBytesSent() const { return *state_->chunkedBytes; }
 
 std::size_t FakeLlmServer::pendingCount() const {
   std::lock_guard lock(state_->mutex);

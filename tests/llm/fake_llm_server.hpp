@@ -52,6 +52,9 @@ struct FakeHttpResponse {
   std::string body;
   /// Builds the body from the request (e.g. to echo the model or the tool name).
   std::function<std::string(const FakeReceivedRequest&)> makeBody;
+  /// When > 0 the response is sent chunked (no Content-Length): the body, then this many spaces
+  /// generated while they are sent (so a test can offer 200 MB without holding them).
+  std::size_t chunkedFillerBytes = 0;
   /// Waits this long before answering (a hang when longer than the client's timeout); the wait
   /// ends early when the server shuts down, so a test never outlives its server.
   double delaySeconds = 0.0;
@@ -112,6 +115,8 @@ class FakeLlmServer {
   [[nodiscard]] std::size_t requestCount() const;
   /// Scripted responses not yet used.
   [[nodiscard]] std::size_t pendingCount() const;
+  /// Bytes the client accepted of chunked responses so far (see chunkedFillerBytes).
+  [[nodiscard]] std::size_t chunkedBytesSent() const;
 
  private:
   struct State;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include "fake_llm_server.hpp"
@@ -154,7 +155,7 @@ TEST_F(LlmReplayTest, MalformedLinesAreNamedByFileAndLine) {
   writeFile(file(), line("task", "{}") + "\n{not json\n");
   LlmError error = expectLlmError([&] { replay(); });
   EXPECT_EQ(error.kind(), LlmErrorKind::kConfiguration);
-  EXPECT_THAT(error.what(), HasSubstr(file().string() + ":2: not a JSON object"));
+  EXPECT_THAT(error.what(), HasSubstr(file().string() + ":2: record: not valid JSON: parse error at line 1, column 3"));
 
   json bad = json::parse(line("task", "{}"));
   bad["request"]["messages"][0]["role"] = "robot";
@@ -173,6 +174,72 @@ TEST_F(LlmReplayTest, MalformedLinesAreNamedByFileAndLine) {
   writeFile(file(), bad.dump() + "\n");
   EXPECT_THAT(expectLlmError([&] { replay(); }).what(),
               HasSubstr(":1: error.kind: \"exploded\" is not an LLM error kind"));
+}
+
+/// Each malformed line, as line 2 after a good one: a configuration error "FILE:2: ..." saying
+/// what is wrong -- never a crash (a deep line used to overflow the stack), a silent default or
+/// an unbounded read.
+TEST_F(LlmReplayTest, EveryKindOfMalformedLineIsNamedByFileLineAndProblem) {
+  const json good = json::parse(line("task", "{}"));
+  const auto with = [&](const std::function<void(json&)>& change) {
+    json changed = good;
+    change(changed);
+    return changed.dump();
+  };
+  std::string deepSchema = with([](json& l) { l["request"]["schema"] = "DEEP"; });
+  deepSchema.replace(deepSchema.find("\"DEEP\""), 6, std::string(100000, '[') + std::string(100000, ']'));
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {deepSchema, "record: nested deeper than 128 levels"},
+      {"{\"client\": \"openai:m\", ", "record: not valid JSON: parse error at line 1, column 24"},
+      {std::string(100000, '[') + std::string(100000, ']'), "record: nested deeper than 128 levels (at byte 128)"},
+      {"{\"client\":\"openai:m\",\"request\":" + std::string(100000, '{') , "record: nested deeper than 128 levels"},
+      {"[1, 2]", "record: expected a JSON object {\"client\", \"request\", \"reply\" or \"error\"}, got array [1,2]"},
+      {"{\"n\": 1e400}", "record: not valid JSON: number overflow"},
+      {"\"\xff\"", "record: not valid JSON: "},
+      {with([](json& l) { l.erase("request"); }), "request: missing"},
+      {with([](json& l) { l["client"] = 5; }), "client: missing or not a string"},
+      {with([](json& l) { l["request"]["messages"] = "hi"; }), "request.messages: expected an array"},
+      {with([](json& l) { l["request"]["maxTokens"] = 1e10; }), "request.maxTokens: expected an integer in [1, 2147483647], got 10000000000.0"},
+      {with([](json& l) { l["request"]["maxTokens"] = 4294967297ULL; }), "request.maxTokens: expected an integer in [1, 2147483647]"},
+      {with([](json& l) { l["reply"]["usage"]["inputTokens"] = -1; }), "reply.usage.inputTokens: expected an integer in [0, 9007199254740992], got -1"},
+      {with([](json& l) { l["reply"]["usage"]["outputTokens"] = "12"; }), "reply.usage.outputTokens: expected an integer"},
+      {with([](json& l) { l["reply"]["attempts"] = 0; }), "reply.attempts: expected an integer in [1, 2147483647], got 0"},
+      {with([](json& l) { l["reply"]["content"] = json::array(); }), "reply.content: expected a string"},
+      {with([](json& l) { l.erase("reply"); }), "neither reply nor error"},
+      {with([](json& l) { l.erase("reply"); l["error"] = {{"kind", "timeout"}}; }), "error.message: missing or not a string"},
+  };
+  for (const auto& [text, expected] : cases) {
+    writeFile(file(), good.dump() + "\n" + text + "\n");
+    const LlmError error = expectLlmError([&] { replay(); });
+    EXPECT_EQ(error.kind(), LlmErrorKind::kConfiguration);
+    EXPECT_THAT(error.what(), HasSubstr(file().string() + ":2: " + expected)) << text.substr(0, 80);
+    EXPECT_LT(std::string(error.what()).size(), 400U) << "messages quote bounded parts only";
+  }
+}
+
+TEST_F(LlmReplayTest, ALineLongerThanTheLimitIsRefusedWithoutReadingItWhole) {
+  writeFile(file(), line("task", "{}") + "\n" + line("task", "\"" + std::string(5000, 'x') + "\"") + "\n");
+  const JsonLimits limits{kDefaultJsonMaxDepth, 2000};
+  const LlmError error = expectLlmError([&] { makeReplayLlmClient(file().string(), "", limits); });
+  EXPECT_EQ(error.kind(), LlmErrorKind::kConfiguration);
+  EXPECT_THAT(error.what(), HasSubstr(file().string() + ":2: line longer than 2000 bytes, the limit for one recorded call"));
+  // The default limit reads the same file.
+  EXPECT_NO_THROW(makeReplayLlmClient(file().string()));
+  // A directory is not a replay file.
+  EXPECT_THAT(expectLlmError([&] { makeReplayLlmClient(directory_.path().string()); }).what(),
+              HasSubstr("is a directory"));
+}
+
+TEST_F(LlmReplayTest, UnknownTokenCountsRoundTripAsNull) {
+  LlmReply reply;
+  reply.content = "{}";
+  reply.usage.inputTokens = 12;
+  const json written = llmReplyToJson(reply);
+  EXPECT_EQ(written["usage"]["inputTokens"], 12);
+  EXPECT_TRUE(written["usage"]["outputTokens"].is_null());
+  const LlmReply read = llmReplyFromJson(written);
+  EXPECT_EQ(read.usage.inputTokens, 12);
+  EXPECT_FALSE(read.usage.outputTokens.has_value());
 }
 
 TEST_F(LlmReplayTest, MissingFileIsAConfigurationError) {

@@ -52,7 +52,7 @@ TEST(OpenAiCompatibility, RejectionItCannotAdaptToIsAConfigurationError) {
       expectLlmError([&] { client->complete(planRequest(), StopCondition::never()); });
   EXPECT_EQ(error.kind(), LlmErrorKind::kConfiguration);
   EXPECT_EQ(error.httpStatus(), 400);
-  EXPECT_THAT(error.what(), HasSubstr("the server rejected the request (HTTP 400: messages: too long)"));
+  EXPECT_THAT(error.what(), HasSubstr("the server rejected the request (HTTP 400 Bad Request: messages: too long)"));
   EXPECT_EQ(server.requestCount(), 1U);
 }
 

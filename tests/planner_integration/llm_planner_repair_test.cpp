@@ -114,6 +114,24 @@ TEST_P(LlmPlannerRepairTest, MalformedJsonIsRepaired) {
   expectRepairedInRoundTwo(result, RoundOutcome::kUnusableAnswer, "not valid JSON", requestText(1));
 }
 
+/// Answers nlohmann cannot hold (1e400 is an out_of_range, not a parse_error), nesting that would
+/// exhaust the stack, and invalid UTF-8: each is fed back, then the good plan is accepted.
+TEST_P(LlmPlannerRepairTest, AnswersThatBreakTheJsonLibraryAreRepaired) {
+  server_.enqueueAnswer(R"({"actions": [{"action": "push", "object": "marker", "params": {"distance": 1e400}}]})");
+  server_.enqueueAnswer(std::string(100000, '[') + std::string(100000, ']'));
+  server_.enqueueAnswer(std::string(50000, '{') + "\"a\":1" + std::string(50000, '}'));
+  server_.enqueueAnswer(R"({"actions": [{"action": 18446744073709551616, "object": -1e308}]})");
+  server_.enqueueAnswer(kPaperPlan);
+  const RepairResult result = plan("test-model", 5);
+  expectPaperPlan(result);
+  ASSERT_EQ(result.rounds.size(), 5U);
+  EXPECT_THAT(result.rounds[0].attempt.failure, HasSubstr("number overflow parsing '1e400'"));
+  EXPECT_THAT(result.rounds[1].attempt.failure, HasSubstr("nested deeper than 128 levels"));
+  EXPECT_THAT(result.rounds[2].attempt.failure, HasSubstr("nested deeper than 128 levels"));
+  EXPECT_THAT(result.rounds[3].attempt.failure, HasSubstr("actions[0].action: expected a string, got number"));
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(result.rounds[static_cast<std::size_t>(i)].outcome, RoundOutcome::kUnusableAnswer);
+}
+
 TEST_P(LlmPlannerRepairTest, TruncatedAnswerIsRepaired) {
   server_.enqueueTruncated(R"({"actions": [{"action": "pick", "obj)");
   server_.enqueueAnswer(kPaperPlan);

@@ -59,8 +59,8 @@ class ScriptedPlanner final : public TaskPlanner {
   Plan plan(const PlanningRequest& request, const StopCondition&, PlanningStatistics& statistics) override {
     requests.push_back(request);
     statistics.llmCalls += 1;
-    statistics.inputTokens += 100;
-    statistics.outputTokens += 10;
+    statistics.inputTokens = addTokenCounts(statistics.inputTokens, 100L);
+    statistics.outputTokens = addTokenCounts(statistics.outputTokens, 10L);
     if (answers_.empty()) throw PlanningError("script exhausted");
     const std::string answer = answers_.front();
     answers_.pop_front();
@@ -239,6 +239,70 @@ TEST_F(RepairLoopTest, LlmPlannerRepairsTruncatedRefusedAndUnknownObjectAnswers)
   ASSERT_EQ(last.messages.size(), 7U);
   EXPECT_EQ(last.messages[5].content, unknownObject);
   EXPECT_THAT(last.messages[6].content, HasSubstr("unknown object \"cup\" (objects: desk, marker, eraser, holder)"));
+}
+
+/// Every kind of malformed answer -- numbers nlohmann cannot hold (1e400: out_of_range, not a
+/// parse_error), nesting that would exhaust the stack, invalid UTF-8, wrong types, huge values,
+/// huge names -- is an unusable answer the loop feeds back; the next good answer succeeds.
+TEST_F(RepairLoopTest, LlmPlannerRepairsEveryKindOfMalformedAnswer) {
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  std::string deepInField = goodPlanText();  // valid nesting depth outside, 100,000 levels inside
+  deepInField.replace(deepInField.find("\"params\":{"), 10, "\"params\":" + deep + ",\"x\":{");
+  const std::string withinLimitDeep = std::string(100, '[') + "1" + std::string(100, ']');
+  const std::vector<std::pair<std::string, std::string>> malformed = {
+      {R"({"actions": [{"action": "push", "object": "marker", "params": {"distance": 1e400}}]})",
+       "not valid JSON: number overflow parsing '1e400'"},
+      {R"({"actions": [{"action": "pick", "object": "marker"}], "reasoning": -1e400})", "number overflow"},
+      {deep, "the JSON document: nested deeper than 128 levels"},
+      {"Here is the plan:\n```json\n" + deep + "\n```", "nested deeper than 128 levels"},
+      {deepInField, "nested deeper than 128 levels"},
+      {R"({"actions": [{"action": "pick", "object": "marker", "params": )" + withinLimitDeep + "}]}",
+       "actions[0].params: expected an object or null, got array [[[["},
+      {"{\"actions\": [{\"action\": \"pick\xff\"}]}", "not valid JSON"},
+      {R"({"actions": [{"action": 5, "object": ["marker"], "params": "x", "refinements": 7, "planner": {}}]})",
+       "actions[0].action: expected a string, got number 5"},
+      {R"({"actions": [{"action": "push", "object": "marker", "params": {"direction": {"x": 1e308, "y": 1e308, "z": 1e308}, "distance": 18446744073709551615}}]})",
+       "actions[0].params.direction: not a unit vector (length inf)"},
+      {R"({"actions": [{"action": "place", "object": "marker", "params": {"relation": "in", "target": "holder", "distance": -9223372036854775809}}]})",
+       "actions[0].params.distance"},
+      {R"({"actions": {"a": 1}})", "actions: expected an array of actions, got object {\"a\":1}"},
+      {"null", "no JSON object found in the answer"},
+      {"[12]", "actions[0]: expected an action object, got number 12"},
+      {"[[]]", "actions[0]: expected an action object, got array []"},
+      {"\"pick the marker\"", "no JSON object found in the answer"},
+      {R"({"actions": [{"action": ")" + std::string(1 << 20, 'p') + R"("}]})", "unknown action \"pppp"},
+      {"", "empty answer"},
+  };
+  std::vector<LlmReply> replies;
+  for (const auto& [answer, failure] : malformed) replies.push_back(reply(answer));
+  replies.push_back(reply(goodPlanText()));
+  ScriptedLlmClient client(replies);
+  LlmTaskPlanner planner(client);
+  const int maxRounds = static_cast<int>(replies.size());
+  RepairResult result;
+  ASSERT_NO_THROW(result = planWithRepair(planner, request_, nullptr, rounds(maxRounds), StopCondition::never()));
+  ASSERT_TRUE(result.succeeded()) << result.failure;
+  ASSERT_EQ(result.rounds.size(), replies.size());
+  for (std::size_t i = 0; i < malformed.size(); ++i) {
+    const RepairRound& round = result.rounds[i];
+    EXPECT_EQ(round.outcome, RoundOutcome::kUnusableAnswer) << i;
+    EXPECT_THAT(round.attempt.failure, HasSubstr(malformed[i].second)) << i << ": " << round.attempt.failure;
+    EXPECT_LT(round.attempt.failure.size(), 2000U) << i << ": failures quote bounded parts of the answer";
+  }
+  EXPECT_EQ(result.rounds.back().outcome, RoundOutcome::kAccepted);
+}
+
+TEST_F(RepairLoopTest, UnknownTokenCountsMakeTheTotalUnknown) {
+  LlmReply unknown = reply(placeBeforePickText());
+  unknown.usage.inputTokens = std::nullopt;
+  ScriptedLlmClient client({unknown, reply(goodPlanText())});
+  LlmTaskPlanner planner(client);
+  const RepairResult result = planWithRepair(planner, request_, nullptr, rounds(2), StopCondition::never());
+  ASSERT_TRUE(result.succeeded()) << result.failure;
+  EXPECT_FALSE(result.statistics.inputTokens.has_value()) << "a total leaving out a call would be wrong";
+  EXPECT_EQ(result.statistics.outputTokens, 100L);
+  EXPECT_EQ(tokenCountText(result.statistics.inputTokens), "unknown");
+  EXPECT_EQ(result.rounds[1].statistics.inputTokens, 1000L);
 }
 
 TEST_F(RepairLoopTest, LlmCallFailuresEndTheLoopWithTheReason) {

@@ -45,11 +45,11 @@ std::string roundsText(int used, int allowed) {
 }
 
 std::string statisticsText(const PlanningStatistics& statistics) {
-  char line[256];
-  std::snprintf(line, sizeof line, "LLM calls: %d, tokens: %ld in / %ld out, LLM time %.2f s, planning time %.1f ms",
-                statistics.llmCalls, statistics.inputTokens, statistics.outputTokens, statistics.llmSeconds,
+  char times[128];
+  std::snprintf(times, sizeof times, ", LLM time %.2f s, planning time %.1f ms", statistics.llmSeconds,
                 statistics.planningSeconds * 1000.0);
-  return line;
+  return "LLM calls: " + std::to_string(statistics.llmCalls) + ", tokens: " + tokenCountText(statistics.inputTokens) +
+         " in / " + tokenCountText(statistics.outputTokens) + " out" + times;
 }
 
 /// The numbered actions, the repaired rounds (when any) and the counters.

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "lang2manip/grounding/object_geometry.hpp"
+#include "lang2manip/llm/llm_json.hpp"
 #include "lang2manip/symbolic/plan_json.hpp"
 
 namespace lang2manip {
@@ -154,8 +155,8 @@ json runReportJson(const RunOutcome& outcome) {
                       {"grasp_plans", sum.counters.graspPlans},
                       {"placement_plans", sum.counters.placementPlans},
                       {"llm_calls", llm.llmCalls},
-                      {"llm_input_tokens", llm.inputTokens},
-                      {"llm_output_tokens", llm.outputTokens},
+                      {"llm_input_tokens", tokenCountJson(llm.inputTokens)},
+                      {"llm_output_tokens", tokenCountJson(llm.outputTokens)},
                       {"ik_calls", sum.counters.ikCalls},
                       {"collision_checks", sum.counters.collisionChecks + outcome.verification.collisionChecks}};
   return report;

@@ -8,6 +8,7 @@
 
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/language/offline_task_planner.hpp"
+#include "lang2manip/llm/http_transport.hpp"
 #include "lang2manip/llm/llm_client_factory.hpp"
 #include "lang2manip/planning/planner_registry.hpp"
 
@@ -40,6 +41,7 @@ void checkLlmSpec(const std::string& spec) {
 void checkOfflineFlags(const TaskPlannerChoice& choice) {
   const std::pair<const char*, bool> flags[] = {{"--llm-base-url", !choice.baseUrl.empty()},
                                                 {"--llm-timeout", choice.timeoutSeconds.has_value()},
+                                                {"--llm-max-response-bytes", choice.maxResponseBytes.has_value()},
                                                 {"--llm-record", !choice.recordFile.empty()},
                                                 {"--llm-replay", !choice.replayFile.empty()}};
   for (const auto& [flag, given] : flags) {
@@ -69,6 +71,12 @@ LlmClientOptions clientOptions(const TaskPlannerChoice& choice) {
     options.http.connectTimeoutSeconds = std::min(kMaxConnectSeconds, *timeout);
     options.retry.totalTimeoutSeconds = *timeout;
   }
+  if (const std::optional<long long> bytes = choice.maxResponseBytes) {
+    if (*bytes < 1) {
+      throw InputError("--llm-max-response-bytes " + std::to_string(*bytes) + ": must be a positive number of bytes");
+    }
+    options.http.maxResponseBytes = static_cast<std::size_t>(*bytes);
+  }
   return options;
 }
 
@@ -88,6 +96,10 @@ void addTaskPlannerOptions(CLI::App& command, TaskPlannerChoice& choice) {
   command.add_option_function<double>(
       "--llm-timeout", [&choice](const double& seconds) { choice.timeoutSeconds = seconds; },
       "Seconds one LLM call may take, retries included (default: 120 per attempt)");
+  command.add_option_function<long long>(
+      "--llm-max-response-bytes", [&choice](const long long& bytes) { choice.maxResponseBytes = bytes; },
+      "Largest LLM response accepted, in bytes; a larger one is refused while it arrives (default: " +
+          std::to_string(kDefaultMaxResponseBytes) + ")");
   command.add_option("--llm-record", choice.recordFile, "Append every LLM request and answer to FILE (JSON Lines)");
   command.add_option("--llm-replay", choice.replayFile,
                      "Answer LLM requests from FILE written by --llm-record (no network, no API key)");

@@ -25,6 +25,9 @@ struct TaskPlannerChoice {
   std::string baseUrl;
   /// --llm-timeout: seconds one LLM call may take, retries included; unset = the client's defaults.
   std::optional<double> timeoutSeconds;
+  /// --llm-max-response-bytes: the largest LLM response body accepted; unset = the client's
+  /// default (HttpOptions::maxResponseBytes).
+  std::optional<long long> maxResponseBytes;
   /// --llm-record FILE / --llm-replay FILE.
   std::string recordFile;
   std::string replayFile;
@@ -32,7 +35,8 @@ struct TaskPlannerChoice {
   [[nodiscard]] bool offline() const { return llm == kOfflinePlannerSpec; }
 };
 
-/// Adds --llm, --llm-base-url, --llm-timeout, --llm-record and --llm-replay to `command`,
+/// Adds --llm, --llm-base-url, --llm-timeout, --llm-max-response-bytes, --llm-record and
+/// --llm-replay to `command`,
 /// writing into `choice` (which must outlive the command).
 void addTaskPlannerOptions(CLI::App& command, TaskPlannerChoice& choice);
 
@@ -54,7 +58,7 @@ class SelectedTaskPlanner {
 /// The planner `choice` names. LLM planners use defaultLlmTaskPlannerOptions().
 /// Throws InputError for a --llm that is neither "offline" nor PROVIDER:MODEL with a known
 /// provider (listing the valid ones), for LLM flags given with the offline planner, and for a
-/// timeout that is not positive; LlmError (its message names the variable to set) for a missing
+/// timeout or a response size limit that is not positive; LlmError (its message names the variable to set) for a missing
 /// API key, a bad base URL or an unreadable replay file. Never prints or logs a key.
 SelectedTaskPlanner makeTaskPlanner(const TaskPlannerChoice& choice);
 

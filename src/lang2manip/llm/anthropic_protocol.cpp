@@ -53,8 +53,9 @@ class AnthropicProtocol final : public LlmProtocol {
     }
     LlmReply reply;
     reply.model = optionalString(body, "model");
-    reply.usage.inputTokens = optionalCount(body.value("usage", json()), "input_tokens");
-    reply.usage.outputTokens = optionalCount(body.value("usage", json()), "output_tokens");
+    const json usage = body.value("usage", json());
+    reply.usage.inputTokens = tokenCount(usage, "input_tokens");
+    reply.usage.outputTokens = tokenCount(usage, "output_tokens");
     reply.finish = anthropicFinish(optionalString(body, "stop_reason"));
     std::string text;
     const json* toolInput = nullptr;

@@ -59,9 +59,10 @@ class GeminiProtocol final : public LlmProtocol {
     LlmReply reply;
     reply.model = optionalString(body, "modelVersion");
     const json usage = body.value("usageMetadata", json());
-    reply.usage.inputTokens = optionalCount(usage, "promptTokenCount");
+    reply.usage.inputTokens = tokenCount(usage, "promptTokenCount");
+    // Thinking models add thoughtsTokenCount; others leave it out (zero thoughts).
     reply.usage.outputTokens =
-        optionalCount(usage, "candidatesTokenCount") + optionalCount(usage, "thoughtsTokenCount");
+        addTokenCounts(tokenCount(usage, "candidatesTokenCount"), tokenCountOrZero(usage, "thoughtsTokenCount"));
     const std::string blocked = optionalString(body.value("promptFeedback", json()), "blockReason");
     const auto candidates = body.find("candidates");
     if (!blocked.empty() && (candidates == body.end() || !candidates->is_array() || candidates->empty())) {

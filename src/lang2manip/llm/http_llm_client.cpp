@@ -53,6 +53,19 @@ void checkLlmRequest(const LlmRequest& request) {
   }
 }
 
+std::string describeHttpFailure(const HttpResponse& response) {
+  const std::string serverMessage = errorMessageFromBody(response.body);
+  std::string text = httpStatusText(response.status, response.reason) + ": " +
+                     (serverMessage.empty() ? std::string("no body") : serverMessage);
+  if (response.status >= 300 && response.status <= 399) {
+    const std::string location = findHeader(response.headers, "Location");
+    text += location.empty() ? std::string("; a redirect without a Location header")
+                             : "; the server redirects to " + abbreviated(location, 200);
+    text += ", and redirects are not followed (check the base URL)";
+  }
+  return text;
+}
+
 HttpLlmClient::HttpLlmClient(std::unique_ptr<LlmProtocol> protocol, HttpLlmClientConfig config)
     : protocol_(std::move(protocol)), config_(std::move(config)) {
   if (!protocol_) throw LlmError(LlmErrorKind::kConfiguration, "LLM client: no protocol");
@@ -61,6 +74,13 @@ HttpLlmClient::HttpLlmClient(std::unique_ptr<LlmProtocol> protocol, HttpLlmClien
   }
   checkHttpOptions(config_.http);
   checkRetryOptions(config_.retry);
+  // The secrets are the key and whatever secret headers the protocol sends with it.
+  std::vector<std::string> secrets{config_.apiKey};
+  LlmRequest probe;
+  probe.messages = {{LlmMessage::Role::kUser, "probe"}};
+  SecretRedactor::collectSecretHeaderValues(protocol_->buildRequest(probe, config_.model, config_.apiKey).headers,
+                                            secrets);
+  redactor_ = SecretRedactor(secrets);
 }
 
 std::string HttpLlmClient::name() const { return protocol_->provider() + ":" + config_.model; }
@@ -87,9 +107,11 @@ LlmReply HttpLlmClient::completeUnredacted(const LlmRequest& request, const Stop
     try {
       const HttpRequest httpRequest =
           protocol_->buildRequest(request, config_.model, config_.apiKey);
-      const HttpResponse response = postJson(config_.endpoint, httpRequest, config_.http, limited);
+      HttpResponse response = postJson(config_.endpoint, httpRequest, config_.http, limited);
+      response.body = redactor_.redact(std::move(response.body));
+      response.headers = redactor_.redact(std::move(response.headers));
       if (isSuccess(response.status)) {
-        LlmReply reply = parseReply(response, request);
+        LlmReply reply = redacted(parseReply(response, request));
         reply.attempts = attempts;
         reply.latencySeconds = std::chrono::duration<double>(Clock::now() - start).count();
         if (reply.model.empty()) reply.model = config_.model;
@@ -105,8 +127,7 @@ LlmReply HttpLlmClient::completeUnredacted(const LlmRequest& request, const Stop
       }
       if (!isRetryableStatus(response.status)) throwForStatus(response, attempts);
       failure = {response.status == 429 ? LlmErrorKind::kRateLimited : LlmErrorKind::kServer,
-                 "HTTP " + std::to_string(response.status) + ": " + serverMessage,
-                 response.status, retryAfterSeconds(response.headers)};
+                 describeHttpFailure(response), response.status, retryAfterSeconds(response.headers)};
     } catch (const LlmError& error) {
       if (error.kind() == LlmErrorKind::kTimeout && limited.shouldStop() && !stop.shouldStop()) {
         throw LlmError(LlmErrorKind::kTimeout,
@@ -153,17 +174,17 @@ LlmReply HttpLlmClient::completeUnredacted(const LlmRequest& request, const Stop
 LlmReply HttpLlmClient::parseReply(const HttpResponse& response, const LlmRequest& request) const {
   const std::string who = "HTTP " + std::to_string(response.status);
   try {
-    return protocol_->parseReply(parseResponseJson(response.body, who), request, who);
+    const JsonLimits limits{kDefaultJsonMaxDepth, config_.http.maxResponseBytes};
+    return protocol_->parseReply(parseResponseJson(response.body, who, limits), request, who);
   } catch (const nlohmann::json::exception& error) {
     throw LlmError(LlmErrorKind::kBadResponse,
-                   who + ": answer has an unexpected shape (" + error.what() + ")");
+                   who + ": answer has an unexpected shape (" + jsonErrorText(error) + ")");
   }
 }
 
 void HttpLlmClient::throwForStatus(const HttpResponse& response, int attempts) const {
   const int status = response.status;
-  const std::string serverMessage = errorMessageFromBody(response.body);
-  const std::string http = "HTTP " + std::to_string(status) + ": " + serverMessage;
+  const std::string http = describeHttpFailure(response);
   if (status == 401 || status == 403) {
     const std::string hint = config_.apiKeyVariable.empty()
                                  ? "check the API key"
@@ -183,16 +204,20 @@ void HttpLlmClient::throwForStatus(const HttpResponse& response, int attempts) c
                        attemptsText(attempts),
                    status);
   }
+  if (status >= 300 && status <= 399) {
+    throw LlmError(LlmErrorKind::kBadResponse, "the server answered with a redirect (" + http + ")", status);
+  }
   throw LlmError(LlmErrorKind::kBadResponse, "unexpected " + http, status);
 }
 
-std::string HttpLlmClient::redacted(std::string message) const {
-  const std::string& key = config_.apiKey;
-  if (key.empty()) return message;
-  for (std::size_t at = message.find(key); at != std::string::npos; at = message.find(key, at)) {
-    message.replace(at, key.size(), "[redacted]");
-  }
-  return message;
+std::string HttpLlmClient::redacted(std::string message) const { return redactor_.redact(std::move(message)); }
+
+LlmReply HttpLlmClient::redacted(LlmReply reply) const {
+  // The body was redacted already; this catches a secret the server wrote with JSON escapes.
+  reply.content = redactor_.redact(std::move(reply.content));
+  reply.refusal = redactor_.redact(std::move(reply.refusal));
+  reply.model = redactor_.redact(std::move(reply.model));
+  return reply;
 }
 
 }  // namespace lang2manip

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <cstdint>
 #include <filesystem>
 #include <mutex>
 #include <thread>
@@ -163,6 +164,91 @@ LlmError transportError(httplib::Error error, const httplib::Client& client,
   }
 }
 
+/// Gathers a response body up to a limit, refusing it as soon as the limit is passed (or when
+/// the declared Content-Length already passes it).
+class BodyCollector {
+ public:
+  BodyCollector(std::size_t maxBytes, std::string& body) : maxBytes_(maxBytes), body_(body) {}
+
+  bool accept(const httplib::Response& head) {
+    status_ = head.status;
+    reason_ = head.reason;
+    const std::string declared = head.get_header_value("Content-Length");
+    if (!declared.empty() && declared.size() <= 19 &&
+        std::all_of(declared.begin(), declared.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+      const unsigned long long length = std::stoull(declared);
+      if (length > maxBytes_) {
+        declaredBytes_ = length;
+        overLimit_ = true;
+        return false;
+      }
+    }
+    return true;
+  }
+
+  bool append(const char* data, std::size_t length) {
+    if (length > maxBytes_ - body_.size()) {
+      receivedBytes_ = body_.size() + length;
+      overLimit_ = true;
+      return false;
+    }
+    body_.append(data, length);
+    return true;
+  }
+
+  [[nodiscard]] bool overLimit() const { return overLimit_; }
+  [[nodiscard]] int status() const { return status_; }
+  [[nodiscard]] const std::string& reason() const { return reason_; }
+  /// "Content-Length 52428800" or "more than N bytes received".
+  [[nodiscard]] std::string sizeText() const {
+    if (declaredBytes_ > 0) return "Content-Length " + std::to_string(declaredBytes_);
+    return "at least " + std::to_string(receivedBytes_) + " bytes sent";
+  }
+
+ private:
+  std::size_t maxBytes_;
+  std::string& body_;
+  int status_ = 0;
+  std::string reason_;
+  bool overLimit_ = false;
+  unsigned long long declaredBytes_ = 0;
+  std::size_t receivedBytes_ = 0;
+};
+
+/// The standard reason phrase of the statuses LLM servers and proxies send.
+std::string standardReason(int status) {
+  switch (status) {
+    case 200: return "OK";
+    case 201: return "Created";
+    case 204: return "No Content";
+    case 301: return "Moved Permanently";
+    case 302: return "Found";
+    case 303: return "See Other";
+    case 304: return "Not Modified";
+    case 307: return "Temporary Redirect";
+    case 308: return "Permanent Redirect";
+    case 400: return "Bad Request";
+    case 401: return "Unauthorized";
+    case 402: return "Payment Required";
+    case 403: return "Forbidden";
+    case 404: return "Not Found";
+    case 405: return "Method Not Allowed";
+    case 408: return "Request Timeout";
+    case 409: return "Conflict";
+    case 413: return "Content Too Large";
+    case 415: return "Unsupported Media Type";
+    case 422: return "Unprocessable Content";
+    case 425: return "Too Early";
+    case 429: return "Too Many Requests";
+    case 500: return "Internal Server Error";
+    case 501: return "Not Implemented";
+    case 502: return "Bad Gateway";
+    case 503: return "Service Unavailable";
+    case 504: return "Gateway Timeout";
+    default: return "";
+  }
+}
+
 LlmError stoppedError(const StopCondition& stop, const HttpEndpoint& endpoint) {
   if (stop.secondsLeft() <= 0.0) {
     return LlmError(LlmErrorKind::kTimeout,
@@ -217,21 +303,35 @@ std::string findHeader(const HttpHeaders& headers, const std::string& name) {
   return {};
 }
 
+std::string httpStatusText(int status, const std::string& reason) {
+  const std::string phrase = reason.find_first_not_of(" \t") != std::string::npos ? reason : standardReason(status);
+  return "HTTP " + std::to_string(status) + (phrase.empty() ? "" : " " + phrase);
+}
+
 HttpResponse postJson(const HttpEndpoint& endpoint, const HttpRequest& request,
                       const HttpOptions& options, const StopCondition& stop) {
   if (stop.shouldStop()) throw stoppedError(stop, endpoint);
   httplib::Client client(endpoint.origin());
   configureClient(client, endpoint, options);
-  httplib::Headers headers;
-  for (const auto& [name, value] : request.headers) headers.emplace(name, value);
+
+  HttpResponse response;
+  BodyCollector collector(options.maxResponseBytes, response.body);
+  httplib::Request post;
+  post.method = "POST";
+  post.path = endpoint.basePath + request.path;
+  for (const auto& [name, value] : request.headers) post.headers.emplace(name, value);
+  post.headers.emplace("Content-Type", "application/json");
+  post.body = request.body;
+  post.response_handler = [&collector](const httplib::Response& head) { return collector.accept(head); };
+  post.content_receiver = [&collector](const char* data, std::size_t length, std::uint64_t /*offset*/,
+                                       std::uint64_t /*total*/) { return collector.append(data, length); };
 
   const Clock::time_point start = Clock::now();
   const auto limit = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(options.requestTimeoutSeconds));
   httplib::Result result = [&] {
     AttemptWatchdog watchdog(client, stop, start + limit);
-    httplib::Result sent =
-        client.Post(endpoint.basePath + request.path, headers, request.body, "application/json");
+    httplib::Result sent = client.send(post);
     watchdog.finish();
     if (watchdog.fired() == AttemptWatchdog::Fired::kStopCondition) {
       throw stoppedError(stop, endpoint);
@@ -243,12 +343,18 @@ HttpResponse postJson(const HttpEndpoint& endpoint, const HttpRequest& request,
     }
     return sent;
   }();
+  if (collector.overLimit()) {
+    throw LlmError(LlmErrorKind::kBadResponse,
+                   httpStatusText(collector.status(), collector.reason()) + " answer from " + endpoint.origin() +
+                       " is larger than the response size limit of " + std::to_string(options.maxResponseBytes) +
+                       " bytes (" + collector.sizeText() + "); not read further (--llm-max-response-bytes)",
+                   collector.status());
+  }
   const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
   if (!result) throw transportError(result.error(), client, endpoint, options, elapsed);
 
-  HttpResponse response;
   response.status = result->status;
-  response.body = std::move(result->body);
+  response.reason = result->reason;
   for (const auto& [name, value] : result->headers) response.headers.emplace_back(name, value);
   return response;
 }

@@ -4,6 +4,7 @@
 /// through a StopCondition. cpp-httplib stays out of this header (its class layout depends on
 /// compile definitions only this module's sources get).
 
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,6 +31,10 @@ struct HttpEndpoint {
 /// fragments are rejected.
 HttpEndpoint parseBaseUrl(const std::string& url, const std::string& what);
 
+/// Bytes an LLM response body may have by default: plans are a few kB, and a server answering
+/// more is broken or hostile.
+inline constexpr std::size_t kDefaultMaxResponseBytes = std::size_t{4} << 20;
+
 /// Transport settings shared by every protocol.
 struct HttpOptions {
   /// Limit for establishing the TCP (and TLS) connection.
@@ -40,6 +45,9 @@ struct HttpOptions {
   /// PEM file of trusted certificates; empty: the system bundle
   /// (/etc/ssl/certs/ca-certificates.crt when present, else OpenSSL's default paths).
   std::string caCertFile;
+  /// Largest response body accepted, whatever the status; enforced while receiving (after
+  /// decompression), so a larger answer is never held in memory.
+  std::size_t maxResponseBytes = kDefaultMaxResponseBytes;
 };
 
 /// Case-insensitive name, value.
@@ -56,13 +64,21 @@ struct HttpRequest {
 
 struct HttpResponse {
   int status = 0;
+  /// The reason phrase of the status line ("Found"); may be empty.
+  std::string reason;
   HttpHeaders headers;
   std::string body;
 };
 
-/// POSTs `request` once. Any HTTP status is returned as a response. Throws LlmError:
-/// kTimeout when the attempt exceeds its limit or the stop condition's deadline passes,
-/// kCancelled when a cancel flag of `stop` is set (checked while waiting), kTransport for
+/// "HTTP 302 Found" (the standard phrase when the server sent none; just "HTTP 599" for a
+/// status without one).
+std::string httpStatusText(int status, const std::string& reason);
+
+/// POSTs `request` once; redirects are not followed. Any HTTP status is returned as a response.
+/// Throws LlmError: kBadResponse when the body exceeds options.maxResponseBytes (stopping the
+/// transfer at that point, or before it starts when Content-Length says so; the message names
+/// the limit), kTimeout when the attempt exceeds its limit or the stop condition's deadline
+/// passes, kCancelled when a cancel flag of `stop` is set (checked while waiting), kTransport for
 /// connection, TLS and certificate failures. Thread-safe (each call has its own connection).
 HttpResponse postJson(const HttpEndpoint& endpoint, const HttpRequest& request,
                       const HttpOptions& options, const StopCondition& stop);

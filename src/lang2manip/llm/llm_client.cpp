@@ -1,5 +1,7 @@
 #include "lang2manip/llm/llm_client.hpp"
 
+#include <limits>
+
 namespace lang2manip {
 
 std::string finishReasonName(FinishReason reason) {
@@ -11,6 +13,19 @@ std::string finishReasonName(FinishReason reason) {
     case FinishReason::kOther: return "other";
   }
   return "other";
+}
+
+std::optional<long> addTokenCounts(std::optional<long> a, std::optional<long> b) noexcept {
+  if (!a || !b) return std::nullopt;
+  long sum = 0;
+  if (__builtin_add_overflow(*a, *b, &sum)) {
+    return *a > 0 ? std::numeric_limits<long>::max() : std::numeric_limits<long>::min();
+  }
+  return sum;
+}
+
+std::string tokenCountText(const std::optional<long>& count) {
+  return count ? std::to_string(*count) : std::string("unknown");
 }
 
 namespace {

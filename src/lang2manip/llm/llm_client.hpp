@@ -38,10 +38,23 @@ enum class FinishReason { kStop, kLength, kRefusal, kContentFilter, kOther };
 /// "stop", "length", "refusal", "content_filter", "other".
 std::string finishReasonName(FinishReason reason);
 
+/// The largest token count taken as known (2^53, exact in a double).
+inline constexpr long kMaxTokenCount = 1L << 53;
+
+/// Token counts as the server reported them. The rule, the same for every protocol: a count is
+/// known only when the server sent a JSON number that is a whole number in [0, kMaxTokenCount]
+/// (12 and 12.0 count; -3, 1.5, 1e300, "12", true, null or an absent field do not). Anything
+/// else is unknown (nullopt) -- never a guess, never 0 -- and reports say "unknown".
 struct LlmUsage {
-  long inputTokens = 0;
-  long outputTokens = 0;
+  std::optional<long> inputTokens;
+  std::optional<long> outputTokens;
 };
+
+/// a + b, or nullopt when either is unknown; saturates at LONG_MAX.
+std::optional<long> addTokenCounts(std::optional<long> a, std::optional<long> b) noexcept;
+
+/// "123", or "unknown" for nullopt.
+std::string tokenCountText(const std::optional<long>& count);
 
 struct LlmReply {
   /// The answer text (with structured output: the JSON document as text).

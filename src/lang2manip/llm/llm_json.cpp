@@ -1,12 +1,18 @@
 #include "lang2manip/llm/llm_json.hpp"
 
+#include <cstdint>
+#include <limits>
+
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/json_limits.hpp"
 
 namespace lang2manip {
 
 namespace {
 
 using nlohmann::json;
+
+constexpr long kMaxInt = std::numeric_limits<int>::max();
 
 const json& field(const json& object, const std::string& key, const std::string& where) {
   if (!object.is_object() || !object.contains(key)) {
@@ -27,10 +33,30 @@ double numberField(const json& object, const std::string& key, const std::string
   return value.get<double>();
 }
 
-long integerField(const json& object, const std::string& key, const std::string& where) {
+long integerField(const json& object, const std::string& key, const std::string& where, long minimum,
+                  long maximum) {
   const json& value = field(object, key, where);
-  if (!value.is_number_integer()) throw InputError(where + key + ": expected an integer");
-  return value.get<long>();
+  const auto fail = [&] {
+    return InputError(where + key + ": expected an integer in [" + std::to_string(minimum) + ", " +
+                      std::to_string(maximum) + "], got " + boundedJsonDump(value));
+  };
+  if (value.is_number_unsigned()) {
+    const auto number = value.get<std::uint64_t>();
+    if (maximum < 0 || number > static_cast<std::uint64_t>(maximum)) throw fail();
+    if (minimum > 0 && number < static_cast<std::uint64_t>(minimum)) throw fail();
+    return static_cast<long>(number);
+  }
+  if (!value.is_number_integer()) throw fail();
+  const auto number = value.get<std::int64_t>();
+  if (number < minimum || number > maximum) throw fail();
+  return static_cast<long>(number);
+}
+
+/// A token count as written by llmReplyToJson: null (unknown) or a count by LlmUsage's rule.
+std::optional<long> tokenCountField(const json& object, const std::string& key, const std::string& where) {
+  const json& value = field(object, key, where);
+  if (value.is_null()) return std::nullopt;
+  return integerField(object, key, where, 0, kMaxTokenCount);
 }
 
 LlmMessage::Role roleFromName(const std::string& name, const std::string& where) {
@@ -40,6 +66,10 @@ LlmMessage::Role roleFromName(const std::string& name, const std::string& where)
 }
 
 }  // namespace
+
+nlohmann::json tokenCountJson(const std::optional<long>& count) {
+  return count ? json(*count) : json(nullptr);
+}
 
 std::optional<FinishReason> finishReasonFromName(const std::string& name) {
   for (const FinishReason reason : {FinishReason::kStop, FinishReason::kLength,
@@ -78,9 +108,12 @@ LlmRequest llmRequestFromJson(const json& object) {
   }
   request.schema = field(object, "schema", where);
   request.schemaName = stringField(object, "schemaName", where);
-  request.maxTokens = static_cast<int>(integerField(object, "maxTokens", where));
+  request.maxTokens = static_cast<int>(integerField(object, "maxTokens", where, 1, kMaxInt));
   request.temperature = numberField(object, "temperature", where);
-  if (!field(object, "seed", where).is_null()) request.seed = integerField(object, "seed", where);
+  if (!field(object, "seed", where).is_null()) {
+    request.seed = integerField(object, "seed", where, std::numeric_limits<long>::min(),
+                                std::numeric_limits<long>::max());
+  }
   return request;
 }
 
@@ -88,8 +121,8 @@ json llmReplyToJson(const LlmReply& reply) {
   return {{"content", reply.content},
           {"finish", finishReasonName(reply.finish)},
           {"refusal", reply.refusal},
-          {"usage", {{"inputTokens", reply.usage.inputTokens},
-                     {"outputTokens", reply.usage.outputTokens}}},
+          {"usage", {{"inputTokens", tokenCountJson(reply.usage.inputTokens)},
+                     {"outputTokens", tokenCountJson(reply.usage.outputTokens)}}},
           {"latencySeconds", reply.latencySeconds},
           {"attempts", reply.attempts},
           {"model", reply.model}};
@@ -105,10 +138,10 @@ LlmReply llmReplyFromJson(const json& object) {
   reply.finish = *reason;
   reply.refusal = stringField(object, "refusal", where);
   const json& usage = field(object, "usage", where);
-  reply.usage.inputTokens = integerField(usage, "inputTokens", where + "usage.");
-  reply.usage.outputTokens = integerField(usage, "outputTokens", where + "usage.");
+  reply.usage.inputTokens = tokenCountField(usage, "inputTokens", where + "usage.");
+  reply.usage.outputTokens = tokenCountField(usage, "outputTokens", where + "usage.");
   reply.latencySeconds = numberField(object, "latencySeconds", where);
-  reply.attempts = static_cast<int>(integerField(object, "attempts", where));
+  reply.attempts = static_cast<int>(integerField(object, "attempts", where, 1, kMaxInt));
   reply.model = stringField(object, "model", where);
   return reply;
 }

@@ -19,11 +19,16 @@ nlohmann::json llmRequestToJson(const LlmRequest& request);
 LlmRequest llmRequestFromJson(const nlohmann::json& json);
 
 /// {"content","finish","refusal","usage":{"inputTokens","outputTokens"},"latencySeconds",
-/// "attempts","model"}.
+/// "attempts","model"}; an unknown token count is null.
 nlohmann::json llmReplyToJson(const LlmReply& reply);
 
-/// The inverse of llmReplyToJson (replayed stays false). Throws InputError as above.
+/// The inverse of llmReplyToJson (replayed stays false). Throws InputError as above, also for
+/// integers out of range (maxTokens and attempts 1..INT_MAX, token counts 0..kMaxTokenCount
+/// or null).
 LlmReply llmReplyFromJson(const nlohmann::json& json);
+
+/// A token count for reports and records: the number, or null when unknown.
+nlohmann::json tokenCountJson(const std::optional<long>& count);
 
 /// The FinishReason named by finishReasonName(), or nullopt.
 std::optional<FinishReason> finishReasonFromName(const std::string& name);

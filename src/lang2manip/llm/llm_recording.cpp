@@ -1,12 +1,14 @@
 #include "lang2manip/llm/llm_recording.hpp"
 
 #include <deque>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <mutex>
 #include <variant>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/json_limits.hpp"
 #include "lang2manip/llm/llm_json.hpp"
 #include "lang2manip/llm/llm_support.hpp"
 
@@ -51,7 +53,8 @@ class RecordingLlmClient final : public LlmClient {
  private:
   void append(const json& line) {
     std::lock_guard lock(mutex_);
-    out_ << line.dump() << '\n';
+    // Replacing invalid UTF-8 (a non-JSON body quoted in an error) keeps the line writable.
+    out_ << line.dump(-1, ' ', false, json::error_handler_t::replace) << '\n';
     out_.flush();
     if (!out_) {
       throw LlmError(LlmErrorKind::kConfiguration, file_ + ": cannot write the LLM record file");
@@ -74,23 +77,35 @@ struct RecordedCalls {
 
 class ReplayLlmClient final : public LlmClient {
  public:
-  ReplayLlmClient(const std::string& file, std::string client)
-      : file_(file), client_(std::move(client)) {
-    std::ifstream in(file);
+  ReplayLlmClient(const std::string& file, std::string client, const JsonLimits& limits)
+      : file_(file), client_(std::move(client)), limits_(limits) {
+    std::error_code ignored;
+    if (std::filesystem::is_directory(file, ignored)) {
+      throw LlmError(LlmErrorKind::kConfiguration, file + ": is a directory, not an LLM replay file");
+    }
+    std::ifstream in(file, std::ios::binary);
     if (!in) throw LlmError(LlmErrorKind::kConfiguration, file + ": cannot open the LLM replay file");
     std::string text;
-    for (int lineNumber = 1; std::getline(in, text); ++lineNumber) {
-      if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
+    for (int lineNumber = 1;; ++lineNumber) {
+      const LineReadStatus status = readBoundedLine(in, text, limits_.maxBytes);
+      if (status == LineReadStatus::kEnd) break;
+      const std::string where = file + ":" + std::to_string(lineNumber) + ": ";
+      if (status == LineReadStatus::kTooLong) {
+        throw LlmError(LlmErrorKind::kConfiguration,
+                       where + "line longer than " + std::to_string(limits_.maxBytes) +
+                           " bytes, the limit for one recorded call");
+      }
+      if (!text.empty() && text.back() == '\r') text.pop_back();
+      if (text.find_first_not_of(" \t") == std::string::npos) continue;
       try {
         readLine(text);
       } catch (const InputError& error) {
-        throw LlmError(LlmErrorKind::kConfiguration,
-                       file + ":" + std::to_string(lineNumber) + ": " + error.what());
+        throw LlmError(LlmErrorKind::kConfiguration, where + error.what());
       } catch (const json::exception& error) {
-        throw LlmError(LlmErrorKind::kConfiguration, file + ":" + std::to_string(lineNumber) +
-                                                         ": unexpected shape (" + error.what() + ")");
+        throw LlmError(LlmErrorKind::kConfiguration, where + "unexpected shape (" + jsonErrorText(error) + ")");
       }
     }
+    if (in.bad()) throw LlmError(LlmErrorKind::kConfiguration, file + ": read error in the LLM replay file");
   }
 
   [[nodiscard]] std::string name() const override { return "replay:" + file_; }
@@ -118,8 +133,11 @@ class ReplayLlmClient final : public LlmClient {
 
  private:
   void readLine(const std::string& text) {
-    const json line = json::parse(text, nullptr, false);
-    if (line.is_discarded() || !line.is_object()) throw InputError("not a JSON object");
+    const json line = parseJsonWithinLimits(text, limits_, "record");
+    if (!line.is_object()) {
+      throw InputError("record: expected a JSON object {\"client\", \"request\", \"reply\" or \"error\"}, got " +
+                       std::string(line.type_name()) + " " + boundedJsonDump(line));
+    }
     if (!line.contains("client") || !line["client"].is_string()) {
       throw InputError("client: missing or not a string");
     }
@@ -168,6 +186,7 @@ class ReplayLlmClient final : public LlmClient {
 
   std::string file_;
   std::string client_;
+  JsonLimits limits_;
   std::mutex mutex_;
   std::map<std::string, RecordedCalls> calls_;
   std::map<std::string, std::string> otherClients_;
@@ -181,8 +200,9 @@ std::unique_ptr<LlmClient> makeRecordingLlmClient(std::unique_ptr<LlmClient> inn
   return std::make_unique<RecordingLlmClient>(std::move(inner), file);
 }
 
-std::unique_ptr<LlmClient> makeReplayLlmClient(const std::string& file, const std::string& client) {
-  return std::make_unique<ReplayLlmClient>(file, client);
+std::unique_ptr<LlmClient> makeReplayLlmClient(const std::string& file, const std::string& client,
+                                               const JsonLimits& limits) {
+  return std::make_unique<ReplayLlmClient>(file, client, limits);
 }
 
 }  // namespace lang2manip

@@ -8,9 +8,14 @@
 #include <memory>
 #include <string>
 
+#include "lang2manip/core/json_limits.hpp"
 #include "lang2manip/llm/llm_client.hpp"
 
 namespace lang2manip {
+
+/// How long and deep one line of a record file may be when it is replayed: a line holds a request
+/// (with earlier answers, each at most HttpOptions::maxResponseBytes) and its reply.
+inline constexpr JsonLimits kRecordLineLimits{kDefaultJsonMaxDepth, std::size_t{64} << 20};
 
 /// Wraps `inner` and appends every call to `file` (created when absent): its reply, or the
 /// LlmError it ended in (except cancellation, which says nothing about the model). Each line is
@@ -26,8 +31,10 @@ std::unique_ptr<LlmClient> makeRecordingLlmClient(std::unique_ptr<LlmClient> inn
 /// thrown again as the same LlmError kind. A request with no recorded call throws
 /// LlmError(kReplayMiss). Replies have replayed = true. name() is "replay:FILE".
 /// Throws LlmError(kConfiguration) "FILE: ..." for a file that cannot be read and
-/// "FILE:LINE: ..." for a malformed line. Thread-safe.
-std::unique_ptr<LlmClient> makeReplayLlmClient(const std::string& file,
-                                               const std::string& client = "");
+/// "FILE:LINE: ..." for a malformed line: not JSON, not the shape above, nested deeper than
+/// limits.maxDepth, or longer than limits.maxBytes (such a line is never read whole).
+/// Thread-safe.
+std::unique_ptr<LlmClient> makeReplayLlmClient(const std::string& file, const std::string& client = "",
+                                               const JsonLimits& limits = kRecordLineLimits);
 
 }  // namespace lang2manip

@@ -1,5 +1,7 @@
 #include "lang2manip/llm/llm_support.hpp"
 
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 
 #include "lang2manip/llm/llm_client.hpp"
@@ -7,6 +9,9 @@
 namespace lang2manip {
 
 namespace {
+/// A server's error message is quoted up to this many bytes.
+constexpr std::size_t kMaxServerMessageBytes = 500;
+
 LlmError missing(const std::string& what, const std::string& who) {
   return LlmError(LlmErrorKind::kBadResponse, who + ": answer has no " + what);
 }
@@ -21,11 +26,17 @@ std::string formatSeconds(double seconds) {
   return buffer;
 }
 
-nlohmann::json parseResponseJson(const std::string& body, const std::string& who) {
-  nlohmann::json parsed = nlohmann::json::parse(body, nullptr, /*allow_exceptions=*/false);
-  if (parsed.is_discarded()) {
-    throw LlmError(LlmErrorKind::kBadResponse,
-                   who + ": answer body is not JSON: \"" + abbreviated(body, 120) + "\"");
+nlohmann::json parseResponseJson(const std::string& body, const std::string& who,
+                                 const JsonLimits& limits) {
+  if (const auto violation = findJsonLimitViolation(body, limits)) {
+    throw LlmError(LlmErrorKind::kBadResponse, describeJsonLimitViolation(*violation, who + ": answer body"));
+  }
+  nlohmann::json parsed;
+  try {
+    parsed = nlohmann::json::parse(body);
+  } catch (const nlohmann::json::exception& error) {
+    throw LlmError(LlmErrorKind::kBadResponse, who + ": answer body is not JSON (" + jsonErrorText(error) +
+                                                   "): \"" + abbreviated(body, 120) + "\"");
   }
   if (!parsed.is_object()) {
     throw LlmError(LlmErrorKind::kBadResponse, who + ": answer body is not a JSON object");
@@ -64,29 +75,53 @@ std::string optionalString(const nlohmann::json& object, const std::string& key)
   return found != object.end() && found->is_string() ? found->get<std::string>() : std::string();
 }
 
-long optionalCount(const nlohmann::json& object, const std::string& key) {
-  if (!object.is_object()) return 0;
+std::optional<long> tokenCount(const nlohmann::json& object, const std::string& key) {
+  if (!object.is_object()) return std::nullopt;
   const auto found = object.find(key);
-  return found != object.end() && found->is_number() ? found->get<long>() : 0;
+  if (found == object.end()) return std::nullopt;
+  const nlohmann::json& value = *found;
+  if (value.is_number_unsigned()) {
+    const auto count = value.get<std::uint64_t>();
+    if (count <= static_cast<std::uint64_t>(kMaxTokenCount)) return static_cast<long>(count);
+  } else if (value.is_number_integer()) {
+    const auto count = value.get<std::int64_t>();
+    if (count >= 0 && count <= kMaxTokenCount) return static_cast<long>(count);
+  } else if (value.is_number_float()) {
+    const double count = value.get<double>();
+    if (std::isfinite(count) && count >= 0.0 && count <= static_cast<double>(kMaxTokenCount) &&
+        std::floor(count) == count) {
+      return static_cast<long>(count);
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<long> tokenCountOrZero(const nlohmann::json& object, const std::string& key) {
+  if (!object.is_object()) return std::nullopt;
+  const auto found = object.find(key);
+  if (found == object.end() || found->is_null()) return 0L;
+  return tokenCount(object, key);
 }
 
 std::string errorMessageFromBody(const std::string& body) {
-  const nlohmann::json parsed = nlohmann::json::parse(body, nullptr, false);
+  if (body.find_first_not_of(" \t\r\n") == std::string::npos) return {};
+  const nlohmann::json parsed = findJsonLimitViolation(body, {}) ? nlohmann::json()
+                                                                 : nlohmann::json::parse(body, nullptr, false);
   if (parsed.is_object() && parsed.contains("error")) {
     const nlohmann::json& error = parsed["error"];
-    if (error.is_string()) return error.get<std::string>();
+    if (error.is_string()) return abbreviated(error.get<std::string>(), kMaxServerMessageBytes);
     const std::string message = optionalString(error, "message");
-    if (!message.empty()) return message;
+    if (!message.empty()) return abbreviated(message, kMaxServerMessageBytes);
   }
   if (parsed.is_object()) {
     const std::string message = optionalString(parsed, "message");
-    if (!message.empty()) return message;
+    if (!message.empty()) return abbreviated(message, kMaxServerMessageBytes);
   }
   return abbreviated(body);
 }
 
 std::string abbreviated(const std::string& text, std::size_t limit) {
-  return text.size() <= limit ? text : text.substr(0, limit) + "...";
+  return text.size() <= limit ? text : std::string(utf8Prefix(text, limit)) + "...";
 }
 
 }  // namespace lang2manip

@@ -47,8 +47,8 @@ class OllamaProtocol final : public LlmProtocol {
     }
     reply.finish = ollamaFinish(optionalString(body, "done_reason"));
     reply.model = optionalString(body, "model");
-    reply.usage.inputTokens = optionalCount(body, "prompt_eval_count");
-    reply.usage.outputTokens = optionalCount(body, "eval_count");
+    reply.usage.inputTokens = tokenCount(body, "prompt_eval_count");
+    reply.usage.outputTokens = tokenCount(body, "eval_count");
     return reply;
   }
 };

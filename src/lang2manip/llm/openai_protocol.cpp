@@ -54,8 +54,9 @@ class OpenAiProtocol final : public LlmProtocol {
     const json& message = requireMember(choice, "message", "choices[0]", who);
     LlmReply reply;
     reply.model = optionalString(body, "model");
-    reply.usage.inputTokens = optionalCount(body.value("usage", json()), "prompt_tokens");
-    reply.usage.outputTokens = optionalCount(body.value("usage", json()), "completion_tokens");
+    const json usage = body.value("usage", json());
+    reply.usage.inputTokens = tokenCount(usage, "prompt_tokens");
+    reply.usage.outputTokens = tokenCount(usage, "completion_tokens");
     reply.refusal = optionalString(message, "refusal");
     reply.finish = openAiFinish(optionalString(choice, "finish_reason"));
     if (!reply.refusal.empty()) {

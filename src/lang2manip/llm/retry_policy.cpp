@@ -58,6 +58,9 @@ void checkRetryOptions(const RetryOptions& options) {
 void checkHttpOptions(const HttpOptions& options) {
   requirePositive(options.connectTimeoutSeconds, "connectTimeoutSeconds");
   requirePositive(options.requestTimeoutSeconds, "requestTimeoutSeconds");
+  if (options.maxResponseBytes < 1) {
+    throw LlmError(LlmErrorKind::kConfiguration, "LLM options: maxResponseBytes must be at least 1");
+  }
 }
 
 double backoffSeconds(const RetryOptions& options, int failures) {

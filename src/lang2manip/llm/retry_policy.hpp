@@ -27,7 +27,8 @@ struct RetryOptions {
 /// (maxAttempts < 1, a non-positive or non-finite time, multiplier < 1).
 void checkRetryOptions(const RetryOptions& options);
 
-/// Throws LlmError(kConfiguration) naming the field when a timeout is not positive and finite.
+/// Throws LlmError(kConfiguration) naming the field when a timeout is not positive and finite or
+/// maxResponseBytes is 0.
 void checkHttpOptions(const HttpOptions& options);
 
 /// The wait after `failures` failed attempts (1 -> initialBackoffSeconds), capped.

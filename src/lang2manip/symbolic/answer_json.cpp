@@ -1,6 +1,7 @@
 #include <optional>
 #include <string>
 
+#include "lang2manip/core/json_limits.hpp"
 #include "lang2manip/symbolic/plan_parser.hpp"
 
 namespace lang2manip {
@@ -13,13 +14,6 @@ std::string_view trimmed(std::string_view text) {
   if (first == std::string_view::npos) return {};
   const auto last = text.find_last_not_of(" \t\r\n");
   return text.substr(first, last - first + 1);
-}
-
-/// nlohmann's message without its "[json.exception.parse_error.101] " prefix.
-std::string parseErrorText(const json::parse_error& error) {
-  const std::string message = error.what();
-  const auto end = message.find("] ");
-  return end == std::string::npos ? message : message.substr(end + 2);
 }
 
 /// The body of the first ``` fence (to the end of the text when the fence is not closed).
@@ -60,7 +54,11 @@ std::optional<std::string_view> balancedObject(std::string_view text) {
 
 }  // namespace
 
-nlohmann::json extractJsonDocument(std::string_view text) {
+nlohmann::json extractJsonDocument(std::string_view text, const JsonLimits& limits) {
+  if (text.size() > limits.maxBytes) {
+    fail("the answer has " + std::to_string(text.size()) + " bytes, more than the limit of " +
+         std::to_string(limits.maxBytes) + " bytes; answer with a short JSON plan");
+  }
   const std::string_view body = trimmed(text);
   if (body.empty()) fail("empty answer; expected a JSON plan");
   std::string_view candidate = body;
@@ -70,18 +68,22 @@ nlohmann::json extractJsonDocument(std::string_view text) {
     } else if (auto object = balancedObject(body)) {
       candidate = *object;
     } else {
-      fail("no JSON object found in the answer (it starts with \"" +
-           std::string(body.substr(0, 40)) + "\")");
+      fail("no JSON object found in the answer (it starts with \"" + std::string(utf8Prefix(body, 40)) +
+           "\")");
     }
   }
   if (candidate.empty()) fail("empty JSON block in the answer");
   if (candidate.front() != '[') {
     if (auto object = balancedObject(candidate)) candidate = *object;
   }
+  if (const auto violation = findJsonLimitViolation(candidate, limits)) {
+    fail(describeJsonLimitViolation(*violation, "the JSON document") + "; a plan needs only a few levels");
+  }
   try {
     return json::parse(candidate);
-  } catch (const json::parse_error& error) {
-    fail("not valid JSON: " + parseErrorText(error));
+  } catch (const json::exception& error) {
+    // Any nlohmann failure: syntax, numbers out of range (1e400), invalid UTF-8.
+    fail("not valid JSON: " + jsonErrorText(error));
   }
 }
 

@@ -1,6 +1,7 @@
 #include "lang2manip/symbolic/llm_task_planner.hpp"
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/json_limits.hpp"
 #include "lang2manip/model/scene.hpp"
 #include "lang2manip/symbolic/plan_json.hpp"
 #include "lang2manip/symbolic/plan_parser.hpp"
@@ -13,9 +14,11 @@ void checkUsable(const LlmReply& reply) {
   switch (reply.finish) {
     case FinishReason::kLength:
       throw UnusableAnswerError(reply.content,
-                                "the answer was cut off at the output token limit (" +
-                                    std::to_string(reply.usage.outputTokens) +
-                                    " tokens), so its JSON is incomplete; answer with a shorter plan "
+                                "the answer was cut off at the output token limit" +
+                                    (reply.usage.outputTokens
+                                         ? " (" + std::to_string(*reply.usage.outputTokens) + " tokens)"
+                                         : std::string()) +
+                                    ", so its JSON is incomplete; answer with a shorter plan "
                                     "and keep the reasoning brief");
     case FinishReason::kRefusal:
       throw UnusableAnswerError(reply.content, "the model refused to answer" +
@@ -61,17 +64,21 @@ Plan LlmTaskPlanner::plan(const PlanningRequest& request, const StopCondition& s
   const LlmRequest llm = buildRequest(request);
   const LlmReply reply = client_.complete(llm, stop);
   statistics.llmCalls += 1;
-  statistics.inputTokens += reply.usage.inputTokens;
-  statistics.outputTokens += reply.usage.outputTokens;
+  statistics.inputTokens = addTokenCounts(statistics.inputTokens, reply.usage.inputTokens);
+  statistics.outputTokens = addTokenCounts(statistics.outputTokens, reply.usage.outputTokens);
   statistics.llmSeconds += reply.latencySeconds;
   checkUsable(reply);
   PlanParseContext context;
   for (const SceneObject& object : request.scene->objects()) context.objects.push_back(object.name);
   context.planners = options_.plannerNames;
+  // Every way an answer can be malformed is a failure the repair loop feeds back, never an
+  // exception that ends the command.
   try {
     return parsePlanText(reply.content, context);
-  } catch (const PlanParseError& error) {
+  } catch (const InputError& error) {  // PlanParseError and any other bad-input report
     throw UnusableAnswerError(reply.content, error.what());
+  } catch (const nlohmann::json::exception& error) {
+    throw UnusableAnswerError(reply.content, "the answer could not be read as a plan: " + jsonErrorText(error));
   }
 }
 

@@ -24,13 +24,21 @@ std::string joined(const std::vector<std::string>& names) {
   return text;
 }
 
-std::string inQuotes(const std::string& text) { return "\"" + text + "\""; }
+/// A name from the document in quotes, cut after 60 bytes: an answer may hold names of megabytes.
+std::string inQuotes(const std::string& text) {
+  constexpr std::size_t kMaxShown = 60;
+  if (text.size() <= kMaxShown) return "\"" + text + "\"";
+  return "\"" + std::string(utf8Prefix(text, kMaxShown)) + "...\"";
+}
 
-/// A short rendering of a JSON value for messages.
+/// A computed length for messages ("inf" when it overflowed).
+std::string lengthText(double length) {
+  return std::isfinite(length) ? json(length).dump() : std::string("inf");
+}
+
+/// A short rendering of a JSON value for messages; never serialises more than it shows.
 std::string shown(const json& value) {
-  std::string text = value.dump();
-  if (text.size() > 40) text = text.substr(0, 37) + "...";
-  return std::string(value.type_name()) + " " + text;
+  return std::string(value.type_name()) + " " + boundedJsonDump(value, 40);
 }
 
 /// "Left of" -> "left_of".
@@ -308,7 +316,7 @@ class PlanReader {
       return std::nullopt;
     }
     if (std::abs(v.norm() - 1.0) > context_.unitTolerance) {
-      report(path, "not a unit vector (length " + json(v.norm()).dump() + ")");
+      report(path, "not a unit vector (length " + lengthText(v.norm()) + ")");
       return std::nullopt;
     }
     return v.normalized();
@@ -323,7 +331,7 @@ class PlanReader {
       return std::nullopt;
     }
     if (std::abs(q.norm() - 1.0) > context_.unitTolerance) {
-      report(path, "not a unit quaternion (norm " + json(q.norm()).dump() + ")");
+      report(path, "not a unit quaternion (norm " + lengthText(q.norm()) + ")");
       return std::nullopt;
     }
     return q.normalized();
@@ -429,8 +437,8 @@ Plan parsePlan(const nlohmann::json& document, const PlanParseContext& context) 
   return plan;
 }
 
-Plan parsePlanText(std::string_view text, const PlanParseContext& context) {
-  return parsePlan(extractJsonDocument(text), context);
+Plan parsePlanText(std::string_view text, const PlanParseContext& context, const JsonLimits& limits) {
+  return parsePlan(extractJsonDocument(text, limits), context);
 }
 
 }  // namespace lang2manip

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/json_limits.hpp"
 #include "lang2manip/symbolic/action.hpp"
 
 namespace lang2manip {
@@ -36,8 +37,10 @@ class PlanParseError : public InputError {
 
 /// The JSON document inside an answer: the whole text, a ```json fenced block, or the text from
 /// the first '{' to its matching '}' after leading prose. Throws PlanParseError when there is
-/// no JSON or it is malformed (with the position).
-nlohmann::json extractJsonDocument(std::string_view text);
+/// no JSON, it is malformed (with the position; any nlohmann failure, numbers out of range such
+/// as 1e400 included), or the text exceeds `limits` (size, nesting depth: checked before
+/// parsing, so no answer can exhaust the stack).
+nlohmann::json extractJsonDocument(std::string_view text, const JsonLimits& limits = {});
 
 /// Parses a plan document. Accepts the schema's form and common variants: fields absent
 /// instead of null, a bare array of actions, names in other case or with spaces ("Left of"),
@@ -47,7 +50,8 @@ nlohmann::json extractJsonDocument(std::string_view text);
 /// distances, an empty plan).
 Plan parsePlan(const nlohmann::json& document, const PlanParseContext& context);
 
-/// extractJsonDocument() then parsePlan(): for answer text.
-Plan parsePlanText(std::string_view text, const PlanParseContext& context);
+/// extractJsonDocument() then parsePlan(): for answer text and plan files. Throws
+/// PlanParseError for every problem of the text.
+Plan parsePlanText(std::string_view text, const PlanParseContext& context, const JsonLimits& limits = {});
 
 }  // namespace lang2manip

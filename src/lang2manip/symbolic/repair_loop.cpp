@@ -14,8 +14,8 @@ using Clock = std::chrono::steady_clock;
 
 void accumulate(PlanningStatistics& total, const PlanningStatistics& round) {
   total.llmCalls += round.llmCalls;
-  total.inputTokens += round.inputTokens;
-  total.outputTokens += round.outputTokens;
+  total.inputTokens = addTokenCounts(total.inputTokens, round.inputTokens);
+  total.outputTokens = addTokenCounts(total.outputTokens, round.outputTokens);
   total.llmSeconds += round.llmSeconds;
   total.planningSeconds += round.planningSeconds;
 }

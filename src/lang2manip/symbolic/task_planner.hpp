@@ -47,8 +47,11 @@ struct PlanningRequest {
 /// Counters of one planning round (accumulated over rounds by the repair loop).
 struct PlanningStatistics {
   int llmCalls = 0;
-  long inputTokens = 0;
-  long outputTokens = 0;
+  /// Tokens of all calls (0 without calls); unknown (nullopt) as soon as one call's count was
+  /// unknown (see LlmUsage), so a total never silently leaves calls out. Add with
+  /// addTokenCounts().
+  std::optional<long> inputTokens = 0;
+  std::optional<long> outputTokens = 0;
   double llmSeconds = 0.0;
   double planningSeconds = 0.0;
 };
