@@ -25,6 +25,7 @@
 #include <Inventor/nodes/SoIndexedPointSet.h>
 #include <Inventor/nodes/SoIndexedShape.h>
 #include <Inventor/nodes/SoLineSet.h>
+#include <Inventor/nodes/SoMaterialBinding.h>
 #include <Inventor/nodes/SoNormal.h>
 #include <Inventor/nodes/SoNurbsCurve.h>
 #include <Inventor/nodes/SoNurbsSurface.h>
@@ -199,7 +200,9 @@ void clearEach(const std::vector<SoNode*>& nodes, Clear clear) {
 
 /// Only positions are kept, and Coin indexes normals and texture coordinates without checking
 /// the indices (an out-of-range normalIndex crashes it). Emptying them and their indices makes
-/// Coin compute its own, which is safe.
+/// Coin compute its own, which is safe. Materials are bound OVERALL for the same reason: an
+/// indexed material binding on a shape without materialIndex dereferences null in Coin's
+/// SoIndexedFaceSet::generatePrimitives (tests/regression/mesh_wrl/).
 void dropNormalsAndTextureCoordinates(SoNode* root) {
   const std::vector<SoNode*> nodes = reachableNodes(root);
   clearEach<SoNormal>(nodes, [](SoNormal* n) { n->vector.setNum(0); });
@@ -207,12 +210,17 @@ void dropNormalsAndTextureCoordinates(SoNode* root) {
   clearEach<SoTextureCoordinate2>(nodes, [](SoTextureCoordinate2* t) { t->point.setNum(0); });
   clearEach<SoTextureCoordinate3>(nodes, [](SoTextureCoordinate3* t) { t->point.setNum(0); });
   clearEach<SoVRMLTextureCoordinate>(nodes, [](SoVRMLTextureCoordinate* t) { t->point.setNum(0); });
+  clearEach<SoMaterialBinding>(nodes, [](SoMaterialBinding* b) {
+    b->value.setValue(SoMaterialBinding::OVERALL);
+  });
   clearEach<SoVertexProperty>(nodes, [](SoVertexProperty* p) {
+    p->materialBinding.setValue(SoVertexProperty::OVERALL);
     p->normal.setNum(0);
     p->texCoord.setNum(0);
     p->texCoord3.setNum(0);
   });
   clearEach<SoIndexedShape>(nodes, [](SoIndexedShape* s) {
+    s->materialIndex.setNum(0);
     s->normalIndex.setNum(0);
     s->textureCoordIndex.setNum(0);
   });
