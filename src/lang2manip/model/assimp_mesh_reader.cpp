@@ -138,8 +138,12 @@ TriangleMesh readMeshWithAssimp(const fs::path& path) {
   if (lowerCaseExtension(path) == ".ply") checkPlyHeaderEnds(path);
   Assimp::Importer importer;
   configure(importer);
-  const unsigned steps = aiProcess_RemoveComponent | aiProcess_Triangulate |
-                         aiProcess_JoinIdenticalVertices | aiProcess_SortByPType;
+  unsigned steps = aiProcess_RemoveComponent | aiProcess_Triangulate |
+                   aiProcess_JoinIdenticalVertices | aiProcess_SortByPType;
+  // assimp's PLY reader can build faces with no or out-of-range indices, on which the steps
+  // abort (an ai_assert in TriangulateProcess; tests/regression/mesh_ply/); ValidateDataStructure
+  // runs first and rejects them.
+  if (lowerCaseExtension(path) == ".ply") steps |= aiProcess_ValidateDataStructure;
   const aiScene* scene = importer.ReadFile(path.string(), steps);
   if (scene == nullptr) {
     throw InputError(SourceLocation{path.string(), 0},
