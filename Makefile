@@ -6,8 +6,10 @@ BUILD_TYPE ?= Release
 WERROR ?= OFF
 JOBS ?= 2
 CMAKE_FLAGS ?=
+FUZZ_SECONDS ?= 30
+FUZZ_BUILD_DIR ?= build-fuzz
 
-.PHONY: demo test build deps test-sanitize clean
+.PHONY: demo test build deps test-sanitize fuzz clean
 
 deps:
 	@scripts/install-deps.sh
@@ -32,5 +34,14 @@ test-sanitize: export UBSAN_OPTIONS = print_stacktrace=1:halt_on_error=1
 test-sanitize:
 	$(MAKE) test BUILD_DIR=build-sanitize BUILD_TYPE=Debug CMAKE_FLAGS=-DLANG2MANIP_SANITIZE=ON
 
+# The libFuzzer harnesses of fuzz/ (clang, ASan + UBSan), each run for FUZZ_SECONDS; fails on any
+# crash, leak, UB, timeout or OOM (inputs in $(FUZZ_BUILD_DIR)/fuzz-findings/). See README.md.
+fuzz:
+	@scripts/install-deps.sh --fuzz
+	cmake -S . -B $(FUZZ_BUILD_DIR) -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
+	  -DLANG2MANIP_FUZZ=ON -DLANG2MANIP_BUILD_TESTS=OFF -DLANG2MANIP_BUILD_BENCHMARKS=OFF
+	cmake --build $(FUZZ_BUILD_DIR) -j $(JOBS) --target lang2manip_fuzz_harnesses
+	fuzz/run-fuzz.sh $(FUZZ_BUILD_DIR) $(FUZZ_SECONDS)
+
 clean:
-	rm -rf build build-sanitize
+	rm -rf build build-sanitize $(FUZZ_BUILD_DIR)

@@ -26,6 +26,27 @@ if(LANG2MANIP_SANITIZE)
   add_compile_definitions(EIGEN_MALLOC_ALREADY_ALIGNED=1)
 endif()
 
+if(LANG2MANIP_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "LANG2MANIP_FUZZ needs clang (libFuzzer): configure with "
+                        "-DCMAKE_CXX_COMPILER=clang++ (or run `make fuzz`)")
+  endif()
+  if(LANG2MANIP_SANITIZE)
+    message(FATAL_ERROR "LANG2MANIP_FUZZ already builds with the sanitizers; drop LANG2MANIP_SANITIZE")
+  endif()
+  # Every library is instrumented for libFuzzer's coverage and checked by ASan and UBSan (UB
+  # aborts, so the fuzzer reports it); the harnesses add -fsanitize=fuzzer (fuzz/CMakeLists.txt).
+  # -O1 with assertions on, as the sanitized test build; line tables are all the sanitizers'
+  # stack traces need and compile much faster than full debug information.
+  add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
+                      -fno-omit-frame-pointer -O1 -gline-tables-only)
+  # Clang's -Wdouble-promotion also reports float -> double initializations (assimp and Coin
+  # hand out floats), which GCC's does not; the fuzz build is not the place for that check.
+  target_compile_options(lang2manip_warnings INTERFACE -Wno-double-promotion)
+  add_link_options(-fsanitize=address,undefined)
+  add_compile_definitions(EIGEN_MALLOC_ALREADY_ALIGNED=1)  # see LANG2MANIP_SANITIZE above
+endif()
+
 # lang2manip_add_module(NAME SOURCES ... DEPENDS ...)
 # One module = one directory = one library named lang2manip_<NAME>; sources listed explicitly.
 function(lang2manip_add_module name)

@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian packages lang2manip builds with, only those that are missing.
 # Uses sudo when not root. Works on Debian 12 and Ubuntu 22.04/24.04.
+# With --fuzz, also what `make fuzz` needs: clang, its libFuzzer and sanitizer runtimes
+# (libclang-rt-dev, the distribution's default version) and llvm-symbolizer (llvm) for stack
+# traces.
 set -euo pipefail
 
 packages=(
@@ -10,6 +13,9 @@ packages=(
   liborocos-kdl-dev libfcl-dev libccd-dev libompl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
+if [ "${1:-}" = "--fuzz" ]; then
+  packages+=(clang libclang-rt-dev llvm)
+fi
 
 missing=()
 for package in "${packages[@]}"; do

@@ -25,6 +25,7 @@
 #include <Inventor/nodes/SoIndexedPointSet.h>
 #include <Inventor/nodes/SoIndexedShape.h>
 #include <Inventor/nodes/SoLineSet.h>
+#include <Inventor/nodes/SoMaterialBinding.h>
 #include <Inventor/nodes/SoNormal.h>
 #include <Inventor/nodes/SoNurbsCurve.h>
 #include <Inventor/nodes/SoNurbsSurface.h>
@@ -40,7 +41,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <fstream>
 #include <initializer_list>
+#include <iterator>
 #include <mutex>
 #include <regex>
 #include <string>
@@ -199,7 +202,9 @@ void clearEach(const std::vector<SoNode*>& nodes, Clear clear) {
 
 /// Only positions are kept, and Coin indexes normals and texture coordinates without checking
 /// the indices (an out-of-range normalIndex crashes it). Emptying them and their indices makes
-/// Coin compute its own, which is safe.
+/// Coin compute its own, which is safe. Materials are bound OVERALL for the same reason: an
+/// indexed material binding on a shape without materialIndex dereferences null in Coin's
+/// SoIndexedFaceSet::generatePrimitives (tests/regression/mesh_wrl/).
 void dropNormalsAndTextureCoordinates(SoNode* root) {
   const std::vector<SoNode*> nodes = reachableNodes(root);
   clearEach<SoNormal>(nodes, [](SoNormal* n) { n->vector.setNum(0); });
@@ -207,12 +212,17 @@ void dropNormalsAndTextureCoordinates(SoNode* root) {
   clearEach<SoTextureCoordinate2>(nodes, [](SoTextureCoordinate2* t) { t->point.setNum(0); });
   clearEach<SoTextureCoordinate3>(nodes, [](SoTextureCoordinate3* t) { t->point.setNum(0); });
   clearEach<SoVRMLTextureCoordinate>(nodes, [](SoVRMLTextureCoordinate* t) { t->point.setNum(0); });
+  clearEach<SoMaterialBinding>(nodes, [](SoMaterialBinding* b) {
+    b->value.setValue(SoMaterialBinding::OVERALL);
+  });
   clearEach<SoVertexProperty>(nodes, [](SoVertexProperty* p) {
+    p->materialBinding.setValue(SoVertexProperty::OVERALL);
     p->normal.setNum(0);
     p->texCoord.setNum(0);
     p->texCoord3.setNum(0);
   });
   clearEach<SoIndexedShape>(nodes, [](SoIndexedShape* s) {
+    s->materialIndex.setNum(0);
     s->normalIndex.setNum(0);
     s->textureCoordIndex.setNum(0);
   });
@@ -382,10 +392,33 @@ MeshBuilder collectTriangles(SoNode* scene, const std::string& name) {
   return std::move(traversal.builder);
 }
 
+/// Coin 4 formats the message about an include it cannot open with the file name as the format
+/// string, so a '%' in `File { name "..." }` crashes it (found by fuzz_mesh_iv;
+/// tests/regression/mesh_iv/). Such names are refused before Coin reads the file.
+void checkIncludeNames(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const auto skipSpace = [&](std::size_t at) { return text.find_first_not_of(" \t\r\n", at); };
+  for (auto at = text.find("File"); at != std::string::npos; at = text.find("File", at + 1)) {
+    std::size_t next = skipSpace(at + 4);
+    if (next == std::string::npos || text[next] != '{') continue;
+    next = skipSpace(next + 1);
+    if (next == std::string::npos || text.compare(next, 4, "name") != 0) continue;
+    next = skipSpace(next + 4);
+    if (next == std::string::npos || text[next] != '"') continue;
+    const auto nameEnd = text.find('"', next + 1);
+    if (text.find('%', next + 1) < nameEnd) {
+      throw InputError(SourceLocation{path.string(), 0},
+                       "File include name holds '%', which Coin cannot report safely");
+    }
+  }
+}
+
 }  // namespace
 
 TriangleMesh readMeshWithCoin(const fs::path& path) {
   checkNestingDepth(path, MeshNesting::kBraces);
+  checkIncludeNames(path);
   initCoinOnce();
   const std::lock_guard lock(coinMutex());
   CoinMessages messages;

@@ -1,0 +1,113 @@
+// The model readers: URDF, SRDF, Kautham problems and controls, MoveIt YAML, meshes.
+
+#include <stdexcept>
+
+#include "fuzz_inputs.hpp"
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/model/builtin_data.hpp"
+#include "lang2manip/model/kautham_controls.hpp"
+#include "lang2manip/model/kautham_problem.hpp"
+#include "lang2manip/model/mesh_loader.hpp"
+#include "lang2manip/model/moveit_scene_reader.hpp"
+#include "lang2manip/model/srdf_reader.hpp"
+#include "lang2manip/model/urdf_reader.hpp"
+#include "scratch_file.hpp"
+
+namespace lang2manip::fuzz {
+namespace {
+
+/// Runs `parse`; an InputError is the documented rejection.
+template <typename Parse>
+InputOutcome outcomeOf(const Parse& parse) {
+  try {
+    parse();
+    return InputOutcome::kAccepted;
+  } catch (const InputError&) {
+    return InputOutcome::kRejected;
+  }
+}
+
+/// The built-in Panda (without meshes), read once.
+const RobotModelPtr& builtinPanda() {
+  static const RobotModelPtr panda = [] {
+    UrdfReadOptions options;
+    options.loadMeshes = false;
+    return readUrdfFile(builtinRobotUrdf("panda"), options);
+  }();
+  return panda;
+}
+
+RobotModelData builtinPandaData() {
+  RobotModelData data;
+  data.name = builtinPanda()->name();
+  data.links = builtinPanda()->links();
+  data.joints = builtinPanda()->joints();
+  data.source = builtinPanda()->source();
+  return data;
+}
+
+InputOutcome feedMesh(std::string_view input, const std::string& extension) {
+  const std::string path = writeScratchFile("mesh" + extension, input).string();
+  return outcomeOf([&] { (void)loadTriangleMesh(path); });
+}
+
+}  // namespace
+
+InputOutcome feedUrdf(std::string_view input) {
+  UrdfReadOptions options;
+  options.loadMeshes = false;
+  return outcomeOf([&] {
+    (void)readUrdfString(std::string(input), "fuzz.urdf", scratchDirectory(), options);
+  });
+}
+
+InputOutcome feedSrdf(std::string_view input) {
+  static const RobotModelData panda = builtinPandaData();
+  return outcomeOf([&] { (void)readSrdfString(std::string(input), "fuzz.srdf", panda); });
+}
+
+InputOutcome feedKauthamProblem(std::string_view input) {
+  const std::filesystem::path file = writeScratchFile("problem.xml", input);
+  KauthamReadOptions options;
+  options.modelDirectories = {builtinDataDirectory() / "models",
+                              builtinDataDirectory() / "problems" / "desk"};
+  return outcomeOf([&] { (void)readKauthamProblem(file, options); });
+}
+
+InputOutcome feedKauthamControls(std::string_view input) {
+  return outcomeOf([&] {
+    const ControlSet controls = readControlString(std::string(input), "fuzz.cntr");
+    try {
+      const ControlSet again = readControlString(writeControlString(controls), "written.cntr");
+      if (again.dofs.size() != controls.dofs.size() ||
+          again.controls.size() != controls.controls.size()) {
+        throw std::logic_error("a control set reads back with other DOFs or controls");
+      }
+    } catch (const InputError& error) {
+      throw std::logic_error(std::string("a control set does not read back from its XML: ") +
+                             error.what());
+    }
+  });
+}
+
+InputOutcome feedMoveItProblem(std::string_view input) {
+  std::string_view scene = input;
+  std::string_view request;
+  const std::string separator = "\n" + std::string(kMoveItRequestSeparator) + "\n";
+  if (const auto at = input.find(separator); at != std::string_view::npos) {
+    scene = input.substr(0, at + 1);
+    request = input.substr(at + separator.size());
+  }
+  const std::filesystem::path sceneFile = writeScratchFile("scene0001.yaml", scene);
+  const std::filesystem::path requestFile = writeScratchFile("request0001.yaml", request);
+  return outcomeOf([&] { (void)readMoveItProblem(sceneFile, requestFile, builtinPanda()); });
+}
+
+InputOutcome feedStlMesh(std::string_view input) { return feedMesh(input, ".stl"); }
+InputOutcome feedObjMesh(std::string_view input) { return feedMesh(input, ".obj"); }
+InputOutcome feedDaeMesh(std::string_view input) { return feedMesh(input, ".dae"); }
+InputOutcome feedPlyMesh(std::string_view input) { return feedMesh(input, ".ply"); }
+InputOutcome feedInventorMesh(std::string_view input) { return feedMesh(input, ".iv"); }
+InputOutcome feedVrmlMesh(std::string_view input) { return feedMesh(input, ".wrl"); }
+
+}  // namespace lang2manip::fuzz
