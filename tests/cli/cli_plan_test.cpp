@@ -206,7 +206,7 @@ TEST(CliPlan, ReplayMissIsAClearError) {
                                         (directory.path() / "nope.jsonl").string(),
                                     true, kCleanEnvironment);
   EXPECT_EQ(missingFile.exitCode, 1);
-  EXPECT_THAT(missingFile.output, HasSubstr("nope.jsonl: cannot open the LLM replay file"));
+  EXPECT_THAT(missingFile.output, HasSubstr("nope.jsonl: LLM replay file does not exist"));
 }
 
 TEST(CliPlan, UnknownLlmListsTheValidChoices) {

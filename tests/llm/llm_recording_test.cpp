@@ -228,6 +228,9 @@ TEST_F(LlmReplayTest, ALineLongerThanTheLimitIsRefusedWithoutReadingItWhole) {
   // A directory is not a replay file.
   EXPECT_THAT(expectLlmError([&] { makeReplayLlmClient(directory_.path().string()); }).what(),
               HasSubstr("is a directory"));
+  // Nor is a device, which would never end.
+  EXPECT_THAT(expectLlmError([&] { makeReplayLlmClient("/dev/zero"); }).what(),
+              HasSubstr("/dev/zero: LLM replay file is a character device, not a regular file"));
 }
 
 TEST_F(LlmReplayTest, UnknownTokenCountsRoundTripAsNull) {
@@ -245,7 +248,7 @@ TEST_F(LlmReplayTest, UnknownTokenCountsRoundTripAsNull) {
 TEST_F(LlmReplayTest, MissingFileIsAConfigurationError) {
   const LlmError error = expectLlmError([&] { replay(); });
   EXPECT_EQ(error.kind(), LlmErrorKind::kConfiguration);
-  EXPECT_THAT(error.what(), HasSubstr("cannot open the LLM replay file"));
+  EXPECT_THAT(error.what(), HasSubstr(": LLM replay file does not exist"));
 }
 
 TEST_F(LlmReplayTest, CancelledCallsAreNotRecorded) {

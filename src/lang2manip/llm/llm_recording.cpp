@@ -8,6 +8,7 @@
 #include <variant>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/file_checks.hpp"
 #include "lang2manip/core/json_limits.hpp"
 #include "lang2manip/llm/llm_json.hpp"
 #include "lang2manip/llm/llm_support.hpp"
@@ -79,9 +80,9 @@ class ReplayLlmClient final : public LlmClient {
  public:
   ReplayLlmClient(const std::string& file, std::string client, const JsonLimits& limits)
       : file_(file), client_(std::move(client)), limits_(limits) {
-    std::error_code ignored;
-    if (std::filesystem::is_directory(file, ignored)) {
-      throw LlmError(LlmErrorKind::kConfiguration, file + ": is a directory, not an LLM replay file");
+    const std::string notAFile = notRegularFileReason(file);
+    if (!notAFile.empty()) {
+      throw LlmError(LlmErrorKind::kConfiguration, file + ": LLM replay file " + notAFile);
     }
     std::ifstream in(file, std::ios::binary);
     if (!in) throw LlmError(LlmErrorKind::kConfiguration, file + ": cannot open the LLM replay file");
