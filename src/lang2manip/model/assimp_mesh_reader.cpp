@@ -53,8 +53,11 @@ void addAssimpMesh(const aiMesh& mesh, const Eigen::Affine3d& X_RN, MeshBuilder&
   };
   for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
     const aiFace& face = mesh.mFaces[f];
-    if (face.mNumIndices != 3 || face.mIndices == nullptr) continue;
-    builder.addTriangle(index(face.mIndices[0]), index(face.mIndices[1]), index(face.mIndices[2]));
+    if (face.mNumIndices < 3 || face.mIndices == nullptr) continue;
+    // A polygon (PLY faces are not triangulated by assimp, see readMeshWithAssimp) as a fan.
+    for (unsigned i = 1; i + 1 < face.mNumIndices; ++i) {
+      builder.addTriangle(index(face.mIndices[0]), index(face.mIndices[i]), index(face.mIndices[i + 1]));
+    }
   }
 }
 
@@ -138,12 +141,14 @@ TriangleMesh readMeshWithAssimp(const fs::path& path) {
   if (lowerCaseExtension(path) == ".ply") checkPlyHeaderEnds(path);
   Assimp::Importer importer;
   configure(importer);
-  unsigned steps = aiProcess_RemoveComponent | aiProcess_Triangulate |
-                   aiProcess_JoinIdenticalVertices | aiProcess_SortByPType;
-  // assimp's PLY reader can build faces with no or out-of-range indices, on which the steps
-  // abort (an ai_assert in TriangulateProcess; tests/regression/mesh_ply/); ValidateDataStructure
-  // runs first and rejects them.
-  if (lowerCaseExtension(path) == ".ply") steps |= aiProcess_ValidateDataStructure;
+  // assimp's PLY reader can build faces with no or out-of-range indices and face counts that
+  // disagree with the header, on which its post-processing steps abort (ai_asserts in
+  // TriangulateProcess; tests/regression/mesh_ply/). A PLY is indexed already: it gets no step,
+  // and addAssimpMesh triangulates its polygons and checks every index.
+  const unsigned steps = lowerCaseExtension(path) == ".ply"
+                             ? 0U
+                             : aiProcess_RemoveComponent | aiProcess_Triangulate |
+                                   aiProcess_JoinIdenticalVertices | aiProcess_SortByPType;
   const aiScene* scene = importer.ReadFile(path.string(), steps);
   if (scene == nullptr) {
     throw InputError(SourceLocation{path.string(), 0},
