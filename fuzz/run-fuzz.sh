@@ -70,6 +70,7 @@ done
 
 printf '\n%-18s %12s %10s  %s\n' target executions exec/s result
 printf '%s\n' "${summary[@]}"
+echo "fuzz: $((${#targets[@]} - ${#failed[@]})) passed, ${#failed[@]} failed"
 if [ ${#failed[@]} -ne 0 ]; then
   echo "fuzz: findings in ${failed[*]} (inputs in $build_dir/fuzz-findings/)" >&2
   exit 1
