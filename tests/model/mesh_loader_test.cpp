@@ -193,6 +193,27 @@ TEST(MeshLoaderErrors, DirectoryIsNotAMesh) {
   EXPECT_THAT(loadError(path.string()), HasSubstr("mesh file is a directory, not a file"));
 }
 
+TEST(MeshLoaderErrors, PlyHeaderIsCheckedLineByLineBeforeAssimpReadsIt) {
+  const test::TempDirectory directory;
+  const std::string good = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                           "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                           "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const auto write = [&](const std::string& name, const std::string& text) {
+    const fs::path path = directory.path() / name;
+    std::ofstream(path, std::ios::binary) << text;
+    return path.string();
+  };
+  EXPECT_EQ(loadTriangleMesh(write("good.ply", good)).triangles.size(), 1U);
+  const std::string extraWords = good.substr(0, good.find("element face 1")) + "element face 1 y\n" +
+                                 good.substr(good.find("property list"));
+  EXPECT_THAT(loadError(write("extra.ply", extraWords)),
+              HasSubstr("extra.ply:7: malformed PLY header line \"element face 1 y\""));
+  std::string huge = good;
+  huge.replace(huge.find("element vertex 3"), 16, "element vertex 99999999999");
+  EXPECT_THAT(loadError(write("huge.ply", huge)), HasSubstr("huge.ply:3: malformed PLY header line"));
+  EXPECT_THAT(loadError(write("open.ply", "ply\nformat ascii 1.0\n")), HasSubstr("PLY header has no end_header line"));
+}
+
 TEST(MeshLoaderErrors, DeviceIsNotAMesh) {
   const test::TempDirectory directory;
   std::filesystem::create_symlink("/dev/zero", directory.path() / "zero.stl");

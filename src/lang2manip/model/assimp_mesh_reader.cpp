@@ -5,7 +5,10 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <fstream>
+#include <sstream>
 #include <iterator>
 #include <string>
 #include <string_view>
@@ -95,15 +98,109 @@ void configure(Assimp::Importer& importer) {
           aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS);
 }
 
-/// assimp 5.2's PLY reader never returns for a header without its end_header line (found by
-/// fuzz_mesh_ply; tests/regression/mesh_ply/), so such a file is refused before assimp sees it.
-void checkPlyHeaderEnds(const fs::path& path) {
+bool isPlyType(const std::string& word) {
+  static const std::vector<std::string> kTypes = {
+      "char", "uchar", "short", "ushort", "int", "uint", "float", "double", "int8", "uint8",
+      "int16", "uint16", "int32", "uint32", "float32", "float64"};
+  return std::find(kTypes.begin(), kTypes.end(), word) != kTypes.end();
+}
+
+/// A count of elements that the file can hold (each takes at least one byte).
+bool isPlyCount(const std::string& word, std::uintmax_t fileSize) {
+  if (word.empty() || word.size() > 19 ||
+      word.find_first_not_of("0123456789") != std::string::npos) {
+    return false;
+  }
+  return std::stoull(word) <= fileSize;
+}
+
+/// Whether one header line (split in words, after the first) is well formed.
+bool isPlyHeaderLine(const std::vector<std::string>& w, std::uintmax_t fileSize) {
+  if (w[0] == "comment" || w[0] == "obj_info") return true;
+  if (w[0] == "end_header") return w.size() == 1;
+  if (w[0] == "format") {
+    return w.size() == 3 && w[2] == "1.0" &&
+           (w[1] == "ascii" || w[1] == "binary_little_endian" || w[1] == "binary_big_endian");
+  }
+  if (w[0] == "element") return w.size() == 3 && isPlyCount(w[2], fileSize);
+  if (w[0] == "property") {
+    return (w.size() == 3 && isPlyType(w[1])) ||
+           (w.size() == 5 && w[1] == "list" && isPlyType(w[2]) && isPlyType(w[3]));
+  }
+  return false;
+}
+
+std::vector<std::string> wordsOf(const std::string& line) {
+  std::istringstream stream(line);
+  return {std::istream_iterator<std::string>(stream), std::istream_iterator<std::string>()};
+}
+
+/// One PLY element of the header: how many, and which of its properties are lists.
+struct PlyElement {
+  std::uintmax_t count = 0;
+  std::vector<bool> isList;
+};
+
+/// In an ASCII body, every element on its own line with as many values as its properties and
+/// list counts say (assimp allocates a list's count before reading it).
+void checkPlyAsciiBody(std::istream& in, const std::vector<PlyElement>& elements,
+                       const fs::path& path, int number) {
+  std::string line;
+  for (const PlyElement& element : elements) {
+    for (std::uintmax_t e = 0; e < element.count; ++e) {
+      ++number;
+      if (!std::getline(in, line)) {
+        throw InputError(SourceLocation{path.string(), number}, "PLY body ends before the counts of its header");
+      }
+      const std::vector<std::string> values = wordsOf(line);
+      std::size_t next = 0;
+      for (const bool list : element.isList) {
+        std::size_t take = 1;
+        if (list) {
+          const std::string count = next < values.size() ? values[next] : "";
+          if (count.empty() || count.size() > 9 || count.find_first_not_of("0123456789") != std::string::npos ||
+              std::stoul(count) > values.size() - next - 1) {
+            throw InputError(SourceLocation{path.string(), number}, "PLY list count \"" + count.substr(0, 20) +
+                                                                        "\" does not match the values on its line");
+          }
+          take = 1 + std::stoul(count);
+        }
+        if (next + take > values.size()) {
+          throw InputError(SourceLocation{path.string(), number}, "PLY line has fewer values than its properties");
+        }
+        next += take;
+      }
+    }
+  }
+}
+
+/// assimp 5.2's PLY reader trusts its header: without end_header it never returns, and a
+/// misread element or property line, or a list count beyond its line, makes it allocate without
+/// bound (found by fuzz_mesh_ply; tests/regression/mesh_ply/). So the header is checked line by
+/// line before assimp sees the file ("ply", "format ascii|binary_* 1.0", comments,
+/// "element NAME COUNT" with COUNT at most the file's size, "property TYPE NAME",
+/// "property list TYPE TYPE NAME", "end_header"), and so is an ASCII body's list counts.
+void checkPlyHeader(const fs::path& path) {
+  std::error_code error;
+  const std::uintmax_t fileSize = fs::file_size(path, error);
   std::ifstream in(path, std::ios::binary);
   std::string line;
-  while (std::getline(in, line)) {
-    const auto first = line.find_first_not_of(" \t\r");
-    const auto last = line.find_last_not_of(" \t\r");
-    if (first != std::string::npos && line.compare(first, last - first + 1, "end_header") == 0) {
+  std::vector<PlyElement> elements;
+  bool ascii = false;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const std::vector<std::string> words = wordsOf(line);
+    const bool good = number == 1 ? words.size() == 1 && words[0] == "ply"
+                                  : words.empty() || isPlyHeaderLine(words, fileSize);
+    if (!good || (!words.empty() && words[0] == "property" && elements.empty())) {
+      throw InputError(SourceLocation{path.string(), number},
+                       "malformed PLY header line \"" + line.substr(0, 60) + "\"");
+    }
+    if (words.empty() || number == 1) continue;
+    if (words[0] == "format") ascii = words[1] == "ascii";
+    if (words[0] == "element") elements.push_back({std::stoull(words[2]), {}});
+    if (words[0] == "property") elements.back().isList.push_back(words[1] == "list");
+    if (words[0] == "end_header") {
+      if (ascii) checkPlyAsciiBody(in, elements, path, number);
       return;
     }
   }
@@ -138,7 +235,7 @@ TriangleMesh readMeshWithAssimp(const fs::path& path) {
     checkNestingDepth(path, MeshNesting::kXmlElements);
     checkColladaIndexLists(path);
   }
-  if (lowerCaseExtension(path) == ".ply") checkPlyHeaderEnds(path);
+  if (lowerCaseExtension(path) == ".ply") checkPlyHeader(path);
   Assimp::Importer importer;
   configure(importer);
   // assimp's PLY reader can build faces with no or out-of-range indices and face counts that
