@@ -212,6 +212,12 @@ TEST(MeshLoaderErrors, PlyHeaderIsCheckedLineByLineBeforeAssimpReadsIt) {
   huge.replace(huge.find("element vertex 3"), 16, "element vertex 99999999999");
   EXPECT_THAT(loadError(write("huge.ply", huge)), HasSubstr("huge.ply:3: malformed PLY header line"));
   EXPECT_THAT(loadError(write("open.ply", "ply\nformat ascii 1.0\n")), HasSubstr("PLY header has no end_header line"));
+  std::string longList = good;
+  longList.replace(longList.find("3 0 1 2"), 7, "66666666 0 1 2");
+  EXPECT_THAT(loadError(write("list.ply", longList)),
+              HasSubstr("list.ply:13: PLY list count \"66666666\" does not match the values on its line"));
+  EXPECT_THAT(loadError(write("short.ply", good.substr(0, good.find("3 0 1 2")))),
+              HasSubstr("PLY body ends before the counts of its header"));
 }
 
 TEST(MeshLoaderErrors, DeviceIsNotAMesh) {
