@@ -130,6 +130,14 @@ bool isPlyHeaderLine(const std::vector<std::string>& w, std::uintmax_t fileSize)
   return false;
 }
 
+/// A byte below 0x20 but tab and CR, or DEL: never in a text PLY (assimp's reader stops at a NUL
+/// in the middle of a line and reads past its buffer).
+bool hasControlCharacter(const std::string& line) {
+  return std::any_of(line.begin(), line.end(), [](char c) {
+    return (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\r') || c == 0x7f;
+  });
+}
+
 std::vector<std::string> wordsOf(const std::string& line) {
   std::istringstream stream(line);
   return {std::istream_iterator<std::string>(stream), std::istream_iterator<std::string>()};
@@ -151,6 +159,9 @@ void checkPlyAsciiBody(std::istream& in, const std::vector<PlyElement>& elements
       ++number;
       if (!std::getline(in, line)) {
         throw InputError(SourceLocation{path.string(), number}, "PLY body ends before the counts of its header");
+      }
+      if (hasControlCharacter(line)) {
+        throw InputError(SourceLocation{path.string(), number}, "PLY text line holds a control character");
       }
       const std::vector<std::string> values = wordsOf(line);
       std::size_t next = 0;
@@ -191,7 +202,7 @@ void checkPlyHeader(const fs::path& path) {
     const std::vector<std::string> words = wordsOf(line);
     const bool good = number == 1 ? words.size() == 1 && words[0] == "ply"
                                   : words.empty() || isPlyHeaderLine(words, fileSize);
-    if (!good || (!words.empty() && words[0] == "property" && elements.empty())) {
+    if (!good || hasControlCharacter(line) || (!words.empty() && words[0] == "property" && elements.empty())) {
       throw InputError(SourceLocation{path.string(), number},
                        "malformed PLY header line \"" + line.substr(0, 60) + "\"");
     }
