@@ -326,6 +326,15 @@ std::string shapeProblem(const SoCallbackAction& action, const SoNode& shape) {
     numVertices = &static_cast<const SoTriangleStripSet&>(shape).numVertices;
   }
   if (numVertices == nullptr) return {};
+  // A face or strip of fewer than 3 vertices makes Coin's generatePrimitives dereference null
+  // (found by fuzz_mesh_iv; tests/regression/mesh_iv/).
+  for (int i = 0; i < numVertices->getNum(); ++i) {
+    const std::int32_t size = (*numVertices)[i];
+    if (size != -1 && size < 3) {
+      return "numVertices entry " + std::to_string(i) + " is " + std::to_string(size) +
+             ": a face or strip needs at least 3 vertices";
+    }
+  }
   return checkCoordinateCount(start, usedCoordinates(*numVertices, start, count), count);
 }
 
