@@ -4,6 +4,8 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace lang2manip::test {
 
@@ -12,6 +14,13 @@ std::filesystem::path testDataDirectory();
 
 /// ../shared/data beside the checkout, or nullopt when it is absent.
 std::optional<std::filesystem::path> sharedDataDirectory();
+
+/// The whole content of `path` ("" when it cannot be read).
+std::string readFileText(const std::filesystem::path& path);
+
+/// The Kautham problems of ../shared/data/kautham (relative to its kautham/ directory) that the
+/// model tests check by hand and the planning tests solve; the other problems there must load.
+const std::vector<std::string>& handCheckedKauthamProblems();
 
 /// A fresh empty temporary directory for one test (removed by the caller's TempDirectory).
 class TempDirectory {

@@ -24,12 +24,6 @@ using ::testing::EndsWith;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-std::string readFile(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 /// A successful answer body with the token counts `input` and `output` (JSON values; discarded
 /// = the field is left out) where the protocol puts them.
@@ -196,7 +190,7 @@ TEST_P(LlmHardeningTest, AnswerLargerThanTheCapIsRefusedAndNeverRecorded) {
   EXPECT_THAT(error.what(), HasSubstr("HTTP 200 OK answer from http://127.0.0.1:"));
   EXPECT_THAT(error.what(), HasSubstr("is larger than the response size limit of 65536 bytes (Content-Length"));
   EXPECT_EQ(server_.requestCount(), 1U) << "an oversized answer is not retried";
-  const std::string record = readFile(options_.recordFile);
+  const std::string record = readFileText(options_.recordFile);
   EXPECT_LT(record.size(), 4096U) << "only the error is recorded, not the answer";
   EXPECT_THAT(record, HasSubstr("\"kind\":\"bad_response\""));
 
@@ -301,7 +295,7 @@ TEST_P(LlmHardeningTest, EchoedApiKeyIsRedactedEverywhere) {
   ASSERT_FALSE(logged.empty());
   for (const std::string& line : logged) EXPECT_THAT(line, Not(HasSubstr(secretPart))) << line;
   EXPECT_THAT(logged[0], HasSubstr("overloaded for key [redacted]"));
-  const std::string record = readFile(options_.recordFile);
+  const std::string record = readFileText(options_.recordFile);
   EXPECT_THAT(record, Not(HasSubstr(secretPart)));
   EXPECT_THAT(record, HasSubstr("[redacted]"));
 }

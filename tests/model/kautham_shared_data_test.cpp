@@ -23,31 +23,19 @@ constexpr double kTolerance = 1e-9;
 constexpr double kPi = std::numbers::pi;
 
 /// The problems checked by hand below (relative to the shared kautham directory).
-const std::vector<std::string> kHandChecked = {
-    "OMPL_constr_demos/UR5/ur5_table_constr_box.xml",
-    "OMPL_constr_demos/UR5/ur5_table_constr_orientation.xml",
-    "OMPL_geo_demos/Cube_Maze_R2/OMPL_RRTconnect_bigcube-maze2D_R2.xml",
-    "OMPL_geo_demos/TX90_IOC/OMPL_RRTConnect_TX90_TwoCan.xml",
-    "OMPL_geo_demos/TX90_IOC/OMPL_RRTConnect_TX90_gripper_TwoCan.xml",
-    "OMPL_geo_demos/Table_Rooms_R2/OMPL_RRTconnect_table_rooms_R2_ab.xml",
-    "OMPL_geo_demos/UR3e/ur3e_fib_upc.xml",
-    "OMPL_geo_demos/UR5/ur5_table.xml",
-    "OMPL_geo_demos/boxes_world_R2/OMPL_RRTconnect_boxes_world_R2.xml",
-    "OMPL_geo_demos/boxes_world_R3/OMPL_RRTconnect_boxes_world_R3.xml",
-};
+const std::vector<std::string>& kHandChecked = test::handCheckedKauthamProblems();
 
-/// Every problem file under `kautham` (root <Problem>; <Benchmark> files list problems), except
-/// the models directory.
 /// Whether `file` holds a problem: a <Problem> element before any <Benchmark> (whose entries are
 /// <Problem File=...>), outside the controls directories (which hold other XML files too).
 bool isProblemFile(const std::filesystem::path& file) {
   if (file.parent_path().filename() == "controls") return false;
-  std::ifstream stream(file);
-  const std::string text((std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
+  const std::string text = test::readFileText(file);
   const std::size_t problem = text.find("<Problem");
   return problem != std::string::npos && problem < text.find("<Benchmark");
 }
 
+/// Every problem file under `kautham` (root <Problem>; <Benchmark> files list problems), except
+/// the models directory.
 std::vector<std::string> problemFiles(const std::filesystem::path& kautham) {
   std::vector<std::string> files;
   for (auto it = std::filesystem::recursive_directory_iterator(kautham);

@@ -18,20 +18,8 @@ namespace {
 /// parameters, control and ODE demos and <Benchmark> files: the robot-agnostic issue (12) covers
 /// them; the model tests load every one of them.
 std::vector<std::filesystem::path> demoProblems(const std::filesystem::path& shared) {
-  const char* const kDemos[] = {
-      "OMPL_constr_demos/UR5/ur5_table_constr_box.xml",
-      "OMPL_constr_demos/UR5/ur5_table_constr_orientation.xml",
-      "OMPL_geo_demos/Cube_Maze_R2/OMPL_RRTconnect_bigcube-maze2D_R2.xml",
-      "OMPL_geo_demos/TX90_IOC/OMPL_RRTConnect_TX90_TwoCan.xml",
-      "OMPL_geo_demos/TX90_IOC/OMPL_RRTConnect_TX90_gripper_TwoCan.xml",
-      "OMPL_geo_demos/Table_Rooms_R2/OMPL_RRTconnect_table_rooms_R2_ab.xml",
-      "OMPL_geo_demos/UR3e/ur3e_fib_upc.xml",
-      "OMPL_geo_demos/UR5/ur5_table.xml",
-      "OMPL_geo_demos/boxes_world_R2/OMPL_RRTconnect_boxes_world_R2.xml",
-      "OMPL_geo_demos/boxes_world_R3/OMPL_RRTconnect_boxes_world_R3.xml",
-  };
   std::vector<std::filesystem::path> files;
-  for (const char* demo : kDemos) files.push_back(shared / "kautham" / demo);
+  for (const std::string& demo : test::handCheckedKauthamProblems()) files.push_back(shared / "kautham" / demo);
   return files;
 }
 

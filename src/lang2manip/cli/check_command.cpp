@@ -32,18 +32,6 @@ json checkEntry(const std::string& what, const CollisionReport& report,
   return entry;
 }
 
-/// The limit violations of every robot of `states` (robot-prefixed when the scene has several).
-std::vector<std::string> limitViolations(const Scene& scene, const RobotStates& states) {
-  std::vector<std::string> violations;
-  for (std::size_t r = 0; r < scene.robots().size(); ++r) {
-    const SceneRobot& robot = scene.robots()[r];
-    for (const std::string& violation : robot.model->limitViolations(states.configurations[r])) {
-      violations.push_back(scene.robots().size() > 1 ? robot.name + ": " + violation : violation);
-    }
-  }
-  return violations;
-}
-
 /// The given configuration of one robot (the others at the problem's scene state).
 json checkConfiguration(const CheckOptions& options, const CollisionChecker& checker) {
   const int robot = options.robotGiven ? checker.robotIndex(options.robot) : 0;

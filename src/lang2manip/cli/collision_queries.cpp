@@ -29,6 +29,17 @@ std::vector<QueryCollisions> checkQueries(const LoadedProblem& loaded, const Col
   return results;
 }
 
+std::vector<std::string> limitViolations(const Scene& scene, const RobotStates& states) {
+  std::vector<std::string> violations;
+  for (std::size_t r = 0; r < scene.robots().size(); ++r) {
+    const SceneRobot& robot = scene.robots()[r];
+    for (const std::string& violation : robot.model->limitViolations(states.configurations[r])) {
+      violations.push_back(scene.robots().size() > 1 ? robot.name + ": " + violation : violation);
+    }
+  }
+  return violations;
+}
+
 nlohmann::json collisionReportJson(const CollisionReport& report) {
   nlohmann::json contacts = nlohmann::json::array();
   for (const CollisionContact& contact : report.contacts) {

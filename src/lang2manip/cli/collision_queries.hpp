@@ -21,6 +21,10 @@ struct QueryCollisions {
 /// `checker`, which must have been built for `loaded.problem.scene`.
 std::vector<QueryCollisions> checkQueries(const LoadedProblem& loaded, const CollisionChecker& checker);
 
+/// The joints of every robot of `scene` that `states` puts outside their limits (each prefixed
+/// with the robot's name when the scene has several robots); empty when all are within them.
+std::vector<std::string> limitViolations(const Scene& scene, const RobotStates& states);
+
 /// {"valid", "contacts": [{"first", "second", "penetration_depth"}], "minimum_distance",
 /// "closest": [first, second]} (distance and closest only when known).
 nlohmann::json collisionReportJson(const CollisionReport& report);

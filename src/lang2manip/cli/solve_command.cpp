@@ -7,6 +7,7 @@
 
 #include <ompl/util/RandomNumbers.h>
 
+#include "lang2manip/cli/collision_queries.hpp"
 #include "lang2manip/cli/commands.hpp"
 #include "lang2manip/cli/parameter_assignment.hpp"
 #include "lang2manip/cli/problem_loading.hpp"
@@ -100,16 +101,14 @@ std::string queryText(const json& query) {
 /// or empty after making it the session's query.
 std::string queryRejection(const LoadedProblem& loaded, PlanningSession& session, std::size_t q) {
   const Scene& scene = session.problem().scene;
+  // With several robots, each violation names its robot.
+  const std::string ofRobot = scene.robots().size() == 1 ? " of \"" + scene.robots()[0].name + "\"" : "";
   const auto& [start, goal] = loaded.queries[q];
   for (const auto& [states, what] : {std::pair{&start, "start"}, std::pair{&goal, "goal"}}) {
-    for (std::size_t r = 0; r < scene.robots().size(); ++r) {
-      const std::vector<std::string> violations =
-          scene.robots()[r].model->limitViolations(states->configurations[r]);
-      if (!violations.empty()) {
-        return std::string(what) + " is outside the joint limits of \"" + scene.robots()[r].name +
-               "\": " + violations.front() +
-               (violations.size() > 1 ? " (and " + std::to_string(violations.size() - 1) + " more)" : "");
-      }
+    const std::vector<std::string> violations = limitViolations(scene, *states);
+    if (!violations.empty()) {
+      return std::string(what) + " is outside the joint limits" + ofRobot + ": " + violations.front() +
+             (violations.size() > 1 ? " (and " + std::to_string(violations.size() - 1) + " more)" : "");
     }
   }
   try {
