@@ -8,6 +8,7 @@ JOBS ?= 2
 CMAKE_FLAGS ?=
 FUZZ_SECONDS ?= 30
 FUZZ_BUILD_DIR ?= build-fuzz
+FUZZ_JOBS ?= 1
 
 .PHONY: demo test build deps test-sanitize fuzz clean
 
@@ -41,7 +42,7 @@ fuzz:
 	cmake -S . -B $(FUZZ_BUILD_DIR) -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
 	  -DLANG2MANIP_FUZZ=ON -DLANG2MANIP_BUILD_TESTS=OFF -DLANG2MANIP_BUILD_BENCHMARKS=OFF
 	cmake --build $(FUZZ_BUILD_DIR) -j $(JOBS) --target lang2manip_fuzz_harnesses
-	fuzz/run-fuzz.sh $(FUZZ_BUILD_DIR) $(FUZZ_SECONDS)
+	FUZZ_JOBS=$(FUZZ_JOBS) fuzz/run-fuzz.sh $(FUZZ_BUILD_DIR) $(FUZZ_SECONDS)
 
 clean:
 	rm -rf build build-sanitize $(FUZZ_BUILD_DIR)

@@ -3,7 +3,8 @@
 # project's own seeds (fuzz/corpus/<target>/), its test data (tests/data/), its built-in models
 # and problems (data/) and, when present, the third-party data in ../shared/data (read in place,
 # never copied into the repository). Seeds larger than the target's limit are skipped, and at
-# most kMaxSeeds per source pattern are taken (the smallest first: they run fastest).
+# most kMaxSeeds per source pattern are taken (the smallest first: they run fastest). awk, not
+# head, takes them: head would end the pipe early and kill sort with SIGPIPE under pipefail.
 #
 # Usage: fuzz/seed-corpus.sh OUT_DIR
 set -euo pipefail
@@ -22,7 +23,7 @@ add_files() {
   [ -d "$dir" ] || return 0
   mkdir -p "$out_dir/$target"
   find "$dir" -type f "$@" -size -"$((limit + 1))"c -printf '%s %p\n' | sort -n |
-    head -n "$kMaxSeeds" | while read -r _ file; do
+    awk -v n="$kMaxSeeds" 'NR <= n' | while read -r _ file; do
       local name=${file#"$dir"/}
       cp "$file" "$out_dir/$target/$(basename "$dir")_${name//\//_}"
     done

@@ -11,7 +11,6 @@
 #include <sstream>
 #include <iterator>
 #include <string>
-#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -85,10 +84,8 @@ void addAssimpScene(const aiScene& scene, MeshBuilder& builder) {
   }
 }
 
-/// Keeps COLLADA's unit and ignores its up axis (see readMeshWithAssimp()), and drops all but
-/// positions.
+/// Drops all but positions.
 void configure(Assimp::Importer& importer) {
-  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
   // Only positions are kept: dropping normals and the like first lets JoinIdenticalVertices
   // merge the corners that faces share (an STL repeats them with each face's normal).
   importer.SetPropertyInteger(
@@ -218,34 +215,9 @@ void checkPlyHeader(const fs::path& path) {
   throw InputError(SourceLocation{path.string(), 0}, "PLY header has no end_header line");
 }
 
-/// assimp 5.2's COLLADA reader allocates without bound when an index list (<p>, <vcount>, <v>)
-/// holds anything but unsigned integers (found by fuzz_mesh_dae; tests/regression/mesh_dae/), so
-/// such a file is refused before assimp sees it.
-void checkColladaIndexLists(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  for (auto open = text.find('<'); open != std::string::npos; open = text.find('<', open + 1)) {
-    const auto nameEnd = text.find_first_of(" \t\r\n/>", open + 1);
-    const auto contentStart = text.find('>', open);
-    if (nameEnd == std::string::npos || contentStart == std::string::npos) return;
-    const std::string_view name(text.data() + open + 1, nameEnd - open - 1);
-    if ((name != "p" && name != "vcount" && name != "v") || text[contentStart - 1] == '/') continue;
-    const auto bad = text.find_first_not_of("0123456789 \t\r\n", contentStart + 1);
-    if (bad != std::string::npos && bad < text.find('<', contentStart)) {
-      throw InputError(SourceLocation{path.string(), 0},
-                       "COLLADA <" + std::string(name) + "> holds \"" + text.substr(bad, 1) +
-                           "\": index lists hold only unsigned integers");
-    }
-  }
-}
-
 }  // namespace
 
 TriangleMesh readMeshWithAssimp(const fs::path& path) {
-  if (lowerCaseExtension(path) == ".dae") {
-    checkNestingDepth(path, MeshNesting::kXmlElements);
-    checkColladaIndexLists(path);
-  }
   if (lowerCaseExtension(path) == ".ply") checkPlyHeader(path);
   Assimp::Importer importer;
   configure(importer);

@@ -426,7 +426,7 @@ void checkIncludeNames(const fs::path& path) {
 }  // namespace
 
 TriangleMesh readMeshWithCoin(const fs::path& path) {
-  checkNestingDepth(path, MeshNesting::kBraces);
+  checkBraceNestingDepth(path);
   checkIncludeNames(path);
   initCoinOnce();
   const std::lock_guard lock(coinMutex());

@@ -53,28 +53,6 @@ int braceDepth(const std::string& text) {
   return deepest;
 }
 
-/// Deepest nesting of XML elements; comments, CDATA and declarations skipped.
-int elementDepth(const std::string& text) {
-  int depth = 0;
-  int deepest = 0;
-  for (std::size_t i = text.find('<'); i < text.size(); i = text.find('<', i)) {
-    if (text.compare(i, 4, "<!--") == 0) {
-      i = skipPast(text, i, "-->");
-    } else if (text.compare(i, 9, "<![CDATA[") == 0) {
-      i = skipPast(text, i, "]]>");
-    } else {
-      const std::size_t end = skipPast(text, i, ">");
-      const char kind = i + 1 < text.size() ? text[i + 1] : '?';
-      if (kind == '/' && depth > 0) --depth;
-      const bool opens = kind != '/' && kind != '?' && kind != '!' && text[end - 1] == '>' &&
-                         text[end - 2] != '/';
-      if (opens) deepest = std::max(deepest, ++depth);
-      i = end;
-    }
-  }
-  return deepest;
-}
-
 std::string fileContents(const fs::path& path) {
   std::ifstream stream(path, std::ios::binary);
   std::ostringstream contents;
@@ -146,11 +124,10 @@ std::size_t MeshBuilder::KeyHash::operator()(const std::array<double, 3>& key) c
 // ---------------------------------------------------------------------------------------------
 // Shared helpers
 
-void checkNestingDepth(const fs::path& path, MeshNesting nesting) {
+void checkBraceNestingDepth(const fs::path& path) {
   const std::string text = fileContents(path);
-  const bool xml = nesting == MeshNesting::kXmlElements;
-  if (!xml && text.substr(0, text.find('\n')).find("binary") != std::string::npos) return;
-  if ((xml ? elementDepth(text) : braceDepth(text)) > kMaxMeshNestingDepth) {
+  if (text.substr(0, text.find('\n')).find("binary") != std::string::npos) return;
+  if (braceDepth(text) > kMaxMeshNestingDepth) {
     throw InputError(SourceLocation{path.string(), 0},
                      "nesting deeper than " + std::to_string(kMaxMeshNestingDepth) +
                          " levels: refused to protect the stack");

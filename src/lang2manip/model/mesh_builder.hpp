@@ -50,20 +50,14 @@ class MeshBuilder {
   bool tooLarge_ = false;
 };
 
-/// How a text mesh format nests, for checkNestingDepth().
-enum class MeshNesting {
-  kBraces,       ///< { } and [ ] of Inventor and VRML; binary Inventor files are not scanned.
-  kXmlElements,  ///< elements of XML (COLLADA).
-};
-
-/// The deepest nesting a mesh file may have. Coin's and assimp's COLLADA parsers recurse once
-/// per nesting level and overflow the stack on files nested some 10,000 levels deep, so deeper
-/// files are refused before they are parsed.
+/// The deepest nesting of { } and [ ] an Inventor or VRML file may have. Coin's parser recurses
+/// once per nesting level and overflows the stack on files nested some 10,000 levels deep, so
+/// deeper files are refused before they are parsed.
 constexpr int kMaxMeshNestingDepth = 1000;
 
-/// Throws InputError "path: nesting deeper than 1000 levels..." when the file at `path` nests
-/// deeper than kMaxMeshNestingDepth.
-void checkNestingDepth(const std::filesystem::path& path, MeshNesting nesting);
+/// Throws InputError "path: nesting deeper than 1000 levels..." when the Inventor or VRML text
+/// at `path` nests braces deeper than kMaxMeshNestingDepth (binary Inventor is not scanned).
+void checkBraceNestingDepth(const std::filesystem::path& path);
 
 /// The extension of `path` in lower case, with the dot ("" when there is none).
 std::string lowerCaseExtension(const std::filesystem::path& path);

@@ -9,6 +9,7 @@
 #include "lang2manip/core/file_checks.hpp"
 #include "lang2manip/model/assimp_mesh_reader.hpp"
 #include "lang2manip/model/coin_mesh_reader.hpp"
+#include "lang2manip/model/collada_mesh_reader.hpp"
 #include "lang2manip/model/mesh_builder.hpp"
 
 namespace lang2manip {
@@ -16,7 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kAssimpExtensions = {".stl", ".dae", ".obj", ".ply"};
+const std::vector<std::string> kAssimpExtensions = {".stl", ".obj", ".ply"};
 const std::vector<std::string> kCoinExtensions = {".iv", ".wrl", ".vrml"};
 
 bool contains(const std::vector<std::string>& list, const std::string& item) {
@@ -41,7 +42,7 @@ void checkReadableFile(const fs::path& path, const std::string& name) {
 
 const std::vector<std::string>& supportedMeshExtensions() {
   static const std::vector<std::string> extensions = [] {
-    std::vector<std::string> all = kAssimpExtensions;
+    std::vector<std::string> all = {".stl", ".dae", ".obj", ".ply"};
     all.insert(all.end(), kCoinExtensions.begin(), kCoinExtensions.end());
     return all;
   }();
@@ -58,6 +59,7 @@ TriangleMesh loadTriangleMesh(const std::string& path) {
                          joined(supportedMeshExtensions(), ", ") + ")");
   }
   checkReadableFile(file, path);
+  if (extension == ".dae") return readColladaMesh(file);
   return contains(kCoinExtensions, extension) ? readMeshWithCoin(file) : readMeshWithAssimp(file);
 }
 
