@@ -69,5 +69,7 @@ function(lang2manip_add_test name)
   target_compile_definitions(${name} PRIVATE
     LANG2MANIP_SHARED_DIR="${LANG2MANIP_SHARED_DIR}"
     LANG2MANIP_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/tests/data")
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+  # Allowed-collision matrices kept on disk by the tests go to the build tree, not the user's cache.
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300
+    ENVIRONMENT "LANG2MANIP_CACHE_DIR=${CMAKE_BINARY_DIR}/test-cache")
 endfunction()

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "lang2manip/collision/allowed_collision_cache.hpp"
+#include "lang2manip/collision/allowed_collision_disk_cache.hpp"
 #include "lang2manip/collision/fcl_collision_checker.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/kinematics/forward_kinematics.hpp"
@@ -141,11 +142,15 @@ class WorldBuilder {
     holding_[static_cast<std::size_t>(r)].emplace(body, holdingLinks(model, link));
   }
 
-  /// The model's matrix from the process-wide cache (computed here on its first use).
+  /// The model's matrix from the process-wide cache; on its first use in this process, from the
+  /// disk cache or computed here.
   std::shared_ptr<const AllowedCollisionMatrix> sharedMatrix(const RobotModelPtr& model) const {
     const LinkShapes& shapes = shapes_.at(model.get());
-    return cachedAllowedCollisionMatrix(model, settings_.allowedCollisions, [&] {
-      return computeAllowedCollisionMatrix(*model, linkTest(*model, shapes), settings_.allowedCollisions);
+    const AllowedCollisionSettings& settings = settings_.allowedCollisions;
+    return cachedAllowedCollisionMatrix(model, settings, [&] {
+      return storedOrComputedAllowedCollisions(*model, settings, [&] {
+        return computeAllowedCollisionMatrix(*model, linkTest(*model, shapes), settings);
+      });
     });
   }
 
