@@ -78,6 +78,21 @@ TEST(SolveCli, KauthamDemoWithItsOwnPlanner) {
   EXPECT_THAT(constrained.output, HasSubstr("planner \"omplconstr\" is not supported"));
 }
 
+TEST(SolveCli, KauthamPrmDemoSaysWhichOfItsParametersHaveNoEffect) {
+  LANG2MANIP_REQUIRE_SHARED_DATA(shared);
+  const auto problem = shared / "kautham/OMPL_geo_demos/Cube_Maze_R2/OMPL_PRM_bigcube-maze2D_R2_g.xml";
+  const RunResult result = run("solve " + problem.string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("solved by PRM"));
+  EXPECT_THAT(result.output, HasSubstr("parameter \"DistanceThreshold\" = 0.20 has no effect: "));
+  EXPECT_THAT(result.output, HasSubstr("parameter \"Sampler 0(r) 1(h) 2(sdk) 3(g)\" = 3 has no effect: samples are uniform"));
+  const RunResult json = run("solve " + problem.string() + " --json");
+  ASSERT_EQ(json.exitCode, 0) << json.output;
+  const auto report = nlohmann::json::parse(json.output.substr(json.output.find('{')));
+  ASSERT_EQ(report["ignored_parameters"].size(), 5u);
+  EXPECT_EQ(report["ignored_parameters"][0]["name"], "MinGrowTime");
+}
+
 TEST(BenchMbmCli, OneProblemPerFamilyWithJsonAndOmplLog) {
   LANG2MANIP_REQUIRE_SHARED_DATA(shared);
   const TempDirectory directory;

@@ -2,7 +2,11 @@
 // solved with the problem's own planner within its own time limit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/planning/planning_session.hpp"
@@ -13,10 +17,8 @@ namespace lang2manip {
 namespace {
 
 
-/// The geometric demos with OMPL parameters that lang2manip maps today, and the two constrained
-/// demos (refused as not supported). ../shared/data/kautham also holds PRM demos with Kautham-only
-/// parameters, control and ODE demos and <Benchmark> files: the robot-agnostic issue (12) covers
-/// them; the model tests load every one of them.
+/// The hand-checked geometric demos and the two constrained demos (refused as not supported).
+/// The PRM demos with Kautham-only parameters, and the control and ODE demos, have tests below.
 std::vector<std::filesystem::path> demoProblems(const std::filesystem::path& shared) {
   std::vector<std::filesystem::path> files;
   for (const std::string& demo : test::handCheckedKauthamProblems()) files.push_back(shared / "kautham" / demo);
@@ -74,6 +76,63 @@ TEST(KauthamDemos, GeometricQueriesAreSolvedWithinTheirTimeLimit) {
   constexpr int kDemoQueries = 8;
   EXPECT_GE(queries, kDemoQueries);
   EXPECT_EQ(solved, queries) << "unsolved:" << unsolved;
+}
+
+/// Every problem file under ../shared/data/kautham/<set> whose name matches `pattern`.
+std::vector<std::filesystem::path> demoFiles(const std::filesystem::path& shared, const std::string& set,
+                                             const std::string& pattern) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(shared / "kautham" / set)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() == ".xml" && name.find(pattern) != std::string::npos) files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+TEST(KauthamDemos, PrmDemosSolveWithTheirOwnKauthamParameters) {
+  LANG2MANIP_REQUIRE_SHARED_DATA(shared);
+  const std::vector<std::filesystem::path> files = demoFiles(shared, "OMPL_geo_demos", "OMPL_PRM");
+  EXPECT_GE(files.size(), 9u);
+  for (const std::filesystem::path& file : files) {
+    SCOPED_TRACE(file.string());
+    PlanningSession session;
+    session.openProblem(file);
+    EXPECT_EQ(session.plannerSettings().planner(), "PRM");
+    // Kautham's DistanceThreshold, MinGrowTime, ... are accepted, each with why it has no effect.
+    EXPECT_FALSE(session.plannerSettings().ignoredParameters().empty());
+    for (const IgnoredParameter& ignored : session.plannerSettings().ignoredParameters()) {
+      EXPECT_FALSE(ignored.reason.empty()) << ignored.name;
+    }
+    const double timeLimit = session.plannerSettings().maxPlanningTime() * test::kTimeLimitScale;
+    session.setPlannerParameter("_Max Planning Time", std::to_string(timeLimit));
+    for (const KauthamQuery& query : session.problem().queries) {
+      session.setQuery(query.init, query.goal);
+      const MotionPlan& plan = session.solve();
+      EXPECT_TRUE(plan.solved()) << plan.message;
+    }
+  }
+}
+
+TEST(KauthamDemos, ControlAndPhysicsDemosSayWhatTheirPlannerNeeds) {
+  LANG2MANIP_REQUIRE_SHARED_DATA(shared);
+  const std::vector<std::pair<std::string, std::string>> sets = {{"OMPL_ctrl_demos", "control-based planning"},
+                                                                 {"OMPL_ode_demos", "Open Dynamics Engine"}};
+  for (const auto& [set, needs] : sets) {
+    const std::vector<std::filesystem::path> files = demoFiles(shared, set, "");
+    EXPECT_GE(files.size(), 2u) << set;
+    for (const std::filesystem::path& file : files) {
+      SCOPED_TRACE(file.string());
+      PlanningSession session;
+      try {
+        session.openProblem(file);
+        ADD_FAILURE() << "opened without a not-supported error";
+      } catch (const NotSupportedError& error) {
+        EXPECT_NE(std::string(error.what()).find("is not supported: it needs " ), std::string::npos) << error.what();
+        EXPECT_NE(std::string(error.what()).find(needs), std::string::npos) << error.what();
+      }
+    }
+  }
 }
 
 }  // namespace

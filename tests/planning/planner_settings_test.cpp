@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "lang2manip/core/error.hpp"
 #include "model/model_test_support.hpp"
 #include "lang2manip/planning/planner_registry.hpp"
@@ -31,6 +35,67 @@ TEST(PlannerRegistry, UnknownAndUnsupportedPlannersAreClearErrors) {
   EXPECT_THROW((void)canonicalPlannerName("omplconstr"), NotSupportedError);
   EXPECT_NE(test::errorMessage([] { (void)canonicalPlannerName("omplcRRTcar"); }).find("control-based"),
             std::string::npos);
+}
+
+TEST(PlannerRegistry, KauthamPlannersWeDoNotHaveSayWhatTheyNeed) {
+  for (const auto& [name, needs] : std::vector<std::pair<std::string, std::string>>{
+           {"KPIECECarPlanner", "Open Dynamics Engine"},
+           {"KnowledgeOrientedKPIECE2DPlanner", "Open Dynamics Engine"},
+           {"HFPlanner", "grid discretization"},
+           {"NF1Planner", "grid discretization"},
+           {"omplFOSRRT", "synergy tree"},
+           {"PRM Hand IROS", "robot-hand sampling"},
+           {"omplcSSTf16", "control-based"}}) {
+    const std::string message = test::errorMessage([&] { (void)canonicalPlannerName(name); });
+    EXPECT_NE(message.find("planner \"" + name + "\" is not supported: it needs"), std::string::npos) << message;
+    EXPECT_NE(message.find(needs), std::string::npos) << message;
+    EXPECT_THROW((void)canonicalPlannerName(name), NotSupportedError);
+  }
+  EXPECT_EQ(canonicalPlannerName("omplEST"), "EST");
+  EXPECT_EQ(canonicalPlannerName("omplBKPIECE"), "BKPIECE1");
+}
+
+TEST(PlannerSettings, KauthamOnlyParametersSetTheirOmplCounterpartOrSayTheyHaveNoEffect) {
+  PlannerSettings prm;
+  prm.setPlanner("omplPRM");
+  prm.setParameter("DistanceThreshold", "0.5");
+  prm.setParameter("MinGrowTime", "0.2");
+  prm.setParameter("Sampler 0(r) 1(h) 2(sdk) 3(g)", "0");  // uniform random: what lang2manip does
+  prm.setParameter("MaxNearestNeighbors", "7");
+  ASSERT_EQ(prm.ignoredParameters().size(), 2u);
+  EXPECT_EQ(prm.ignoredParameters()[0].name, "DistanceThreshold");
+  EXPECT_EQ(prm.ignoredParameters()[0].value, "0.5");
+  EXPECT_NE(prm.ignoredParameters()[0].reason.find("max_nearest_neighbors"), std::string::npos);
+  prm.setParameter("Sampler 0(r) 1(h) 2(sdk) 3(g)", "1");  // Halton: not implemented
+  EXPECT_EQ(prm.ignoredParameters().size(), 3u);
+  prm.setParameter("DistanceThreshold", "0.7");  // set again: listed once, with the new value
+  EXPECT_EQ(prm.ignoredParameters().size(), 3u);
+  EXPECT_EQ(prm.omplParameters(), (std::vector<std::pair<std::string, std::string>>{{"max_nearest_neighbors", "7"}}));
+  // A Kautham value is a number; a parameter of another planner is still unknown.
+  EXPECT_THROW(prm.setParameter("BounceSteps", "many"), InputError);
+  EXPECT_THROW(prm.setParameter("maxNumSteps", "4"), InputError);
+  prm.setPlanner("PRM");
+  EXPECT_TRUE(prm.ignoredParameters().empty());
+
+  PlannerSettings kpiece;
+  kpiece.setPlanner("omplKPIECE");
+  kpiece.setParameter("failedExpansionScoreFactor", "0.4");
+  kpiece.setParameter("maxNumSteps", "4");
+  EXPECT_EQ(kpiece.omplParameters(),
+            (std::vector<std::pair<std::string, std::string>>{{"failed_expansion_score_factor", "0.4"}}));
+  EXPECT_EQ(kpiece.ignoredParameters().size(), 1u);
+
+  PlannerSettings star;
+  star.setPlanner("omplRRTStar");
+  star.setParameter("DelayCC (0/1)", "1");
+  star.setParameter("K-Neigh Factor", "1.5");
+  star.setParameter("Optimize none(0)/dist(1)/clear(2)/PMD(3)", "1");
+  star.setParameter("_Range", "0.2");
+  EXPECT_EQ(star.omplParameters(), (std::vector<std::pair<std::string, std::string>>{
+                                       {"delay_collision_checking", "1"}, {"rewire_factor", "1.5"}, {"range", "0.2"}}));
+  EXPECT_TRUE(star.ignoredParameters().empty());
+  star.setParameter("Optimize none(0)/dist(1)/clear(2)/PMD(3)", "2");
+  EXPECT_EQ(star.ignoredParameters().size(), 1u);
 }
 
 TEST(PlannerSettings, CommonParametersUnderKauthamNames) {

@@ -177,11 +177,19 @@ void runSolve(const SolveOptions& options, std::ostream& out) {
   bool solved = true;
   for (const json& query : report["queries"]) solved = solved && query["status"] == "solved";
   report["solved"] = solved;
+  report["ignored_parameters"] = json::array();
+  for (const IgnoredParameter& ignored : session.plannerSettings().ignoredParameters()) {
+    report["ignored_parameters"].push_back({{"name", ignored.name}, {"value", ignored.value}, {"reason", ignored.reason}});
+  }
   if (!options.out.empty()) writeOutputs(options.out, report, trajectories);
   if (options.json) {
     out << report.dump(2) << '\n';
   } else {
     out << "problem " << loaded.name << " (" << loaded.file << ")\n";
+    for (const json& ignored : report["ignored_parameters"]) {
+      out << "parameter \"" << ignored["name"].get<std::string>() << "\" = " << ignored["value"].get<std::string>()
+          << " has no effect: " << ignored["reason"].get<std::string>() << "\n";
+    }
     for (const json& query : report["queries"]) out << queryText(query);
   }
   if (!solved) throw TaskFailedError("solve: not every query was solved");

@@ -1,6 +1,7 @@
 #include "lang2manip/planning/motion_planner.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -66,6 +67,18 @@ long progressIterations(const ob::Planner& planner) {
 bool plansUntilLimit(const PlannerSettings& settings) {
   const PlannerDescription& description = plannerDescription(settings.planner());
   return description.runsUntilTimeLimit || (settings.optimize() && description.optimizing);
+}
+
+/// When a planner's range exceeds the whole space, every extension must reach its sample in one
+/// collision-free motion, which narrow passages never allow: the reason a path is not found.
+std::string rangeHint(ob::Planner& planner) {
+  if (!planner.params().hasParam("range")) return "";
+  const double range = std::atof(planner.params()["range"].getValue().c_str());
+  const double extent = planner.getSpaceInformation()->getMaximumExtent();
+  if (!(range > extent)) return "";
+  return " (its range " + formatSeconds(range) + " exceeds the extent " + formatSeconds(extent) +
+         " of the planning space, so each extension must reach its sample in one collision-free motion; "
+         "Kautham measures Range in its own state space, where the same number may mean a shorter step)";
 }
 
 }  // namespace
@@ -306,7 +319,7 @@ MotionPlan MotionPlanner::solve(const VectorX& start, const std::vector<VectorX>
                      : plan.status == MotionPlanStatus::kStopped
                          ? "stopped before a path was found by " + settings.planner()
                          : "no path found in " + formatSeconds(settings.maxPlanningTime()) + " s by " +
-                               settings.planner();
+                               settings.planner() + rangeHint(*ompl_->planner);
       break;
     }
     const std::string failure =

@@ -87,9 +87,9 @@ const std::vector<RegisteredPlanner>& registry() {
       {{"SPARS", {}, true, false}, factory<og::SPARS>()},
       {{"SPARStwo", {"SPARS2"}, true, false}, factory<og::SPARStwo>()},
       {{"KPIECE1", {"omplKPIECE", "KPIECE"}, false, false}, factory<og::KPIECE1>()},
-      {{"BKPIECE1", {"BKPIECE"}, false, false}, factory<og::BKPIECE1>()},
+      {{"BKPIECE1", {"BKPIECE", "omplBKPIECE"}, false, false}, factory<og::BKPIECE1>()},
       {{"LBKPIECE1", {"LBKPIECE"}, false, false}, factory<og::LBKPIECE1>()},
-      {{"EST", {}, false, false}, factory<og::EST>()},
+      {{"EST", {"omplEST"}, false, false}, factory<og::EST>()},
       {{"BiEST", {}, false, false}, factory<og::BiEST>()},
       {{"ProjEST", {"omplProjEST"}, false, false}, factory<og::ProjEST>()},
       {{"SBL", {"omplSBL"}, false, false}, factory<og::SBL>()},
@@ -104,6 +104,11 @@ const std::vector<RegisteredPlanner>& registry() {
   return planners;
 }
 
+constexpr const char* kOde = "physics-based planning with the Open Dynamics Engine (Kautham's ODE planners)";
+constexpr const char* kGrid = "a grid discretization of the controls (Kautham's IOC grid planners)";
+constexpr const char* kSynergy = "a synergy tree or PCA data of a hand (Kautham's FOS/PCA planners)";
+constexpr const char* kHand = "Kautham's robot-hand sampling (its own PRM variants for hands)";
+
 // Planners named by Kautham or OMPL that lang2manip cannot run, with what they would need.
 const std::vector<std::pair<std::string, std::string>>& unsupportedKauthamPlanners() {
   static const std::vector<std::pair<std::string, std::string>> planners = {
@@ -112,12 +117,46 @@ const std::vector<std::pair<std::string, std::string>>& unsupportedKauthamPlanne
       {"omplLazyTRRT", "Kautham's own LazyTRRT implementation"},
       {"omplRRTStarPMD", "Kautham's synergy (PMD) sampling"},
       {"omplRRTConnectEUROC", "Kautham's EUROC-specific planner"},
+      {"omplcRRT", "control-based planning (ompl::control)"},
       {"omplcRRTcar", "control-based planning (ompl::control)"},
       {"omplcSSTcar", "control-based planning (ompl::control)"},
       {"omplcRRTdualdrive", "control-based planning (ompl::control)"},
       {"omplcSSTdualdrive", "control-based planning (ompl::control)"},
       {"omplcRRTf16", "control-based planning (ompl::control)"},
       {"omplcSSTf16", "control-based planning (ompl::control)"},
+      {"KPIECE2DPlanner", kOde},
+      {"KPIECECarPlanner", kOde},
+      {"KPIECEChainPlanner", kOde},
+      {"RRT2DPlanner", kOde},
+      {"Syclop2DPlanner", kOde},
+      {"KnowledgeOrientedKPIECE2DPlanner", kOde},
+      {"KnowledgeOrientedRRT2DPlanner", kOde},
+      {"KnowledgeOrientedSyclop2DPlanner", kOde},
+      {"omplODERRTPlanner", kOde},
+      {"omplODEKPIECEPlanner", kOde},
+      {"MyGridPlanner", kGrid},
+      {"NF1Planner", kGrid},
+      {"HFPlanner", kGrid},
+      {"GUIBROgrid", kGrid},
+      {"omplFOSRRT", kSynergy},
+      {"omplFOSTRRT", kSynergy},
+      {"omplFOSRRTConnect", kSynergy},
+      {"omplFOSTRRTConnect", kSynergy},
+      {"omplFOSVFRRT", kSynergy},
+      {"omplMyFOSVFRRT", kSynergy},
+      {"omplFOSBKPIECE1", kSynergy},
+      {"omplFOSLBKPIECE1", kSynergy},
+      {"omplFOSKPIECE1", kSynergy},
+      {"omplFOSRRTStar", kSynergy},
+      {"omplPCARRT", kSynergy},
+      {"omplMyPCARRT", kSynergy},
+      {"PRMPCA HandArm", kSynergy},
+      {"PRM Hand IROS", kHand},
+      {"PRM Hand ICRA", kHand},
+      {"PRMAURO HandArm", kHand},
+      {"PRM RobotHand-Const ICRA", kHand},
+      {"MyPlanner", "Kautham's own example planner (MyPlanner), which is not part of OMPL"},
+      {"MyPRMPlanner", "Kautham's own example planner (MyPRMPlanner), which is not part of OMPL"},
       {"LazyLBTRRT", "a working OMPL build: Debian's OMPL 1.5.2 aborts in it (assertion in "
                      "LPAstarOnGraph::removeEdge)"},
       {"SST", "tuning for kinodynamic problems: with its default radii its tree stops growing on "

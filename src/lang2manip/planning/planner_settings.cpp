@@ -8,6 +8,7 @@
 
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/core/text_parsing.hpp"
+#include "lang2manip/planning/kautham_planner_parameters.hpp"
 #include "lang2manip/planning/motion_planner.hpp"
 #include "lang2manip/planning/planner_registry.hpp"
 
@@ -110,6 +111,7 @@ PlannerSettings::PlannerSettings() : planner_("RRTConnect") {}
 void PlannerSettings::setPlanner(const std::string& name) {
   planner_ = canonicalPlannerName(name);
   omplParameters_.clear();
+  ignored_.clear();
 }
 
 std::vector<std::string> PlannerSettings::parameterNames() const {
@@ -120,8 +122,21 @@ std::vector<std::string> PlannerSettings::parameterNames() const {
 
 void PlannerSettings::setParameter(const std::string& name, const std::string& value) {
   const std::string key = commonKey(name);
-  if (setCommonParameter(key, name, std::string(trimmed(value)))) return;
-  setOmplParameter(name, std::string(trimmed(value)));
+  const std::string text(trimmed(value));
+  if (setCommonParameter(key, name, text)) return;
+  if (const auto meaning = kauthamPlannerParameter(planner_, name, text)) {
+    parseFiniteNumber(text, "parameter \"" + name + "\" of " + planner_, {});  // Kautham's values are numbers
+    if (!meaning->omplName.empty()) {
+      setOmplParameter(meaning->omplName, text);
+      return;
+    }
+    ignored_.erase(std::remove_if(ignored_.begin(), ignored_.end(),
+                                  [&](const IgnoredParameter& old) { return old.name == name; }),
+                   ignored_.end());
+    if (!meaning->noEffect.empty()) ignored_.push_back({name, text, meaning->noEffect});
+    return;
+  }
+  setOmplParameter(name, text);
 }
 
 bool PlannerSettings::setCommonParameter(const std::string& key, const std::string& name,
@@ -153,7 +168,8 @@ bool PlannerSettings::setCommonParameter(const std::string& key, const std::stri
 }
 
 void PlannerSettings::setOmplParameter(const std::string& name, const std::string& value) {
-  for (const std::string& candidate : {name, omplStyleName(name)}) {
+  const std::string undecorated = name.substr(std::min(name.size(), name.find_first_not_of('_')));
+  for (const std::string& candidate : {name, omplStyleName(name), omplStyleName(undecorated)}) {
     bool accepted = false;
     const OmplParameterInfo info = trySetOnPlanner(planner_, candidate, value, accepted);
     if (!info.known) continue;

@@ -9,6 +9,13 @@
 
 namespace lang2manip {
 
+/// A parameter that was accepted but changes nothing, and why (a Kautham-only planner setting).
+struct IgnoredParameter {
+  std::string name;
+  std::string value;
+  std::string reason;
+};
+
 /// Path simplification, as Kautham's `_Simplify Solution`.
 enum class SimplifyLevel { kNone = 0, kSmooth = 1, kShortcutAndSmooth = 2 };
 
@@ -28,8 +35,13 @@ class PlannerSettings {
   /// graph between queries), and Kautham's display options `_Speed Factor`, `_Cspace Drawn`,
   /// `_Path Drawn` (accepted and kept; they do not change planning). Planner parameters by OMPL's
   /// name or Kautham's ("Goal Bias" = goal_bias). Throws InputError for an unknown name (listing
-  /// the valid ones), a value of the wrong type or outside the published range.
+  /// the valid ones), a value of the wrong type or outside the published range. Kautham's own
+  /// planner parameters (kautham_planner_parameters.hpp: omplPRM's DistanceThreshold, ...) set
+  /// their OMPL counterpart or, with a number as value, are listed in ignoredParameters().
   void setParameter(const std::string& name, const std::string& value);
+
+  /// The Kautham parameters accepted without effect since the planner was chosen.
+  [[nodiscard]] const std::vector<IgnoredParameter>& ignoredParameters() const noexcept { return ignored_; }
 
   /// Every parameter name setParameter() accepts for the current planner (Kautham's common
   /// names and OMPL's names of the planner's parameters).
@@ -56,6 +68,7 @@ class PlannerSettings {
   bool incremental_ = false;
   double speedFactor_ = 1.0;
   std::vector<std::pair<std::string, std::string>> omplParameters_;
+  std::vector<IgnoredParameter> ignored_;
 };
 
 }  // namespace lang2manip

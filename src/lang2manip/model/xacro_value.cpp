@@ -1,0 +1,198 @@
+#include "lang2manip/model/xacro_value.hpp"
+
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+namespace lang2manip::xacro {
+namespace {
+
+[[noreturn]] void typeError(const Value& value, const char* wanted) {
+  throw ExpressionError(std::string("expected ") + wanted + ", got " + typeName(value) + " " + toRepr(value));
+}
+
+/// Python's repr() of a float: the shortest text that reads back, fixed notation for exponents
+/// from -4 to 15, else scientific with a two-digit exponent ("1e-05", "1.5e+16").
+std::string floatText(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::scientific);
+  const std::string scientific(buffer, result.ptr);
+  const std::size_t e = scientific.find('e');
+  const int exponent = std::atoi(scientific.c_str() + e + 1);
+  const bool negative = scientific[0] == '-';
+  std::string digits;
+  for (std::size_t i = negative ? 1 : 0; i < e; ++i) {
+    if (scientific[i] != '.') digits += scientific[i];
+  }
+  std::string text = negative ? "-" : "";
+  if (exponent < -4 || exponent >= 16) {
+    text += digits.substr(0, 1);
+    if (digits.size() > 1) text += "." + digits.substr(1);
+    char exponentText[8];
+    std::snprintf(exponentText, sizeof exponentText, "e%c%02d", exponent < 0 ? '-' : '+', std::abs(exponent));
+    return text + exponentText;
+  }
+  if (exponent < 0) return text + "0." + std::string(static_cast<std::size_t>(-exponent - 1), '0') + digits;
+  const auto integerDigits = static_cast<std::size_t>(exponent + 1);
+  if (digits.size() <= integerDigits) return text + digits + std::string(integerDigits - digits.size(), '0') + ".0";
+  return text + digits.substr(0, integerDigits) + "." + digits.substr(integerDigits);
+}
+
+std::string quoted(const std::string& text) {
+  const char quote = text.find('\'') != std::string::npos && text.find('"') == std::string::npos ? '"' : '\'';
+  std::string result(1, quote);
+  for (const char c : text) {
+    if (c == quote || c == '\\') result += '\\';
+    result += c;
+  }
+  return result + quote;
+}
+
+/// Python's int() of text: optional sign, decimal digits, surrounding spaces.
+bool parseInteger(std::string_view text, long long& value) {
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  if (text.empty()) return false;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return error == std::errc() && end == text.data() + text.size();
+}
+
+/// Python's float() of text (inf and nan included).
+bool parseFloat(std::string_view text, double& value) {
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  if (text.empty()) return false;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return error == std::errc() && end == text.data() + text.size();
+}
+
+}  // namespace
+
+double Value::number() const {
+  if (const auto* b = std::get_if<bool>(&data)) return *b ? 1.0 : 0.0;
+  if (const auto* i = std::get_if<long long>(&data)) return static_cast<double>(*i);
+  if (const auto* d = std::get_if<double>(&data)) return *d;
+  typeError(*this, "a number");
+}
+
+long long Value::integer() const {
+  if (const auto* b = std::get_if<bool>(&data)) return *b ? 1 : 0;
+  if (const auto* i = std::get_if<long long>(&data)) return *i;
+  typeError(*this, "an integer");
+}
+
+const std::string& Value::string() const {
+  if (const auto* s = std::get_if<std::string>(&data)) return *s;
+  typeError(*this, "a string");
+}
+
+const ValueList& Value::list() const {
+  if (const auto* l = std::get_if<std::shared_ptr<const ValueList>>(&data)) return **l;
+  typeError(*this, "a list");
+}
+
+const ValueDict& Value::dict() const {
+  if (const auto* d = std::get_if<std::shared_ptr<const ValueDict>>(&data)) return **d;
+  typeError(*this, "a dict");
+}
+
+const Function& Value::function() const {
+  if (const auto* f = std::get_if<Function>(&data)) return *f;
+  typeError(*this, "a function");
+}
+
+std::string typeName(const Value& value) {
+  static const char* const kNames[] = {"NoneType", "bool", "int", "float", "str", "list", "dict", "function"};
+  return kNames[value.data.index()];
+}
+
+std::string toText(const Value& value) {
+  if (value.isString()) return value.string();
+  return toRepr(value);
+}
+
+std::string toRepr(const Value& value) {
+  switch (value.data.index()) {
+    case 0: return "None";
+    case 1: return std::get<bool>(value.data) ? "True" : "False";
+    case 2: return std::to_string(std::get<long long>(value.data));
+    case 3: return floatText(std::get<double>(value.data));
+    case 4: return quoted(value.string());
+    case 5: {
+      std::string text = "[";
+      for (const Value& item : value.list()) text += (text.size() > 1 ? ", " : "") + toRepr(item);
+      return text + "]";
+    }
+    case 6: {
+      std::string text = "{";
+      for (const auto& [key, item] : value.dict()) text += (text.size() > 1 ? ", " : "") + quoted(key) + ": " + toRepr(item);
+      return text + "}";
+    }
+    default: return "<function " + value.function().name + ">";
+  }
+}
+
+bool isTrue(const Value& value) {
+  switch (value.data.index()) {
+    case 0: return false;
+    case 1: return std::get<bool>(value.data);
+    case 2: return std::get<long long>(value.data) != 0;
+    case 3: return std::get<double>(value.data) != 0.0;
+    case 4: return !value.string().empty();
+    case 5: return !value.list().empty();
+    case 6: return !value.dict().empty();
+    default: return true;
+  }
+}
+
+bool equal(const Value& a, const Value& b) {
+  if (a.isNumber() && b.isNumber()) return a.number() == b.number();
+  if (a.data.index() != b.data.index()) return false;
+  if (a.isNone()) return true;
+  if (a.isString()) return a.string() == b.string();
+  if (a.isList()) {
+    const ValueList& x = a.list();
+    const ValueList& y = b.list();
+    if (x.size() != y.size()) return false;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      if (!equal(x[i], y[i])) return false;
+    }
+    return true;
+  }
+  if (a.isDict()) {
+    if (a.dict().size() != b.dict().size()) return false;
+    for (const auto& [key, item] : a.dict()) {
+      const Value* other = findKey(b.dict(), key);
+      if (other == nullptr || !equal(item, *other)) return false;
+    }
+    return true;
+  }
+  return false;
+}
+
+const Value* findKey(const ValueDict& dict, std::string_view key) {
+  for (const auto& [name, item] : dict) {
+    if (name == key) return &item;
+  }
+  return nullptr;
+}
+
+Value literalValue(const std::string& text) {
+  if (text.size() >= 2 && text.front() == '\'' && text.back() == '\'') return text.substr(1, text.size() - 2);
+  if (text.find('_') != std::string::npos) return text;
+  long long integer = 0;
+  if (parseInteger(text, integer)) return integer;
+  double number = 0.0;
+  if (parseFloat(text, number)) return number;
+  if (text == "true" || text == "True") return true;
+  if (text == "false" || text == "False") return false;
+  return text;
+}
+
+}  // namespace lang2manip::xacro
