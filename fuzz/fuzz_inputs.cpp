@@ -143,6 +143,7 @@ const std::vector<FuzzTarget>& fuzzTargets() {
       {"llm_replay", feedLlmReplay},
       {"urdf", feedUrdf},
       {"srdf", feedSrdf},
+      {"xacro", feedXacro},
       {"kautham_problem", feedKauthamProblem},
       {"kautham_controls", feedKauthamControls},
       {"moveit_problem", feedMoveItProblem},

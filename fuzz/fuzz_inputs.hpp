@@ -46,6 +46,8 @@ InputOutcome feedLlmReplay(std::string_view input);
 
 /// URDF text (meshes not loaded, so inputs need no sibling files).
 InputOutcome feedUrdf(std::string_view input);
+/// A xacro file (with inc.xacro and data.yaml beside it to include and load), expanded.
+InputOutcome feedXacro(std::string_view input);
 /// SRDF text for the built-in Panda.
 InputOutcome feedSrdf(std::string_view input);
 

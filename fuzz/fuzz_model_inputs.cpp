@@ -11,6 +11,7 @@
 #include "lang2manip/model/moveit_scene_reader.hpp"
 #include "lang2manip/model/srdf_reader.hpp"
 #include "lang2manip/model/urdf_reader.hpp"
+#include "lang2manip/model/xacro.hpp"
 #include "scratch_file.hpp"
 
 namespace lang2manip::fuzz {
@@ -59,6 +60,20 @@ InputOutcome feedUrdf(std::string_view input) {
   return outcomeOf([&] {
     (void)readUrdfString(std::string(input), "fuzz.urdf", scratchDirectory(), options);
   });
+}
+
+InputOutcome feedXacro(std::string_view input) {
+  // Files an input may include or load beside it (fuzz/corpus/xacro/ uses them).
+  static const bool besideWritten = [] {
+    writeScratchFile("inc.xacro",
+                     "<robot xmlns:xacro=\"http://www.ros.org/wiki/xacro\"><xacro:property name=\"length\" value=\"0.5\"/>"
+                     "<xacro:macro name=\"leg\" params=\"n\"><link name=\"leg${n}\"/></xacro:macro></robot>");
+    writeScratchFile("data.yaml", "joint:\n  lower: !degrees -90\n  upper: 1.5\n  flags: [true, null]\n");
+    return true;
+  }();
+  (void)besideWritten;
+  const std::filesystem::path file = writeScratchFile("robot.urdf.xacro", input);
+  return outcomeOf([&] { (void)expandXacroFile(file); });
 }
 
 InputOutcome feedSrdf(std::string_view input) {

@@ -27,7 +27,7 @@ fi
 dictionary_for() {
   case $1 in
     plan_text | llm_*) echo json ;;
-    urdf | srdf | kautham_* | mesh_dae) echo xml ;;
+    urdf | srdf | xacro | kautham_* | mesh_dae) echo xml ;;
     moveit_problem) echo yaml ;;
     *) echo "" ;;
   esac

@@ -48,6 +48,7 @@ done
 add_files urdf "$kTextLimit" "$repo/data" -name '*.urdf'
 add_files urdf "$kTextLimit" "$shared" -name '*.urdf'
 add_files srdf "$kTextLimit" "$repo/data" -name '*.srdf'
+add_files xacro "$kTextLimit" "$shared" -name '*.xacro'
 add_files kautham_problem "$kTextLimit" "$repo/data/problems" -name '*.xml'
 add_files kautham_problem "$kTextLimit" "$shared/kautham" -name '*.xml'
 add_files kautham_controls "$kTextLimit" "$repo/data" -name '*.cntr'

@@ -1,4 +1,4 @@
-// libFuzzer harness: COLLADA mesh through assimp (model/assimp_mesh_reader.cpp).
+// libFuzzer harness: COLLADA mesh (model/collada_mesh_reader.cpp).
 // The input goes through fuzz_inputs.hpp, shared with tests/regression/, so a crash saved there
 // replays this code.
 

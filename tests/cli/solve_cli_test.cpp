@@ -12,6 +12,7 @@ namespace lang2manip::test {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 std::string readFile(const std::filesystem::path& file) {
   std::ifstream stream(file);
@@ -91,6 +92,26 @@ TEST(SolveCli, KauthamPrmDemoSaysWhichOfItsParametersHaveNoEffect) {
   const auto report = nlohmann::json::parse(json.output.substr(json.output.find('{')));
   ASSERT_EQ(report["ignored_parameters"].size(), 5u);
   EXPECT_EQ(report["ignored_parameters"][0]["name"], "MinGrowTime");
+}
+
+TEST(XacroCli, ExpandsShowsAndPassesArguments) {
+  LANG2MANIP_REQUIRE_SHARED_DATA(shared);
+  const auto panda = shared / "robots/franka_description/robots/panda/panda.urdf.xacro";
+  const RunResult expanded = run("xacro " + panda.string() + " hand:=true");
+  ASSERT_EQ(expanded.exitCode, 0) << expanded.output;
+  EXPECT_THAT(expanded.output, HasSubstr("<link name=\"panda_hand_tcp\""));
+  EXPECT_THAT(expanded.output, Not(HasSubstr("xacro:")));
+  const RunResult shown = run("show " + panda.string() + " --xacro-arg hand:=true");
+  ASSERT_EQ(shown.exitCode, 0) << shown.output;
+  EXPECT_THAT(shown.output, HasSubstr("8 DOFs"));
+  EXPECT_THAT(shown.output, HasSubstr("tool frame panda_hand_tcp"));
+  EXPECT_THAT(run("show " + panda.string()).output, HasSubstr("7 DOFs"));
+  const RunResult bad = run("show " + panda.string() + " --xacro-arg hand");
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_THAT(bad.output, HasSubstr("xacro argument \"hand\" is not NAME:=VALUE"));
+  const RunResult missing = run("xacro /nonexistent/robot.xacro");
+  EXPECT_EQ(missing.exitCode, 1);
+  EXPECT_THAT(missing.output, HasSubstr("/nonexistent/robot.xacro"));
 }
 
 TEST(BenchMbmCli, OneProblemPerFamilyWithJsonAndOmplLog) {

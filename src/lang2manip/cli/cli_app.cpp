@@ -20,6 +20,7 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   addPlanCommand(app, out);
   addRunCommand(app, out);
   addBenchCommand(app, out);
+  addXacroCommand(app, out);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

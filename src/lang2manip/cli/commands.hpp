@@ -42,6 +42,9 @@ void addPlanCommand(CLI::App& app, std::ostream& out);
 /// A task that does not succeed still writes everything and ends with TaskFailedError.
 void addRunCommand(CLI::App& app, std::ostream& out);
 
+/// `lang2manip xacro FILE [NAME:=VALUE ...] [--package-path DIR]`: prints the URDF a xacro file
+/// expands to.
+void addXacroCommand(CLI::App& app, std::ostream& out);
 /// A command ran to its end but the task failed (its results were written); exit status 2.
 class TaskFailedError : public std::runtime_error {
  public:

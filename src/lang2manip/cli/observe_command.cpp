@@ -9,6 +9,7 @@ namespace {
 struct ObserveOptions {
   std::string problem;
   std::string robot = "panda";
+  std::vector<std::string> xacroArguments;
   bool json = false;
 };
 
@@ -22,9 +23,10 @@ void addObserveCommand(CLI::App& app, std::ostream& out) {
                       "Built-in problem name, Kautham problem .xml, or MoveIt scene .yaml (default: " +
                           defaultProblemName() + ")");
   command->add_option("--robot", options->robot, "Built-in robot for MoveIt scenes")->capture_default_str();
+  addXacroArgumentOption(*command, options->xacroArguments);
   command->add_flag("--json", options->json, "Print the observation as JSON");
   command->callback([options, &out] {
-    const LoadedProblem loaded = loadProblem(options->problem, options->robot);
+    const LoadedProblem loaded = loadProblem(options->problem, options->robot, options->xacroArguments);
     const nlohmann::json observation = observeEnvironment(loaded.problem.scene);
     out << (options->json ? observation.dump(2) + "\n" : observationText(observation));
   });

@@ -3,12 +3,39 @@
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/model/moveit_scene_reader.hpp"
 #include "lang2manip/model/urdf_reader.hpp"
+#include "lang2manip/model/xacro.hpp"
+
+#include <map>
 
 namespace lang2manip {
 namespace {
 
-LoadedProblem loadMoveIt(const std::filesystem::path& sceneFile, const std::string& robot) {
-  const RobotModelPtr model = readUrdfFile(builtinRobotUrdf(robot));
+using XacroArguments = std::map<std::string, std::string>;
+
+bool isRobotDescription(const std::filesystem::path& file) {
+  return file.extension() == ".urdf" || isXacroFile(file);
+}
+
+RobotModelPtr loadRobot(const std::string& robot, const XacroArguments& arguments) {
+  UrdfReadOptions options;
+  options.xacroArguments = arguments;
+  return readUrdfFile(isRobotDescription(robot) ? std::filesystem::path(robot) : builtinRobotUrdf(robot), options);
+}
+
+LoadedProblem loadRobotOnly(const std::filesystem::path& file, const XacroArguments& arguments) {
+  const RobotModelPtr model = loadRobot(file.string(), arguments);
+  Scene scene;
+  scene.addRobot(SceneRobot{model->name(), model, Pose::Identity(), model->middleConfiguration(), {}});
+  LoadedProblem loaded;
+  loaded.name = model->name();
+  loaded.file = file.string();
+  loaded.format = "robot";
+  loaded.problem = kauthamProblemFromScene(scene, loaded.name);
+  return loaded;
+}
+
+LoadedProblem loadMoveIt(const std::filesystem::path& sceneFile, const std::string& robot, const XacroArguments& arguments) {
+  const RobotModelPtr model = loadRobot(robot, arguments);
   const MoveItProblem moveit = readMoveItProblem(sceneFile, requestFileForScene(sceneFile), model);
   LoadedProblem loaded;
   loaded.name = sceneFile.parent_path().filename().string() + "/" + sceneFile.stem().string();
@@ -21,9 +48,11 @@ LoadedProblem loadMoveIt(const std::filesystem::path& sceneFile, const std::stri
   return loaded;
 }
 
-LoadedProblem loadKautham(const std::filesystem::path& file) {
+LoadedProblem loadKautham(const std::filesystem::path& file, const XacroArguments& arguments) {
   LoadedProblem loaded;
-  loaded.problem = readKauthamProblem(file);
+  KauthamReadOptions options;
+  options.xacroArguments = arguments;
+  loaded.problem = readKauthamProblem(file, options);
   loaded.name = loaded.problem.name;
   loaded.file = file.string();
   loaded.format = "kautham";
@@ -39,16 +68,28 @@ LoadedProblem loadKautham(const std::filesystem::path& file) {
 
 }  // namespace
 
-LoadedProblem loadProblem(const std::string& nameOrPath, const std::string& robot) {
+LoadedProblem loadProblem(const std::string& nameOrPath, const std::string& robot,
+                          const std::vector<std::string>& xacroArguments) {
+  XacroArguments arguments;
+  for (const std::string& argument : xacroArguments) {
+    const auto [name, value] = parseXacroArgument(argument);
+    arguments[name] = value;
+  }
+  if (isRobotDescription(nameOrPath)) return loadRobotOnly(nameOrPath, arguments);
   const std::filesystem::path file = resolveProblem(nameOrPath.empty() ? defaultProblemName() : nameOrPath);
   const std::string extension = file.extension().string();
-  if (extension == ".yaml" || extension == ".yml") return loadMoveIt(file, robot);
+  if (extension == ".yaml" || extension == ".yml") return loadMoveIt(file, robot, arguments);
   if (extension != ".xml") {
     throw InputError(SourceLocation{file.string(), 0},
-                     "not a problem file: expected a Kautham problem (.xml) or a MoveIt "
-                     "planning scene (.yaml)");
+                     "not a problem file: expected a Kautham problem (.xml), a MoveIt planning scene "
+                     "(.yaml) or a robot description (.urdf, .xacro)");
   }
-  return loadKautham(file);
+  return loadKautham(file, arguments);
+}
+
+void addXacroArgumentOption(CLI::App& command, std::vector<std::string>& arguments) {
+  command.add_option("--xacro-arg", arguments,
+                     "NAME:=VALUE for the <xacro:arg>s of .xacro robots (repeatable; over a problem's <XacroArg>s)");
 }
 
 }  // namespace lang2manip

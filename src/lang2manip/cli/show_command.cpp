@@ -9,6 +9,7 @@ namespace {
 struct ShowOptions {
   std::string problem;
   std::string robot = "panda";
+  std::vector<std::string> xacroArguments;
   bool json = false;
 };
 
@@ -23,9 +24,10 @@ void addShowCommand(CLI::App& app, std::ostream& out) {
                           defaultProblemName() + ")");
   command->add_option("--robot", options->robot, "Built-in robot for MoveIt scenes")
       ->capture_default_str();
+  addXacroArgumentOption(*command, options->xacroArguments);
   command->add_flag("--json", options->json, "Print JSON");
   command->callback([options, &out] {
-    const nlohmann::json report = problemReport(loadProblem(options->problem, options->robot));
+    const nlohmann::json report = problemReport(loadProblem(options->problem, options->robot, options->xacroArguments));
     out << (options->json ? report.dump(2) + "\n" : problemReportText(report));
   });
 }

@@ -3,6 +3,7 @@
 /// planner block and queries, mapping queries to joint values, and writing a Scene back.
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,9 @@ struct KauthamEntity {
   bool isRobot = false;
   /// <InvKinematic name> of a robot (empty when none).
   std::string inverseKinematics;
+  /// <XacroArg name="..." value="..."/> children of a robot whose model is a .xacro file (our
+  /// extension; Kautham ignores unknown elements).
+  std::map<std::string, std::string> xacroArguments;
 };
 
 /// A loaded problem. `scene` holds the robots at the first query's init (middle of the ranges
@@ -63,6 +67,8 @@ struct KauthamReadOptions {
   std::vector<std::filesystem::path> modelDirectories;
   /// package:// search paths for the URDFs.
   std::vector<std::filesystem::path> packagePaths;
+  /// <xacro:arg> values for every .xacro robot, over the problem's own <XacroArg>s.
+  std::map<std::string, std::string> xacroArguments;
 };
 
 /// Reads a Kautham problem XML. Throws InputError naming the file, the line where known and what

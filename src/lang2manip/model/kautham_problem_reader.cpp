@@ -96,6 +96,15 @@ class ProblemReader {
     return limits;
   }
 
+  UrdfReadOptions urdfOptionsOf(const KauthamEntity& entity, bool ignoreMimic) const {
+    UrdfReadOptions urdfOptions;
+    urdfOptions.packagePaths = options_.packagePaths;
+    urdfOptions.scale = entity.scale;
+    urdfOptions.ignoreMimic = ignoreMimic;
+    urdfOptions.xacroArguments = entity.xacroArguments;
+    return urdfOptions;
+  }
+
   KauthamEntity readEntity(const pugi::xml_node& node, bool isRobot, RobotModelPtr& model) {
     KauthamEntity entity;
     entity.isRobot = isRobot;
@@ -104,10 +113,11 @@ class ProblemReader {
     entity.scale = document_.numberAttribute(node, "scale", 1.0);
     if (entity.scale <= 0.0) throw InputError(document_.where(node), "scale must be positive");
     entity.resolvedPath = resolve(entity.reference, node, isRobot ? "robot model" : "obstacle model");
-    UrdfReadOptions urdfOptions;
-    urdfOptions.packagePaths = options_.packagePaths;
-    urdfOptions.scale = entity.scale;
-    model = readUrdfFile(entity.resolvedPath, urdfOptions);
+    for (const pugi::xml_node& argument : node.children("XacroArg")) {
+      entity.xacroArguments[document_.requiredAttribute(argument, "name")] = document_.requiredAttribute(argument, "value");
+    }
+    for (const auto& [name, value] : options_.xacroArguments) entity.xacroArguments[name] = value;
+    model = readUrdfFile(entity.resolvedPath, urdfOptionsOf(entity, false));
     const pugi::xml_node kauthamName = node.child("KauthamName");
     entity.name = kauthamName ? document_.requiredAttribute(kauthamName, "name") : model->name();
     if (!names_.insert(entity.name).second) {
@@ -171,11 +181,7 @@ class ProblemReader {
       }
     }
     if (!drivesMimic) return;
-    UrdfReadOptions urdfOptions;
-    urdfOptions.packagePaths = options_.packagePaths;
-    urdfOptions.scale = entity.scale;
-    urdfOptions.ignoreMimic = true;
-    robot.model = readUrdfFile(entity.resolvedPath, urdfOptions);
+    robot.model = readUrdfFile(entity.resolvedPath, urdfOptionsOf(entity, true));
     robot.configuration = robot.model->middleConfiguration();
   }
 

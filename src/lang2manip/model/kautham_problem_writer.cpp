@@ -64,9 +64,15 @@ std::string robotXml(const SceneRobot& robot, const KauthamEntity* entity,
   const double scale = entity ? entity->scale : 1.0;
   const bool hasBaseLimits = robot.baseLimits.x || robot.baseLimits.y || robot.baseLimits.z;
   const Pose home = entity && hasBaseLimits ? entity->home : robot.basePose;
+  std::string arguments;
+  if (entity) {
+    for (const auto& [name, value] : entity->xacroArguments) {
+      arguments += "    <XacroArg name=\"" + xmlEscaped(name) + "\" value=\"" + xmlEscaped(value) + "\"/>\n";
+    }
+  }
   return "  <Robot robot=\"" + xmlEscaped(relativeReference(urdf, directory)) + "\" scale=\"" +
          exactNumber(scale) + "\">\n" + homeXml(home) + "    <KauthamName name=\"" +
-         xmlEscaped(robot.name) + "\"/>\n" + limitsXml(robot.baseLimits) + "  </Robot>\n";
+         xmlEscaped(robot.name) + "\"/>\n" + arguments + limitsXml(robot.baseLimits) + "  </Robot>\n";
 }
 
 Pose worldPoseOf(const Scene& scene, const SceneObject& object) {

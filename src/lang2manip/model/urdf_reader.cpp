@@ -13,6 +13,7 @@
 #include "lang2manip/model/mesh_loader.hpp"
 #include "lang2manip/model/srdf_reader.hpp"
 #include "lang2manip/model/urdf_structure_check.hpp"
+#include "lang2manip/model/xacro.hpp"
 #include "lang2manip/model/xml_document.hpp"
 
 namespace lang2manip {
@@ -181,8 +182,10 @@ Joint jointFromUrdf(const urdf::Joint& urdfJoint, double scale, bool ignoreMimic
 
 std::vector<std::filesystem::path> packageSearchPaths(const UrdfReadOptions& options) {
   std::vector<std::filesystem::path> paths = options.packagePaths;
-  if (const char* rosPath = std::getenv("ROS_PACKAGE_PATH")) {
-    std::stringstream entries(rosPath);
+  for (const char* variable : {"LANG2MANIP_PACKAGE_PATH", "ROS_PACKAGE_PATH"}) {
+    const char* value = std::getenv(variable);
+    if (value == nullptr) continue;
+    std::stringstream entries(value);
     std::string entry;
     while (std::getline(entries, entry, ':')) {
       if (!entry.empty()) paths.emplace_back(entry);
@@ -288,6 +291,12 @@ std::filesystem::path resolveMeshReference(const std::string& reference,
 }
 
 RobotModelPtr readUrdfFile(const std::filesystem::path& path, const UrdfReadOptions& options) {
+  if (isXacroFile(path)) {
+    const XmlDocument document = XmlDocument::loadString(
+        expandXacroFile(path, XacroOptions{options.xacroArguments, options.packagePaths}),
+        path.string() + " (expanded)", "URDF expanded from xacro");
+    return readUrdf(document, {}, path.parent_path(), options);
+  }
   const XmlDocument document = XmlDocument::loadFile(path, "URDF file");
   return readUrdf(document, path, path.parent_path(), options);
 }

@@ -2,6 +2,7 @@
 /// @file Reads URDF (through urdfdom) into a RobotModel, with meshes, materials and the SRDF.
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -25,11 +26,14 @@ struct UrdfReadOptions {
   bool ignoreMimic = false;
   /// Load mesh files (off: geometry references are kept but meshes are not read).
   bool loadMeshes = true;
+  /// The <xacro:arg> values of a .xacro robot (see xacro.hpp).
+  std::map<std::string, std::string> xacroArguments;
 };
 
-/// Reads a URDF file. Throws InputError naming the file (and the line where known) for a missing
-/// or unreadable file, malformed XML or URDF, a cycle or several roots, non-finite numbers, or a
-/// mesh reference that resolves nowhere / cannot be loaded.
+/// Reads a URDF file, or a xacro file (name ending in .xacro) expanded first with
+/// options.xacroArguments. Throws InputError naming the file (and the line where known) for a
+/// missing or unreadable file, malformed XML or URDF, a xacro error, a cycle or several roots,
+/// non-finite numbers, or a mesh reference that resolves nowhere / cannot be loaded.
 RobotModelPtr readUrdfFile(const std::filesystem::path& path, const UrdfReadOptions& options = {});
 
 /// Reads URDF text; `sourceName` names it in messages and `baseDirectory` resolves relative mesh

@@ -9,6 +9,8 @@
 namespace lang2manip::xacro {
 namespace {
 
+constexpr std::size_t kMaxStringLength = std::size_t{1} << 24;
+
 [[noreturn]] void fail(const std::string& message) { throw ExpressionError(message); }
 
 [[noreturn]] void unsupported(std::string_view op, const Value& a, const Value& b) {
@@ -17,19 +19,21 @@ namespace {
 
 bool integral(const Value& v) { return v.isInt() || v.isBool(); }
 
-long long checked(bool overflow, long long value) {
+/// x OP y for + - *, failing on overflow.
+long long exactly(char op, long long x, long long y) {
+  long long result = 0;
+  const bool overflow = op == '+'   ? __builtin_add_overflow(x, y, &result)
+                        : op == '-' ? __builtin_sub_overflow(x, y, &result)
+                                    : __builtin_mul_overflow(x, y, &result);
   if (overflow) fail("integer overflow");
-  return value;
+  return result;
 }
 
 Value arithmetic(std::string_view op, const Value& a, const Value& b) {
   if (integral(a) && integral(b)) {
     const long long x = a.integer();
     const long long y = b.integer();
-    long long r = 0;
-    if (op == "+") return checked(__builtin_add_overflow(x, y, &r), r);
-    if (op == "-") return checked(__builtin_sub_overflow(x, y, &r), r);
-    if (op == "*") return checked(__builtin_mul_overflow(x, y, &r), r);
+    if (op == "+" || op == "-" || op == "*") return exactly(op[0], x, y);
     if (y == 0 && (op == "//" || op == "%")) fail("integer division or modulo by zero");
     if (op == "//") return x / y - ((x % y != 0 && ((x < 0) != (y < 0))) ? 1 : 0);
     if (op == "%") return ((x % y) + y) % y;
@@ -64,7 +68,7 @@ Value repeated(const Value& sequence, const Value& count) {
   const long long times = std::max(0LL, count.integer());
   if (times > 1000000) fail("repetition of more than 1000000 copies");
   if (sequence.isString()) {
-    if (sequence.string().size() * static_cast<std::size_t>(times) > (std::size_t{1} << 24)) fail("string too long");
+    if (sequence.string().size() * static_cast<std::size_t>(times) > kMaxStringLength) fail("string longer than 16 MiB");
     std::string text;
     for (long long i = 0; i < times; ++i) text += sequence.string();
     return text;
@@ -322,8 +326,12 @@ Value binaryOperation(std::string_view op, const Value& a, const Value& b) {
   if (op == ">") return compare(op, a, b) > 0;
   if (op == "<=") return compare(op, a, b) <= 0;
   if (op == ">=") return compare(op, a, b) >= 0;
-  if (op == "+" && a.isString() && b.isString()) return a.string() + b.string();
+  if (op == "+" && a.isString() && b.isString()) {
+    if (a.string().size() + b.string().size() > kMaxStringLength) fail("string longer than 16 MiB");
+    return a.string() + b.string();
+  }
   if (op == "+" && a.isList() && b.isList()) {
+    if (a.list().size() + b.list().size() > 1000000) fail("list longer than 1000000 items");
     ValueList items = a.list();
     items.insert(items.end(), b.list().begin(), b.list().end());
     return items;

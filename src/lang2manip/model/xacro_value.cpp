@@ -32,7 +32,7 @@ std::string floatText(double value) {
   if (exponent < -4 || exponent >= 16) {
     text += digits.substr(0, 1);
     if (digits.size() > 1) text += "." + digits.substr(1);
-    char exponentText[8];
+    char exponentText[16];
     std::snprintf(exponentText, sizeof exponentText, "e%c%02d", exponent < 0 ? '-' : '+', std::abs(exponent));
     return text + exponentText;
   }
