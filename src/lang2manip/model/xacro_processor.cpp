@@ -501,7 +501,8 @@ class XacroProcessor {
       const std::string key = attribute.name();
       if (key != kOrigin && !(key == "macro" && hasPrefix(node.name(), "xacro:call"))) given[key] = attribute.value();
     }
-    for (const auto& [key, value] : given) {
+    for (const auto& entry : given) {
+      const std::string& key = entry.first;
       const bool known = std::any_of(macro.parameters.begin(), macro.parameters.end(), [&](const MacroParameter& p) {
         return p.name == key && p.kind == MacroParameter::Kind::kValue;
       });
