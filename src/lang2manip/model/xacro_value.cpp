@@ -52,24 +52,26 @@ std::string quoted(const std::string& text) {
   return result + quote;
 }
 
-/// Python's int() of text: optional sign, decimal digits, surrounding spaces.
-bool parseInteger(std::string_view text, long long& value) {
+/// `text` without surrounding spaces and a leading '+', as Python's int() and float() read it.
+std::string_view numberText(std::string_view text) {
   while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
   while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
   if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  if (text.empty()) return false;
+  return text;
+}
+
+/// Python's int() of text (decimal digits).
+bool parseInteger(std::string_view text, long long& value) {
+  text = numberText(text);
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  return error == std::errc() && end == text.data() + text.size();
+  return !text.empty() && error == std::errc() && end == text.data() + text.size();
 }
 
 /// Python's float() of text (inf and nan included).
 bool parseFloat(std::string_view text, double& value) {
-  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
-  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
-  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  if (text.empty()) return false;
+  text = numberText(text);
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  return error == std::errc() && end == text.data() + text.size();
+  return !text.empty() && error == std::errc() && end == text.data() + text.size();
 }
 
 }  // namespace
