@@ -236,52 +236,13 @@ class XacroProcessor {
   }
 
   Value call(const std::string& name, const ValueList& arguments, const pugi::xml_node& at) {
-    const std::string function = hasPrefix(name, "xacro.") ? name.substr(6) : name;
-    std::string message;
-    for (const Value& argument : arguments) message += xacro::toText(argument);
-    if (function == "load_yaml") {
-      if (arguments.size() != 1) throw ExpressionError("load_yaml() takes 1 argument");
-      fs::path file = arguments[0].string();
-      if (file.is_relative()) file = currentFile(at).parent_path() / file;
-      return xacro::loadYamlValue(file);
-    }
-    if (function == "warning" || function == "message" || function == "print_location") {
-      if (function == "warning") logWarning(where(at).toString() + ": xacro warning: " + message);
-      return Value();
-    }
-    if (function == "error" || function == "fatal") throw ExpressionError("xacro error: " + message);
-    throw ExpressionError("'" + name + "' is not a function of xacro");
+    return xacro::callXacroFunction(name, arguments, currentFile(at), where(at).toString());
   }
 
   std::string substitution(const std::string& command, Scope& scope, const pugi::xml_node& at) {
-    std::istringstream words(command);
-    std::string verb;
-    std::string first;
-    words >> verb >> first;
-    std::string rest;
-    std::getline(words, rest);
-    rest = rest.empty() ? "" : rest.substr(rest.find_first_not_of(' ') == std::string::npos ? rest.size() : rest.find_first_not_of(' '));
-    if (verb == "arg") {
-      const auto found = arguments_.find(first);
-      if (found == arguments_.end()) throw ExpressionError("undefined argument '" + first + "' (declare it with <xacro:arg> or pass " + first + ":=VALUE)");
-      return found->second;
-    }
-    if (verb == "find") {
-      const auto package = xacro::findPackage(first, currentFile(at), options_.packagePaths);
-      if (!package) {
-        throw ExpressionError("package '" + first + "' not found (searched LANG2MANIP_PACKAGE_PATH, ROS_PACKAGE_PATH and the directories above " +
-                              currentFile(at).string() + " for its package.xml)");
-      }
-      return package->string();
-    }
-    if (verb == "env" || verb == "optenv") {
-      if (const char* value = std::getenv(first.c_str())) return value;
-      if (verb == "optenv") return rest;
-      throw ExpressionError("environment variable '" + first + "' is not set");
-    }
-    if (verb == "dirname") return currentFile(at).parent_path().string();
-    if (verb == "eval") return xacro::toText(expression(command.substr(command.find("eval") + 4), scope, at));
-    throw ExpressionError("$(" + verb + " ...) is not supported (arg, find, env, optenv, dirname and eval are)");
+    const xacro::SubstitutionContext context{arguments_, currentFile(at), options_.packagePaths,
+                                             [&](const std::string& code) { return xacro::toText(expression(code, scope, at)); }};
+    return xacro::substitutionArgument(command, context);
   }
 
   // ------------------------------------------------------------------------------ elements

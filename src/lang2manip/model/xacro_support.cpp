@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/log.hpp"
 #include "lang2manip/model/xml_document.hpp"
 
 namespace lang2manip::xacro {
@@ -246,6 +247,59 @@ std::vector<TextPart> splitText(const std::string& text) {
     }
   }
   return parts;
+}
+
+std::string substitutionArgument(const std::string& command, const SubstitutionContext& context) {
+  std::istringstream words(command);
+  std::string verb;
+  std::string first;
+  words >> verb >> first;
+  std::string rest;
+  std::getline(words, rest);
+  const std::size_t start = rest.find_first_not_of(' ');
+  rest = start == std::string::npos ? "" : rest.substr(start);
+  if (verb == "arg") {
+    const auto found = context.arguments.find(first);
+    if (found == context.arguments.end()) {
+      throw ExpressionError("undefined argument '" + first + "' (declare it with <xacro:arg> or pass " + first + ":=VALUE)");
+    }
+    return found->second;
+  }
+  if (verb == "find") {
+    const auto package = findPackage(first, context.currentFile, context.packagePaths);
+    if (!package) {
+      throw ExpressionError("package '" + first + "' not found (searched LANG2MANIP_PACKAGE_PATH, ROS_PACKAGE_PATH and the directories above " +
+                            context.currentFile.string() + " for its package.xml)");
+    }
+    return package->string();
+  }
+  if (verb == "env" || verb == "optenv") {
+    if (const char* value = std::getenv(first.c_str())) return value;
+    if (verb == "optenv") return rest;
+    throw ExpressionError("environment variable '" + first + "' is not set");
+  }
+  if (verb == "dirname") return context.currentFile.parent_path().string();
+  if (verb == "eval") return context.evaluate(command.substr(command.find("eval") + 4));
+  throw ExpressionError("$(" + verb + " ...) is not supported (arg, find, env, optenv, dirname and eval are)");
+}
+
+Value callXacroFunction(const std::string& name, const ValueList& arguments, const fs::path& currentFile,
+                        const std::string& location) {
+  const std::string function = name.rfind("xacro.", 0) == 0 ? name.substr(6) : name;
+  std::string message;
+  for (const Value& argument : arguments) message += toText(argument);
+  if (function == "load_yaml") {
+    if (arguments.size() != 1) throw ExpressionError("load_yaml() takes 1 argument");
+    fs::path file = arguments[0].string();
+    if (file.is_relative()) file = currentFile.parent_path() / file;
+    return loadYamlValue(file);
+  }
+  if (function == "warning" || function == "message" || function == "print_location") {
+    if (function == "warning") logWarning(location + ": xacro warning: " + message);
+    return Value();
+  }
+  if (function == "error" || function == "fatal") throw ExpressionError("xacro error: " + message);
+  throw ExpressionError("'" + name + "' is not a function of xacro");
 }
 
 }  // namespace lang2manip::xacro

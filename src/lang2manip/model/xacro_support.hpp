@@ -3,6 +3,8 @@
 /// reading macro parameter lists, and splitting text into literals, ${} and $() parts.
 
 #include <filesystem>
+#include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -44,5 +46,23 @@ struct TextPart {
 /// The parts of `text` ("$${" and "$$(" are literal "${" and "$(").
 /// @throws ExpressionError for an unclosed ${ or $(.
 std::vector<TextPart> splitText(const std::string& text);
+
+/// What a $(...) substitution can see.
+struct SubstitutionContext {
+  const std::map<std::string, std::string>& arguments;
+  std::filesystem::path currentFile;
+  const std::vector<std::filesystem::path>& packagePaths;
+  /// Evaluates the Python code of $(eval ...) to text.
+  std::function<std::string(const std::string&)> evaluate;
+};
+
+/// The text of "$(COMMAND)": arg NAME, find PKG, env VAR, optenv VAR [DEFAULT], dirname, eval CODE.
+/// @throws ExpressionError for an undefined argument, package or variable, or another command.
+std::string substitutionArgument(const std::string& command, const SubstitutionContext& context);
+
+/// Calls xacro.NAME (load_yaml relative to `currentFile`; warning, message, print_location; error,
+/// fatal). `location` prefixes a warning. @throws ExpressionError for xacro.error and unknown names.
+Value callXacroFunction(const std::string& name, const ValueList& arguments,
+                        const std::filesystem::path& currentFile, const std::string& location);
 
 }  // namespace lang2manip::xacro
