@@ -30,14 +30,14 @@ const std::string kCleanEnvironment =
     "env -u OPENAI_API_KEY -u OPENAI_BASE_URL -u ANTHROPIC_API_KEY -u ANTHROPIC_BASE_URL -u GEMINI_API_KEY "
     "-u GOOGLE_API_KEY -u GEMINI_BASE_URL -u OLLAMA_HOST -u OLLAMA_API_KEY -u SSL_CERT_FILE";
 
-json pick(const std::string& object) {
+json pickEntry(const std::string& object) {
   return {{"action", "pick"}, {"object", object}, {"params", nullptr}, {"refinements", nullptr}, {"planner", nullptr}};
 }
 json placeInHolder(const std::string& object) {
   return {{"action", "place"}, {"object", object}, {"params", {{"relation", "in"}, {"target", "holder"}}}};
 }
 const std::string kPaperPlan =
-    json({{"actions", {pick("marker"), placeInHolder("marker"), pick("eraser"), placeInHolder("eraser")}}}).dump();
+    json({{"actions", {pickEntry("marker"), placeInHolder("marker"), pickEntry("eraser"), placeInHolder("eraser")}}}).dump();
 
 /// The environment that points `protocol`'s client at `server`, with a key where one is needed.
 std::string environmentFor(const FakeLlmServer& server) {
@@ -71,11 +71,6 @@ void expectPaperPlanJson(const std::string& output) {
       EXPECT_EQ(actions[i]["params"]["target"], "holder") << i;
     }
   }
-}
-
-std::string readFile(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 TEST(CliPlan, OfflinePlansThePaperTaskAsFourNumberedActions) {
@@ -176,7 +171,7 @@ TEST(CliPlan, RecordThenReplayWithoutServerOrKeyGivesTheSamePlan) {
     ASSERT_EQ(result.exitCode, 0) << result.output;
     recorded = result.output;
   }
-  EXPECT_THAT(readFile(file), Not(HasSubstr(kApiKey))) << "keys are never recorded";
+  EXPECT_THAT(readFileText(file), Not(HasSubstr(kApiKey))) << "keys are never recorded";
   // The server is gone and no key or base URL is set.
   const RunResult replayed =
       run("plan " + kPaperTask + " --llm anthropic:claude-test --json --llm-replay " + file, false, kCleanEnvironment);

@@ -33,9 +33,9 @@ TEST(CheckCli, ValuesOutsideTheJointLimitsAreInvalidAndExitTwo) {
   EXPECT_THAT(text.output, HasSubstr("configuration of panda: INVALID"));
   EXPECT_THAT(text.output,
               HasSubstr("outside the joint limits: panda_joint4 = 0.5 is above its upper limit -0.0698"));
-  const RunResult json = run("check --json --config 0 -0.785 0 -2.356 0 1.571 0.785 0.09", false);
-  EXPECT_EQ(json.exitCode, 2);
-  const nlohmann::json report = nlohmann::json::parse(json.output);
+  const RunResult jsonRun = run("check --json --config 0 -0.785 0 -2.356 0 1.571 0.785 0.09", false);
+  EXPECT_EQ(jsonRun.exitCode, 2);
+  const nlohmann::json report = nlohmann::json::parse(jsonRun.output);
   EXPECT_FALSE(report["valid"].get<bool>());
   EXPECT_TRUE(report["checks"][0]["collision_free"].get<bool>());
   ASSERT_EQ(report["checks"][0]["limit_violations"].size(), 1U);

@@ -22,14 +22,9 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using ::testing::HasSubstr;
 
-std::string readFile(const fs::path& file) {
-  std::ifstream in(file);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+json readJson(const fs::path& file) { return json::parse(readFileText(file), nullptr, false); }
 
-json readJson(const fs::path& file) { return json::parse(readFile(file), nullptr, false); }
-
-json pick(const std::string& object) { return {{"action", "pick"}, {"object", object}}; }
+json pickStep(const std::string& object) { return {{"action", "pick"}, {"object", object}}; }
 json placeIn(const std::string& object) {
   return {{"action", "place"}, {"object", object}, {"params", {{"relation", "in"}, {"target", "holder"}}}};
 }
@@ -84,23 +79,23 @@ TEST(RunCli, ThePaperTaskOfflineSucceedsAndWritesEveryFile) {
   ASSERT_EQ(trajectory["segments"].size(), 4u);
   EXPECT_EQ(trajectory["segments"][2]["description"], "pick eraser");
   expectTimesIncrease(trajectory);
-  EXPECT_EQ(readFile(directory.path() / "trajectory.csv").rfind("action,time,panda/panda_joint1,", 0), 0u);
+  EXPECT_EQ(readFileText(directory.path() / "trajectory.csv").rfind("action,time,panda/panda_joint1,", 0), 0u);
   EXPECT_EQ(readJson(directory.path() / "plan.json")["actions"].size(), 4u);
-  EXPECT_THAT(readFile(directory.path() / "prompt.txt"), HasSubstr("put the marker and eraser in the holder"));
+  EXPECT_THAT(readFileText(directory.path() / "prompt.txt"), HasSubstr("put the marker and eraser in the holder"));
 }
 
 TEST(RunCli, TheSameSeedGivesTheSameTrajectory) {
   const TempDirectory first, second;
   ASSERT_EQ(run("run iiwa14_desk --seed 5" + kBudgets + " --out " + first.path().string()).exitCode, 0);
   ASSERT_EQ(run("run iiwa14_desk --seed 5" + kBudgets + " --out " + second.path().string()).exitCode, 0);
-  EXPECT_EQ(readFile(first.path() / "trajectory.json"), readFile(second.path() / "trajectory.json"));
+  EXPECT_EQ(readFileText(first.path() / "trajectory.json"), readFileText(second.path() / "trajectory.json"));
 }
 
 TEST(RunCli, AnLlmPlanThatCannotBeGroundedIsRepaired) {
   FakeLlmServer server(FakeLlmProtocol::kOpenAi);
   json unreachable = {{"action", "place"}, {"object", "marker"}, {"params", {{"position", {1.6, 0.0, 0.0}}}}};
-  server.enqueueAnswer(json({{"actions", {pick("marker"), unreachable}}}).dump());
-  server.enqueueAnswer(json({{"actions", {pick("marker"), placeIn("marker"), pick("eraser"), placeIn("eraser")}}}).dump());
+  server.enqueueAnswer(json({{"actions", {pickStep("marker"), unreachable}}}).dump());
+  server.enqueueAnswer(json({{"actions", {pickStep("marker"), placeIn("marker"), pickStep("eraser"), placeIn("eraser")}}}).dump());
   const TempDirectory directory;
   const std::string environment = "env -u OPENAI_API_KEY OPENAI_BASE_URL=" + server.baseUrl() + " OPENAI_API_KEY=sk-test";
   const RunResult result = run("run --llm openai:gpt-test" + kBudgets + " --out " + directory.path().string(), true, environment);

@@ -14,13 +14,6 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-std::string readFile(const std::filesystem::path& file) {
-  std::ifstream stream(file);
-  std::stringstream text;
-  text << stream.rdbuf();
-  return text.str();
-}
-
 TEST(SolveCli, SolvesThePaperSceneAndWritesJsonAndCsv) {
   const TempDirectory directory;
   const auto out = directory.path() / "result.json";
@@ -28,13 +21,13 @@ TEST(SolveCli, SolvesThePaperSceneAndWritesJsonAndCsv) {
   ASSERT_EQ(result.exitCode, 0) << result.output;
   EXPECT_THAT(result.output, HasSubstr("query 1: solved by RRTConnect"));
   EXPECT_THAT(result.output, HasSubstr("verified"));
-  const nlohmann::json report = nlohmann::json::parse(readFile(out));
+  const nlohmann::json report = nlohmann::json::parse(readFileText(out));
   EXPECT_TRUE(report["solved"].get<bool>());
   const nlohmann::json& trajectory = report["queries"][0]["trajectory"];
   EXPECT_EQ(trajectory["joint_names"][0], "panda/panda_joint1");
   ASSERT_GE(trajectory["points"].size(), 2u);
   EXPECT_TRUE(trajectory["points"][0].contains("time_from_start"));
-  const std::string csv = readFile(directory.path() / "result.csv");
+  const std::string csv = readFileText(directory.path() / "result.csv");
   EXPECT_EQ(csv.rfind("time,panda/panda_joint1,", 0), 0u) << csv.substr(0, 80);
 }
 
@@ -130,7 +123,7 @@ TEST(BenchMbmCli, OneProblemPerFamilyWithJsonAndOmplLog) {
   for (const char* key : {"valid", "solved", "median_ms", "mean_ms", "p95_ms", "max_ms", "simplify_median_ms"}) {
     EXPECT_TRUE(report["overall"].contains(key)) << key;
   }
-  const std::string text = readFile(log);
+  const std::string text = readFileText(log);
   EXPECT_EQ(text.rfind("OMPL version 1.5.2\nExperiment ", 0), 0u);
   EXPECT_THAT(text, HasSubstr("1 planners\ngeometric_RRTConnect\n"));
   EXPECT_THAT(text, HasSubstr("time REAL"));

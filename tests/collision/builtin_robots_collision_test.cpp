@@ -41,7 +41,7 @@ const RobotCase kCases[] = {
      "tx90/link_4"},
 };
 
-bool hasPair(const CollisionReport& report, const std::string& a, const std::string& b) {
+bool penetratesPair(const CollisionReport& report, const std::string& a, const std::string& b) {
   for (const CollisionContact& contact : report.contacts) {
     if ((contact.first == a && contact.second == b) || (contact.first == b && contact.second == a)) {
       return contact.penetrationDepth > 0.0;
@@ -78,7 +78,7 @@ TEST_P(BuiltinRobotCollision, FoldingTheArmIntoItselfCollidesNamingThePair) {
   EXPECT_FALSE(checker.isStateValid(0, q, *context));
   const CollisionReport report = checker.checkState(0, q, {}, *context);
   EXPECT_FALSE(report.valid);
-  EXPECT_TRUE(hasPair(report, c.selfFirst, c.selfSecond)) << contactList(report);
+  EXPECT_TRUE(penetratesPair(report, c.selfFirst, c.selfSecond)) << contactList(report);
   EXPECT_LT(report.minimumDistance, 0.0);
 }
 
@@ -92,7 +92,7 @@ TEST_P(BuiltinRobotCollision, PushingTheArmIntoTheDeskCollidesWithTheDesk) {
   q[model.variableIndex(c.deskJoint)] = c.deskValue;
   EXPECT_FALSE(checker.isStateValid(0, q, *context));
   const CollisionReport report = checker.checkState(0, q, {}, *context);
-  EXPECT_TRUE(hasPair(report, c.deskLink, "desk")) << contactList(report);
+  EXPECT_TRUE(penetratesPair(report, c.deskLink, "desk")) << contactList(report);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllRobots, BuiltinRobotCollision, ::testing::ValuesIn(kCases),

@@ -18,7 +18,7 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
 
-bool hasPair(const CollisionReport& report, const std::string& a, const std::string& b) {
+bool reportsPair(const CollisionReport& report, const std::string& a, const std::string& b) {
   for (const CollisionContact& contact : report.contacts) {
     if ((contact.first == a && contact.second == b) || (contact.first == b && contact.second == a)) return true;
   }
@@ -65,7 +65,7 @@ TEST(AttachedObjects, HeldObjectTouchingTheFingersIsNotReportedAgainstThem) {
   loose.addObject(objectWith("block", Box{Vector3(0.03, 0.14, 0.03)}, X_WO));
   const FclCollisionChecker looseChecker(loose);
   const CollisionReport free = looseChecker.checkState(0, pandaHome(), {}, *looseChecker.makeContext());
-  EXPECT_TRUE(hasPair(free, "block", "panda/panda_leftfinger")) << contactList(free);
+  EXPECT_TRUE(reportsPair(free, "block", "panda/panda_leftfinger")) << contactList(free);
 
   scene.addObject(objectWith("block", Box{Vector3(0.03, 0.14, 0.03)}, X_WO));
   scene.attach(Attachment{"block", "panda", "panda_hand", X_LO});
@@ -85,7 +85,7 @@ TEST(AttachedObjects, HeldObjectIsReportedAgainstOtherLinks) {
   const auto context = checker.makeContext();
   const CollisionReport report = checker.checkState(0, pandaHome(), {}, *context);
   EXPECT_FALSE(report.valid);
-  EXPECT_TRUE(hasPair(report, "ball", "panda/panda_link3")) << contactList(report);
+  EXPECT_TRUE(reportsPair(report, "ball", "panda/panda_link3")) << contactList(report);
 }
 
 TEST(AttachedObjects, HeldObjectMovesWithItsLink) {
@@ -103,7 +103,7 @@ TEST(AttachedObjects, HeldObjectMovesWithItsLink) {
   EXPECT_TRUE(checker.isStateValid(0, pandaHome(), *context));
   const CollisionReport report = checker.checkState(0, turned, {}, *context);
   EXPECT_FALSE(report.valid);
-  EXPECT_TRUE(hasPair(report, "ball", "post")) << contactList(report);
+  EXPECT_TRUE(reportsPair(report, "ball", "post")) << contactList(report);
 }
 
 TEST(CollisionChecker, DisabledObjectsAreIgnored) {

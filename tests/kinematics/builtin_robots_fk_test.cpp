@@ -19,7 +19,7 @@
 namespace lang2manip {
 namespace {
 
-constexpr double kTolerance = 1e-4;
+constexpr double kFkTolerance = 1e-4;
 constexpr double kHalfPi = std::numbers::pi / 2.0;
 
 using JointNames = std::vector<std::string>;
@@ -134,10 +134,10 @@ TEST_P(BuiltinRobotFkTest, MatchesPublishedPose) {
   const Quaternion expected(reference.wxyz[0], reference.wxyz[1], reference.wxyz[2],
                             reference.wxyz[3]);
   const Quaternion actual(X_RL.rotation());
-  EXPECT_LT((X_RL.translation() - reference.position).cwiseAbs().maxCoeff(), kTolerance)
+  EXPECT_LT((X_RL.translation() - reference.position).cwiseAbs().maxCoeff(), kFkTolerance)
       << "position " << X_RL.translation().transpose() << ", expected "
       << reference.position.transpose();
-  EXPECT_LT(quaternionError(actual, expected), kTolerance)
+  EXPECT_LT(quaternionError(actual, expected), kFkTolerance)
       << "quaternion (w x y z) " << actual.w() << " " << actual.vec().transpose()
       << ", expected " << expected.w() << " " << expected.vec().transpose();
 }

@@ -14,7 +14,7 @@ namespace lang2manip {
 namespace {
 
 constexpr double kStep = 1e-6;
-constexpr double kTolerance = 1e-6;
+constexpr double kJacobianTolerance = 1e-6;
 constexpr int kConfigurations = 20;
 
 /// Rotation vector of R_b * R_a^T (the small rotation from a to b), in the root frame.
@@ -59,7 +59,7 @@ TEST_P(JacobianTest, MatchesFiniteDifferencesForEveryLink) {
     for (int link = 0; link < static_cast<int>(model.links().size()); ++link) {
       computeLinkJacobian(model, data, link, offset, jacobian);
       const Eigen::MatrixXd numeric = numericJacobian(model, q, link, offset);
-      ASSERT_LT((jacobian - numeric).cwiseAbs().maxCoeff(), kTolerance)
+      ASSERT_LT((jacobian - numeric).cwiseAbs().maxCoeff(), kJacobianTolerance)
           << model.links()[static_cast<std::size_t>(link)].name << "\n" << jacobian << "\n\n"
           << numeric;
     }

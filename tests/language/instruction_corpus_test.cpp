@@ -20,7 +20,10 @@
 namespace lang2manip {
 namespace {
 
-enum class SceneId { kDesk, kWorkbench };
+using test::SceneId;
+using test::descriptorsFor;
+using test::D;
+using test::W;
 
 struct CorpusEntry {
   SceneId scene;
@@ -28,8 +31,6 @@ struct CorpusEntry {
   const char* expected;
 };
 
-constexpr SceneId D = SceneId::kDesk;
-constexpr SceneId W = SceneId::kWorkbench;
 
 const CorpusEntry kCorpus[] = {
     // The paper's task and plain placements.
@@ -246,12 +247,6 @@ const CorpusEntry kCorpus[] = {
     {W, "nudge both markers to the left",
      "marker_1 displaced by (0, 0.02, 0); marker_2 displaced by (0, 0.02, 0)"},
 };
-
-std::vector<ObjectDescriptor> descriptorsFor(SceneId scene) {
-  static const std::vector<ObjectDescriptor> desk = describeObjects(test::deskScene());
-  static const std::vector<ObjectDescriptor> workbench = describeObjects(test::workbenchScene());
-  return scene == SceneId::kDesk ? desk : workbench;
-}
 
 TEST(InstructionCorpusTest, HasAtLeastOneHundredDistinctInstructions) {
   std::set<std::string> distinct;

@@ -10,7 +10,10 @@
 namespace lang2manip {
 namespace {
 
-enum class SceneId { kDesk, kWorkbench };
+using test::SceneId;
+using test::descriptorsFor;
+using test::D;
+using test::W;
 
 struct Refusal {
   SceneId scene;
@@ -18,8 +21,6 @@ struct Refusal {
   const char* messageFragment;
 };
 
-constexpr SceneId D = SceneId::kDesk;
-constexpr SceneId W = SceneId::kWorkbench;
 
 const Refusal kRefusals[] = {
     {D, "put the bottle in the holder",
@@ -76,12 +77,6 @@ const Refusal kRefusals[] = {
      "cannot relate holder to itself"},
     {W, "put the marker_1 in the cups", "a relation needs one target object"},
 };
-
-std::vector<ObjectDescriptor> descriptorsFor(SceneId scene) {
-  static const std::vector<ObjectDescriptor> desk = describeObjects(test::deskScene());
-  static const std::vector<ObjectDescriptor> workbench = describeObjects(test::workbenchScene());
-  return scene == SceneId::kDesk ? desk : workbench;
-}
 
 TEST(InstructionRefusalTest, EveryRefusalNamesTheWordsItCouldNotGround) {
   for (const Refusal& refusal : kRefusals) {

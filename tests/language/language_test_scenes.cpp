@@ -86,4 +86,10 @@ void putInside(Scene& scene, const std::string& object, const std::string& conta
   scene.object(object).pose.translation() = floor;
 }
 
+std::vector<ObjectDescriptor> descriptorsFor(SceneId scene) {
+  static const std::vector<ObjectDescriptor> desk = describeObjects(deskScene());
+  static const std::vector<ObjectDescriptor> workbench = describeObjects(workbenchScene());
+  return scene == SceneId::kDesk ? desk : workbench;
+}
+
 }  // namespace lang2manip::test

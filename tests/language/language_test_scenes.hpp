@@ -4,10 +4,21 @@
 /// and fill them.
 
 #include <string>
+#include <vector>
 
+#include "lang2manip/language/object_descriptor.hpp"
 #include "lang2manip/model/scene.hpp"
 
 namespace lang2manip::test {
+
+/// The two scenes instruction tables refer to.
+enum class SceneId { kDesk, kWorkbench };
+/// Short names for the tables.
+inline constexpr SceneId D = SceneId::kDesk;
+inline constexpr SceneId W = SceneId::kWorkbench;
+
+/// The object descriptors of scene `scene` (computed once).
+std::vector<ObjectDescriptor> descriptorsFor(SceneId scene);
 
 /// The paper's scene (panda_desk): desk, marker, eraser, holder.
 Scene deskScene();

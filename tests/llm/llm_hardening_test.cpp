@@ -300,10 +300,6 @@ TEST_P(LlmHardeningTest, EchoedApiKeyIsRedactedEverywhere) {
   EXPECT_THAT(record, HasSubstr("[redacted]"));
 }
 
-std::string protocolName(const ::testing::TestParamInfo<FakeLlmProtocol>& param) {
-  return fakeLlmProvider(param.param);
-}
-
 INSTANTIATE_TEST_SUITE_P(AllProtocols, LlmHardeningTest, ::testing::ValuesIn(allFakeLlmProtocols()), protocolName);
 
 TEST(TokenCountTest, SumsAreUnknownWithAnUnknownPartAndSaturate) {

@@ -356,10 +356,6 @@ TEST_P(LlmProtocolTest, UnreachableServerIsATransportError) {
   EXPECT_THAT(error.what(), HasSubstr("2 attempts"));
 }
 
-std::string protocolName(const ::testing::TestParamInfo<FakeLlmProtocol>& parameter) {
-  return fakeLlmProvider(parameter.param);
-}
-
 INSTANTIATE_TEST_SUITE_P(AllProtocols, LlmProtocolTest,
                          ::testing::ValuesIn(allFakeLlmProtocols()), protocolName);
 

@@ -85,10 +85,6 @@ TEST_P(LlmRecordingTest, RecordThenReplayGivesTheSameAnswersWithoutNetwork) {
   EXPECT_EQ(error.httpStatus(), 404);
 }
 
-std::string protocolName(const ::testing::TestParamInfo<FakeLlmProtocol>& parameter) {
-  return fakeLlmProvider(parameter.param);
-}
-
 INSTANTIATE_TEST_SUITE_P(AllProtocols, LlmRecordingTest, ::testing::ValuesIn(allFakeLlmProtocols()),
                          protocolName);
 

@@ -83,4 +83,9 @@ LlmError expectLlmError(Call&& call) {
   return LlmError(LlmErrorKind::kTransport, "no error thrown");
 }
 
+/// Names a test instantiated for every fake protocol after the protocol ("openai", ...).
+inline std::string protocolName(const ::testing::TestParamInfo<FakeLlmProtocol>& parameter) {
+  return fakeLlmProvider(parameter.param);
+}
+
 }  // namespace lang2manip::test

@@ -19,7 +19,7 @@ using ::testing::DoubleNear;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 
-constexpr double kTolerance = 1e-12;
+constexpr double kControlsTolerance = 1e-12;
 
 // Line 4: the first Offset DOF; line 9: control "grip".
 const char* const kGripper = R"(<?xml version="1.0"?>
@@ -85,8 +85,8 @@ TEST(KauthamControls, DofValuesFollowTheFormula) {
   //   X3:    0.5 (offset only)
   //   wrist: 0.5 + 1*(0.9-0.5) + 0.5*(0.1-0.5)     = 0.5 + 0.4 - 0.2 = 0.7
   EXPECT_THAT(set.dofValues({0.9, 0.7, 0.1}, "c"),
-              ElementsAre(DoubleNear(0.1, kTolerance), DoubleNear(0.5, kTolerance),
-                          DoubleNear(0.5, kTolerance), DoubleNear(0.7, kTolerance)));
+              ElementsAre(DoubleNear(0.1, kControlsTolerance), DoubleNear(0.5, kControlsTolerance),
+                          DoubleNear(0.5, kControlsTolerance), DoubleNear(0.7, kControlsTolerance)));
   // All controls at 0.5: the offsets.
   EXPECT_THAT(set.dofValues({0.5, 0.5, 0.5}, "c"), ElementsAre(0.2, 0.7, 0.5, 0.5));
 }
@@ -96,12 +96,12 @@ TEST(KauthamControls, DofValuesAreClampedToTheUnitInterval) {
   // c = (1, 0, 1)
   //   left:  0.2 + 0.5*(-0.5) + 0.5*0.5 = 0.2       right: 0.7 + 0.5*(-2)*(-0.5) = 1.2 -> 1
   //   wrist: 0.5 + 0.5 + 0.5*0.5 = 1.25 -> 1
-  EXPECT_THAT(set.dofValues({1.0, 0.0, 1.0}, "c"), ElementsAre(DoubleNear(0.2, kTolerance), 1.0, 0.5, 1.0));
+  EXPECT_THAT(set.dofValues({1.0, 0.0, 1.0}, "c"), ElementsAre(DoubleNear(0.2, kControlsTolerance), 1.0, 0.5, 1.0));
   // c = (0, 1, 0)
   //   left:  0.2 + 0.25 - 0.25 = 0.2                right: 0.7 - 0.5 = 0.2
   //   wrist: 0.5 - 0.5 - 0.25 = -0.25 -> 0
   EXPECT_THAT(set.dofValues({0.0, 1.0, 0.0}, "c"),
-              ElementsAre(DoubleNear(0.2, kTolerance), DoubleNear(0.2, kTolerance), 0.5, 0.0));
+              ElementsAre(DoubleNear(0.2, kControlsTolerance), DoubleNear(0.2, kControlsTolerance), 0.5, 0.0));
 }
 
 TEST(KauthamControls, DofValuesRejectWrongSizeAndValuesOutsideTheUnitInterval) {

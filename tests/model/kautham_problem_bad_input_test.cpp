@@ -17,7 +17,7 @@ using test::plannerWithQueries;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-const char* const kArmRobot = "  <Robot robot=\"robots/arm.urdf\"/>\n";
+const char* const kArmRobotElement = "  <Robot robot=\"robots/arm.urdf\"/>\n";
 const char* const kArmControls = "  <Controls robot=\"controls/arm.cntr\"/>\n";
 
 std::string twoArmControls() {
@@ -36,7 +36,7 @@ class KauthamBadInputTest : public test::KauthamDirectoryTest {
 
   /// Writes a problem with the arm, its two controls and `queries`; returns the problem text.
   std::string writeQueries(const std::string& queries) const {
-    return writeProblem(std::string(kArmRobot) + kArmControls + plannerWithQueries(queries));
+    return writeProblem(std::string(kArmRobotElement) + kArmControls + plannerWithQueries(queries));
   }
   /// Writes `cntr` as controls/arm.cntr under a problem using it.
   void writeArmControls(const std::string& cntr, const std::string& robotInner = "") const {
@@ -51,7 +51,7 @@ TEST_F(KauthamBadInputTest, MissingProblemFile) {
 
 TEST_F(KauthamBadInputTest, MalformedXmlNamesTheLine) {
   const std::string text =
-      test::problemXml(std::string(kArmRobot) + "  <Obstacle obstacle=\"x\">\n  <Oops>\n");
+      test::problemXml(std::string(kArmRobotElement) + "  <Obstacle obstacle=\"x\">\n  <Oops>\n");
   test::writeText(problemFile(), text);
   // pugixml notices the unclosed <Oops> at </Problem>.
   EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "</Problem>"))),
@@ -78,13 +78,13 @@ TEST_F(KauthamBadInputTest, ModelReferenceThatResolvesNowhereListsThePathsTried)
 
 TEST_F(KauthamBadInputTest, ControlFileThatIsNotCntr) {
   writeControls("arm.xml", twoArmControls());
-  writeProblem(std::string(kArmRobot) + "  <Controls robot=\"controls/arm.xml\"/>\n");
+  writeProblem(std::string(kArmRobotElement) + "  <Controls robot=\"controls/arm.xml\"/>\n");
   EXPECT_THAT(readError(), AllOf(HasSubstr(controlFile("arm.xml").string()), HasSubstr(".cntr")));
 }
 
 TEST_F(KauthamBadInputTest, MissingControlFile) {
   const std::string text =
-      writeProblem(std::string(kArmRobot) + "  <Controls robot=\"controls/none.cntr\"/>\n");
+      writeProblem(std::string(kArmRobotElement) + "  <Controls robot=\"controls/none.cntr\"/>\n");
   EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "<Controls"))),
                                  HasSubstr("\"controls/none.cntr\" resolves to no readable file")));
 }
@@ -179,7 +179,7 @@ TEST_F(KauthamBadInputTest, MissingRobotControl) {
 
 TEST_F(KauthamBadInputTest, TwoObstaclesWithTheSameName) {
   const std::string text =
-      writeProblem(std::string(kArmRobot) + "  <Obstacle obstacle=\"obstacles/crate.urdf\"/>\n" +
+      writeProblem(std::string(kArmRobotElement) + "  <Obstacle obstacle=\"obstacles/crate.urdf\"/>\n" +
                    "  <Obstacle obstacle=\"obstacles/crate.urdf\" scale=\"2\"/>\n");
   EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "scale=\"2\""))),
                                  HasSubstr("\"crate_model\""), HasSubstr("<KauthamName>")));
@@ -187,7 +187,7 @@ TEST_F(KauthamBadInputTest, TwoObstaclesWithTheSameName) {
 
 TEST_F(KauthamBadInputTest, InitialAttachedObstacleNamingAnUnknownLink) {
   const std::string text =
-      writeProblem(std::string(kArmRobot) + "  <Obstacle obstacle=\"obstacles/crate.urdf\"/>\n" +
+      writeProblem(std::string(kArmRobotElement) + "  <Obstacle obstacle=\"obstacles/crate.urdf\"/>\n" +
                    "  <InitialAttachedObstacle robot=\"arm\" link=\"hand\" obstacle=\"crate_model\"/>\n");
   EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "<InitialAttachedObstacle"))),
                                  HasSubstr("<InitialAttachedObstacle>"), HasSubstr("\"hand\"")));
@@ -196,7 +196,7 @@ TEST_F(KauthamBadInputTest, InitialAttachedObstacleNamingAnUnknownLink) {
 TEST_F(KauthamBadInputTest, BadRoleInLang2ManipObject) {
   const std::string urdf = test::boxUrdf("holder", "0.1 0.1 0.1", "  <lang2manip_object role=\"bucket\"/>\n");
   writeModel("obstacles/holder.urdf", urdf);
-  writeProblem(std::string(kArmRobot) + "  <Obstacle obstacle=\"obstacles/holder.urdf\"/>\n");
+  writeProblem(std::string(kArmRobotElement) + "  <Obstacle obstacle=\"obstacles/holder.urdf\"/>\n");
   const std::filesystem::path model = (root() / "models" / "obstacles" / "holder.urdf").lexically_normal();
   EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(model, lineOf(urdf, "<lang2manip_object"))),
                                  HasSubstr("\"bucket\""), HasSubstr("none, support, container")));
@@ -237,7 +237,7 @@ TEST_F(KauthamBadInputTest, HomeFarOutsideTheModelRange) {
 TEST_F(KauthamBadInputTest, ObstacleWithAHugeBoxNamesItsFileAndLink) {
   const std::string urdf = test::boxUrdf("slab", "1e300 1 1");
   writeModel("obstacles/slab.urdf", urdf);
-  writeProblem(std::string(kArmRobot) + "  <Obstacle obstacle=\"obstacles/slab.urdf\"/>\n");
+  writeProblem(std::string(kArmRobotElement) + "  <Obstacle obstacle=\"obstacles/slab.urdf\"/>\n");
   const std::filesystem::path model = (root() / "models" / "obstacles" / "slab.urdf").lexically_normal();
   EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(model, lineOf(urdf, "<link"))),
                                  HasSubstr("link \"body\" collision 1 box size 1e+300 m is outside [1e-06, 10000] m")));

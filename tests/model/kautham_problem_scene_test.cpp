@@ -16,7 +16,7 @@ using test::controlSet;
 using test::simpleControl;
 using ::testing::ElementsAre;
 
-constexpr double kTolerance = 1e-9;
+constexpr double kSceneTolerance = 1e-9;
 
 const char* const kArmRobot = "  <Robot robot=\"robots/arm.urdf\"/>\n";
 
@@ -63,15 +63,15 @@ TEST_F(KauthamSceneTest, ObstacleControlsMoveObstaclesAndUncontrolledObstaclesSt
   // x = 0 + 0.25*2 = 0.5, y = -1 + 0.75*2 = 0.5, no Z limits -> 0; yaw 2 pi * 0.25 = pi/2.
   // X_WO = T(0, 0, 0.5) * T(0.5, 0.5, 0) * Rz(pi/2).
   const Pose& X_WO = problem.scene.object("crate").pose;
-  EXPECT_TRUE(X_WO.translation().isApprox(Vector3(0.5, 0.5, 0.5), kTolerance));
-  EXPECT_TRUE((X_WO.linear() * Vector3::UnitX()).isApprox(Vector3::UnitY(), kTolerance));
-  EXPECT_TRUE(problem.scene.object("still").pose.translation().isApprox(Vector3(3, 0, 0), kTolerance));
+  EXPECT_TRUE(X_WO.translation().isApprox(Vector3(0.5, 0.5, 0.5), kSceneTolerance));
+  EXPECT_TRUE((X_WO.linear() * Vector3::UnitX()).isApprox(Vector3::UnitY(), kSceneTolerance));
+  EXPECT_TRUE(problem.scene.object("still").pose.translation().isApprox(Vector3(3, 0, 0), kSceneTolerance));
 
   const std::vector<Pose> poses = obstaclePosesFromControls(problem, {1.0, 0.0}, "other");
   ASSERT_EQ(poses.size(), 2U);
   // x = 2, y = -1: (0, 0, 0.5) + (2, -1, 0).
-  EXPECT_TRUE(poses[0].translation().isApprox(Vector3(2, -1, 0.5), kTolerance));
-  EXPECT_TRUE(poses[1].translation().isApprox(Vector3(3, 0, 0), kTolerance));
+  EXPECT_TRUE(poses[0].translation().isApprox(Vector3(2, -1, 0.5), kSceneTolerance));
+  EXPECT_TRUE(poses[1].translation().isApprox(Vector3(3, 0, 0), kSceneTolerance));
   EXPECT_THAT(problem.obstacleControls.controlNames(), ElementsAre("crate/x", "crate/y"));
   EXPECT_EQ(problem.obstacleControls.source, controlFile("crates.cntr").lexically_normal().string());
 }
@@ -83,7 +83,7 @@ TEST_F(KauthamSceneTest, ObstacleControlFileWithOnlyOffsetsPlacesTheObstacle) {
       obstacleXml("crate", "obstacles/crate.urdf", "    <Limits name=\"X\" min=\"0\" max=\"2\"/>\n") +
       "  <Controls robot=\"\" obstacle=\"controls/crates.cntr\"/>\n");
   // x = 0 + 0.75*2 = 1.5
-  EXPECT_TRUE(read().scene.object("crate").pose.translation().isApprox(Vector3(1.5, 0, 0), kTolerance));
+  EXPECT_TRUE(read().scene.object("crate").pose.translation().isApprox(Vector3(1.5, 0, 0), kSceneTolerance));
 }
 
 TEST_F(KauthamSceneTest, InitialAttachedObstacleKeepsItsPoseRelativeToTheLinkAtInit) {
@@ -102,10 +102,10 @@ TEST_F(KauthamSceneTest, InitialAttachedObstacleKeepsItsPoseRelativeToTheLinkAtI
   // shoulder q = -1 + 0.75*2 = 0.5; X_WL = T(0, 0, 0.1) * Rz(0.5); X_WO = T(0.5, 0, 0.1).
   // X_LO = X_WL^-1 * X_WO = Rz(-0.5) * T(0.5, 0, 0) = (0.5 cos 0.5, -0.5 sin 0.5, 0), Rz(-0.5).
   const Pose& X_LO = attachment->linkToObject;
-  EXPECT_TRUE(X_LO.translation().isApprox(Vector3(0.5 * std::cos(0.5), -0.5 * std::sin(0.5), 0), kTolerance));
+  EXPECT_TRUE(X_LO.translation().isApprox(Vector3(0.5 * std::cos(0.5), -0.5 * std::sin(0.5), 0), kSceneTolerance));
   EXPECT_TRUE(
-      (X_LO.linear() * Vector3::UnitX()).isApprox(Vector3(std::cos(0.5), -std::sin(0.5), 0), kTolerance));
-  EXPECT_TRUE(problem.initialAttachments[0].linkToObject.isApprox(X_LO, kTolerance));
+      (X_LO.linear() * Vector3::UnitX()).isApprox(Vector3(std::cos(0.5), -std::sin(0.5), 0), kSceneTolerance));
+  EXPECT_TRUE(problem.initialAttachments[0].linkToObject.isApprox(X_LO, kSceneTolerance));
 }
 
 TEST_F(KauthamSceneTest, CollisionCanBeDisabledPerObstacle) {
@@ -124,9 +124,9 @@ TEST_F(KauthamSceneTest, Lang2ManipObjectElementGivesKindMovableRoleAndScaledCav
   EXPECT_TRUE(holder.movable);
   EXPECT_EQ(holder.role, ObjectRole::kContainer);
   ASSERT_TRUE(holder.cavity.has_value());
-  EXPECT_TRUE(holder.cavity->min().isApprox(Vector3(-0.08, -0.08, 0.008), kTolerance));
-  EXPECT_TRUE(holder.cavity->max().isApprox(Vector3(0.08, 0.08, 0.2), kTolerance));
-  EXPECT_TRUE(holder.dimensions().isApprox(Vector3(0.2, 0.2, 0.2), kTolerance));  // scaled box
+  EXPECT_TRUE(holder.cavity->min().isApprox(Vector3(-0.08, -0.08, 0.008), kSceneTolerance));
+  EXPECT_TRUE(holder.cavity->max().isApprox(Vector3(0.08, 0.08, 0.2), kSceneTolerance));
+  EXPECT_TRUE(holder.dimensions().isApprox(Vector3(0.2, 0.2, 0.2), kSceneTolerance));  // scaled box
   EXPECT_DOUBLE_EQ(holder.modelScale, 2.0);
 }
 
@@ -160,8 +160,8 @@ TEST_F(KauthamSceneTest, ObstacleNameDefaultsToTheUrdfNameAndEntitiesRecordHowTh
   EXPECT_THAT(table.limits.z, ::testing::Optional(std::pair{0.0, 1.0}));
   // A half turn about x: y -> -y; no obstacle controls, so the object sits at Home.
   const Pose& X_WO = problem.scene.object("table_model").pose;
-  EXPECT_TRUE(X_WO.translation().isApprox(Vector3(1, 2, 3), kTolerance));
-  EXPECT_TRUE((X_WO.linear() * Vector3::UnitY()).isApprox(-Vector3::UnitY(), kTolerance));
+  EXPECT_TRUE(X_WO.translation().isApprox(Vector3(1, 2, 3), kSceneTolerance));
+  EXPECT_TRUE((X_WO.linear() * Vector3::UnitY()).isApprox(-Vector3::UnitY(), kSceneTolerance));
   EXPECT_TRUE(problem.scene.object("table_model").poseLimits.z.has_value());
 }
 

@@ -24,7 +24,7 @@ using ::testing::ElementsAre;
 using ::testing::ElementsAreArray;
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kTolerance = 1e-9;
+constexpr double kProblemTolerance = 1e-9;
 
 std::string robotXml(const std::string& inner = "", const std::string& reference = "robots/arm.urdf",
                      const std::string& scale = "1.0") {
@@ -134,21 +134,21 @@ TEST_F(KauthamProblemTest, CoupledControlsWithOffsetsEigValuesAndNegativeCoeffic
   const KauthamProblem problem = read();
   const VectorX init = configurationFor(problem, problem.queries[0].init);
   // upper:  p = 0.3 + 0.8*1*(0.9-0.5) = 0.62                          q = -1 + 0.62*2 = 0.24
-  EXPECT_NEAR(jointValue(problem, init, "shoulder"), 0.24, kTolerance);
+  EXPECT_NEAR(jointValue(problem, init, "shoulder"), 0.24, kProblemTolerance);
   // fore:   p = 0.6 + 0.8*(-0.5)*(0.9-0.5) + 2*0.25*(0.3-0.5) = 0.34  q = -2 + 0.34*5 = -0.3
-  EXPECT_NEAR(jointValue(problem, init, "elbow"), -0.3, kTolerance);
+  EXPECT_NEAR(jointValue(problem, init, "elbow"), -0.3, kProblemTolerance);
   // slider: p = 0.5 (no offset) + 2*(-1)*(0.3-0.5) = 0.9             q = 0 + 0.9*0.4 = 0.36
-  EXPECT_NEAR(jointValue(problem, init, "slide"), 0.36, kTolerance);
+  EXPECT_NEAR(jointValue(problem, init, "slide"), 0.36, kProblemTolerance);
   // wheel: no DOF -> the middle of the continuous range, 0.
-  EXPECT_NEAR(jointValue(problem, init, "spin"), 0.0, kTolerance);
+  EXPECT_NEAR(jointValue(problem, init, "spin"), 0.0, kProblemTolerance);
 
   const VectorX goal = configurationFor(problem, problem.queries[0].goal);
   // upper:  p = 0.3 + 0.8*(0.1-0.5) = -0.02 -> clamped to 0           q = -1
-  EXPECT_NEAR(jointValue(problem, goal, "shoulder"), -1.0, kTolerance);
+  EXPECT_NEAR(jointValue(problem, goal, "shoulder"), -1.0, kProblemTolerance);
   // fore:   p = 0.6 + 0.8*(-0.5)*(-0.4) + 2*0.25*0.5 = 1.01 -> 1      q = 3
-  EXPECT_NEAR(jointValue(problem, goal, "elbow"), 3.0, kTolerance);
+  EXPECT_NEAR(jointValue(problem, goal, "elbow"), 3.0, kProblemTolerance);
   // slider: p = 0.5 + 2*(-1)*0.5 = -0.5 -> 0                          q = 0
-  EXPECT_NEAR(jointValue(problem, goal, "slide"), 0.0, kTolerance);
+  EXPECT_NEAR(jointValue(problem, goal, "slide"), 0.0, kProblemTolerance);
 }
 
 TEST_F(KauthamProblemTest, OffsetWithoutControlPlacesTheJoint) {
@@ -158,7 +158,7 @@ TEST_F(KauthamProblemTest, OffsetWithoutControlPlacesTheJoint) {
                plannerWithQueries(oldQuery("0.5", "0.5")));
   const KauthamProblem problem = read();
   // fore: p = 0.1 -> q = -2 + 0.1*5 = -1.5
-  EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.5}), "elbow"), -1.5, kTolerance);
+  EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.5}), "elbow"), -1.5, kProblemTolerance);
 }
 
 TEST_F(KauthamProblemTest, ContinuousJointsMapOverPlusMinusTwoPi) {
@@ -167,9 +167,9 @@ TEST_F(KauthamProblemTest, ContinuousJointsMapOverPlusMinusTwoPi) {
                plannerWithQueries(oldQuery("0.9", "0.1")));
   const KauthamProblem problem = read();
   // q = -2 pi + 0.9 * 4 pi = 1.6 pi (beyond the model's own +-pi range).
-  EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.9}), "spin"), 1.6 * kPi, kTolerance);
+  EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.9}), "spin"), 1.6 * kPi, kProblemTolerance);
   // q = -2 pi + 0.1 * 4 pi = -1.6 pi
-  EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.1}), "spin"), -1.6 * kPi, kTolerance);
+  EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.1}), "spin"), -1.6 * kPi, kProblemTolerance);
 }
 
 TEST(KauthamJointRange, LimitsOrPlusMinusTwoPiForContinuousJoints) {
@@ -188,8 +188,8 @@ TEST_F(KauthamProblemTest, SafetyControllerSoftLimitsReplaceTheUrdfLimits) {
                plannerWithQueries(oldQuery("0.25", "1")));
   const KauthamProblem problem = read();
   // q = -1.9 + 0.25 * (1.8 + 1.9) = -0.975; goal: 1.8.
-  EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.25}), "elbow"), -0.975, kTolerance);
-  EXPECT_NEAR(jointValue(problem, configurationFor(problem, {1.0}), "elbow"), 1.8, kTolerance);
+  EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.25}), "elbow"), -0.975, kProblemTolerance);
+  EXPECT_NEAR(jointValue(problem, configurationFor(problem, {1.0}), "elbow"), 1.8, kProblemTolerance);
 }
 
 TEST_F(KauthamProblemTest, ScaleMultipliesPrismaticLimitsButNotRevoluteOnes) {
@@ -198,8 +198,8 @@ TEST_F(KauthamProblemTest, ScaleMultipliesPrismaticLimitsButNotRevoluteOnes) {
                plannerWithQueries(oldQuery("1 1", "0 0")));
   const KauthamProblem problem = read();
   const VectorX q = configurationFor(problem, {1.0, 0.75});
-  EXPECT_NEAR(jointValue(problem, q, "slide"), 0.8, kTolerance);     // 0 + 1*(2*0.4)
-  EXPECT_NEAR(jointValue(problem, q, "shoulder"), 0.5, kTolerance);  // -1 + 0.75*2
+  EXPECT_NEAR(jointValue(problem, q, "slide"), 0.8, kProblemTolerance);     // 0 + 1*(2*0.4)
+  EXPECT_NEAR(jointValue(problem, q, "shoulder"), 0.5, kProblemTolerance);  // -1 + 0.75*2
   EXPECT_DOUBLE_EQ(problem.robots[0].scale, 2.0);
 }
 
@@ -209,18 +209,18 @@ TEST_F(KauthamProblemTest, HomeIsATranslationAndAnAxisAngleRotation) {
                "TH=\"1.5707963267948966\"/>\n"));
   const KauthamProblem problem = read();
   const Pose& X_WB = problem.scene.robots()[0].basePose;
-  EXPECT_TRUE(X_WB.translation().isApprox(Vector3(1, 2, 3), kTolerance));
+  EXPECT_TRUE(X_WB.translation().isApprox(Vector3(1, 2, 3), kProblemTolerance));
   // A quarter turn about z takes x to y.
-  EXPECT_TRUE((X_WB.linear() * Vector3::UnitX()).isApprox(Vector3::UnitY(), kTolerance));
-  EXPECT_TRUE(problem.robots[0].home.isApprox(X_WB, kTolerance));
+  EXPECT_TRUE((X_WB.linear() * Vector3::UnitX()).isApprox(Vector3::UnitY(), kProblemTolerance));
+  EXPECT_TRUE(problem.robots[0].home.isApprox(X_WB, kProblemTolerance));
 }
 
 TEST_F(KauthamProblemTest, AllZeroHomeAxisIsTheIdentityWhateverTheAngle) {
   writeProblem(
       robotXml("    <Home TH=\"1.0\" WZ=\"0.0\" WY=\"0.0\" WX=\"0.0\" Z=\"0.01\" Y=\"0.0\" X=\"0.0\"/>\n"));
   const Pose X_WB = read().scene.robots()[0].basePose;
-  EXPECT_TRUE(X_WB.linear().isApprox(Matrix3::Identity(), kTolerance));
-  EXPECT_TRUE(X_WB.translation().isApprox(Vector3(0, 0, 0.01), kTolerance));
+  EXPECT_TRUE(X_WB.linear().isApprox(Matrix3::Identity(), kProblemTolerance));
+  EXPECT_TRUE(X_WB.translation().isApprox(Vector3(0, 0, 0.01), kProblemTolerance));
 }
 
 TEST_F(KauthamProblemTest, HomeAxisIsNotNormalisedBeforeBuildingTheQuaternion) {
@@ -228,7 +228,7 @@ TEST_F(KauthamProblemTest, HomeAxisIsNotNormalisedBeforeBuildingTheQuaternion) {
   // TH = pi/2: q ~ (1, 0, 0, 2) / sqrt(5): cos(angle) = w^2 - z^2 = -3/5, sin(angle) = 2wz = 4/5.
   writeProblem(robotXml("    <Home WX=\"0\" WY=\"0\" WZ=\"2\" TH=\"1.5707963267948966\"/>\n"));
   const Pose X_WB = read().scene.robots()[0].basePose;
-  EXPECT_TRUE((X_WB.linear() * Vector3::UnitX()).isApprox(Vector3(-0.6, 0.8, 0), kTolerance));
+  EXPECT_TRUE((X_WB.linear() * Vector3::UnitX()).isApprox(Vector3(-0.6, 0.8, 0), kProblemTolerance));
 }
 
 TEST_F(KauthamProblemTest, KauthamNameRenamesTheRobotAndItsDofs) {
@@ -241,7 +241,7 @@ TEST_F(KauthamProblemTest, KauthamNameRenamesTheRobotAndItsDofs) {
   EXPECT_EQ(problem.robots[0].reference, "robots/arm.urdf");
   EXPECT_EQ(problem.robots[0].resolvedPath, (root() / "models" / "robots" / "arm.urdf").lexically_normal());
   // -1 + 0.75*2 = 0.5
-  EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.75}), "shoulder"), 0.5, kTolerance);
+  EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.75}), "shoulder"), 0.5, kProblemTolerance);
 }
 
 TEST_F(KauthamProblemTest, BaseXYZControlsTranslateInTheHomeFrame) {
@@ -258,11 +258,11 @@ TEST_F(KauthamProblemTest, BaseXYZControlsTranslateInTheHomeFrame) {
   // x = -1 + 0.75*2 = 0.5, y = 0 + 0.25*2 = 0.5, z = 0.5 (min = max).
   // X_WB = Home * T(x, y, z): (1,2,3) + Rz(pi/2) (0.5, 0.5, 0.5) = (1 - 0.5, 2 + 0.5, 3 + 0.5).
   const Pose& X_WB = problem.scene.robots()[0].basePose;
-  EXPECT_TRUE(X_WB.translation().isApprox(Vector3(0.5, 2.5, 3.5), kTolerance));
-  EXPECT_TRUE((X_WB.linear() * Vector3::UnitX()).isApprox(Vector3::UnitY(), kTolerance));
+  EXPECT_TRUE(X_WB.translation().isApprox(Vector3(0.5, 2.5, 3.5), kProblemTolerance));
+  EXPECT_TRUE((X_WB.linear() * Vector3::UnitX()).isApprox(Vector3::UnitY(), kProblemTolerance));
   // Goal: x = -1, y = 2 -> (1,2,3) + Rz(pi/2) (-1, 2, 0.5) = (1 - 2, 2 - 1, 3.5).
   const Pose goal = robotStatesFromControls(problem, {0.0, 1.0}, "goal").basePoses[0];
-  EXPECT_TRUE(goal.translation().isApprox(Vector3(-1, 1, 3.5), kTolerance));
+  EXPECT_TRUE(goal.translation().isApprox(Vector3(-1, 1, 3.5), kProblemTolerance));
   EXPECT_THAT(problem.robots[0].limits.x, ::testing::Optional(std::pair{-1.0, 1.0}));
 }
 
@@ -274,8 +274,8 @@ TEST_F(KauthamProblemTest, UnnamedRotationDofsOfAMovingBaseTakeKauthamsDefaultOf
   // X1 = X2 = X3 = 0.5: qx = sqrt(.5) sin(pi) = 0, qy = sqrt(.5) cos(pi) = -sqrt(.5),
   // qz = sqrt(.5) sin(pi/2) = sqrt(.5), qw = sqrt(.5) cos(pi/2) = 0: a half turn about (0,-1,1)/sqrt(2).
   const Quaternion expected(0.0, 0.0, -std::sqrt(0.5), std::sqrt(0.5));
-  EXPECT_TRUE(X_WB.linear().isApprox(expected.toRotationMatrix(), kTolerance));
-  EXPECT_TRUE(X_WB.translation().isApprox(Vector3(1, 0, 0), kTolerance));
+  EXPECT_TRUE(X_WB.linear().isApprox(expected.toRotationMatrix(), kProblemTolerance));
+  EXPECT_TRUE(X_WB.translation().isApprox(Vector3(1, 0, 0), kProblemTolerance));
 }
 
 TEST_F(KauthamProblemTest, X3IsAYawOfTwoPiX3AfterTheTranslation) {
@@ -288,9 +288,9 @@ TEST_F(KauthamProblemTest, X3IsAYawOfTwoPiX3AfterTheTranslation) {
                "  <Controls robot=\"controls/arm.cntr\"/>\n" + plannerWithQueries(oldQuery("0.25", "0.25")));
   const Pose X_WB = read().scene.robots()[0].basePose;
   // x = 0 + 0.25*2 = 0.5: (1,0,0) + Rz(pi/2) (0.5, 0, 0) = (1, 0.5, 0); yaw pi/2 + 2 pi*0.25 = pi.
-  EXPECT_TRUE(X_WB.translation().isApprox(Vector3(1, 0.5, 0), kTolerance));
-  EXPECT_TRUE((X_WB.linear() * Vector3::UnitX()).isApprox(-Vector3::UnitX(), kTolerance));
-  EXPECT_TRUE((X_WB.linear() * Vector3::UnitZ()).isApprox(Vector3::UnitZ(), kTolerance));
+  EXPECT_TRUE(X_WB.translation().isApprox(Vector3(1, 0.5, 0), kProblemTolerance));
+  EXPECT_TRUE((X_WB.linear() * Vector3::UnitX()).isApprox(-Vector3::UnitX(), kProblemTolerance));
+  EXPECT_TRUE((X_WB.linear() * Vector3::UnitZ()).isApprox(Vector3::UnitZ(), kProblemTolerance));
 }
 
 TEST_F(KauthamProblemTest, X1X2X3UseTheUniformQuaternionMap) {
@@ -302,10 +302,10 @@ TEST_F(KauthamProblemTest, X1X2X3UseTheUniformQuaternionMap) {
   writeProblem(robotXml() + "  <Controls robot=\"controls/arm.cntr\"/>\n" +
                plannerWithQueries(oldQuery("0.5", "0.5")));
   const Pose X_WB = read().scene.robots()[0].basePose;
-  EXPECT_TRUE((X_WB.linear() * Vector3::UnitX()).isApprox(Vector3::UnitX(), kTolerance));
-  EXPECT_TRUE((X_WB.linear() * Vector3::UnitY()).isApprox(-Vector3::UnitY(), kTolerance));
-  EXPECT_TRUE((X_WB.linear() * Vector3::UnitZ()).isApprox(-Vector3::UnitZ(), kTolerance));
-  EXPECT_TRUE(X_WB.translation().isZero(kTolerance));
+  EXPECT_TRUE((X_WB.linear() * Vector3::UnitX()).isApprox(Vector3::UnitX(), kProblemTolerance));
+  EXPECT_TRUE((X_WB.linear() * Vector3::UnitY()).isApprox(-Vector3::UnitY(), kProblemTolerance));
+  EXPECT_TRUE((X_WB.linear() * Vector3::UnitZ()).isApprox(-Vector3::UnitZ(), kProblemTolerance));
+  EXPECT_TRUE(X_WB.translation().isZero(kProblemTolerance));
 }
 
 TEST_F(KauthamProblemTest, ControlledX3YawsFromItsOffset) {
@@ -317,7 +317,7 @@ TEST_F(KauthamProblemTest, ControlledX3YawsFromItsOffset) {
                plannerWithQueries(oldQuery("0.625", "0.5")));
   const Pose X_WB = read().scene.robots()[0].basePose;
   const double half = std::sqrt(0.5);
-  EXPECT_TRUE((X_WB.linear() * Vector3::UnitX()).isApprox(Vector3(-half, -half, 0), kTolerance));
+  EXPECT_TRUE((X_WB.linear() * Vector3::UnitX()).isApprox(Vector3(-half, -half, 0), kProblemTolerance));
 }
 
 TEST_F(KauthamProblemTest, RobotWhoseControlsMoveNoBaseDofStaysAtHomeDespiteLimits) {
@@ -326,7 +326,7 @@ TEST_F(KauthamProblemTest, RobotWhoseControlsMoveNoBaseDofStaysAtHomeDespiteLimi
   writeProblem(robotXml("    <Limits name=\"X\" min=\"0\" max=\"2\"/>\n    <Home X=\"1\"/>\n") +
                "  <Controls robot=\"controls/arm.cntr\"/>\n" + plannerWithQueries(oldQuery("0.5", "0.5")));
   const Pose X_WB = read().scene.robots()[0].basePose;
-  EXPECT_TRUE(X_WB.translation().isApprox(Vector3(1, 0, 0), kTolerance));
+  EXPECT_TRUE(X_WB.translation().isApprox(Vector3(1, 0, 0), kProblemTolerance));
 }
 
 TEST_F(KauthamProblemTest, EmptyRobotControlsGiveOneControlPerJointAndPerMovableBaseAxis) {
@@ -341,9 +341,9 @@ TEST_F(KauthamProblemTest, EmptyRobotControlsGiveOneControlPerJointAndPerMovable
   EXPECT_TRUE(problem.robotControls.source.empty());
   const RobotStates states = robotStatesFromControls(problem, problem.queries[0].init, "init");
   // x = 0 + 0.25*2 = 0.5, z = 1 (min = max), no Y limits -> 0.
-  EXPECT_TRUE(states.basePoses[0].translation().isApprox(Vector3(0.5, 0, 1), kTolerance));
-  EXPECT_NEAR(jointValue(problem, states.configurations[0], "shoulder"), 0.5, kTolerance);  // -1 + 0.75*2
-  EXPECT_NEAR(jointValue(problem, states.configurations[0], "slide"), 0.4, kTolerance);     // 0 + 1*0.4
+  EXPECT_TRUE(states.basePoses[0].translation().isApprox(Vector3(0.5, 0, 1), kProblemTolerance));
+  EXPECT_NEAR(jointValue(problem, states.configurations[0], "shoulder"), 0.5, kProblemTolerance);  // -1 + 0.75*2
+  EXPECT_NEAR(jointValue(problem, states.configurations[0], "slide"), 0.4, kProblemTolerance);     // 0 + 1*0.4
 }
 
 TEST_F(KauthamProblemTest, MissingControlsAndQueriesPlaceTheRobotAtTheMiddleOfItsRanges) {
@@ -352,9 +352,9 @@ TEST_F(KauthamProblemTest, MissingControlsAndQueriesPlaceTheRobotAtTheMiddleOfIt
   EXPECT_EQ(problem.robotControls.controls.size(), 4U);
   EXPECT_TRUE(problem.queries.empty());
   const VectorX& q = problem.scene.robots()[0].configuration;
-  EXPECT_NEAR(jointValue(problem, q, "shoulder"), 0.0, kTolerance);  // (-1 + 1) / 2
-  EXPECT_NEAR(jointValue(problem, q, "elbow"), 0.5, kTolerance);     // (-2 + 3) / 2
-  EXPECT_NEAR(jointValue(problem, q, "slide"), 0.2, kTolerance);     // (0 + 0.4) / 2
+  EXPECT_NEAR(jointValue(problem, q, "shoulder"), 0.0, kProblemTolerance);  // (-1 + 1) / 2
+  EXPECT_NEAR(jointValue(problem, q, "elbow"), 0.5, kProblemTolerance);     // (-2 + 3) / 2
+  EXPECT_NEAR(jointValue(problem, q, "slide"), 0.2, kProblemTolerance);     // (0 + 0.4) / 2
 }
 
 TEST_F(KauthamProblemTest, SceneHoldsTheRobotsAtTheFirstQueryInit) {
@@ -363,8 +363,8 @@ TEST_F(KauthamProblemTest, SceneHoldsTheRobotsAtTheFirstQueryInit) {
                plannerWithQueries(oldQuery("0.25 1", "0 0") + oldQuery("1 1", "0 0")));
   const KauthamProblem problem = read();
   const VectorX& q = problem.scene.robots()[0].configuration;
-  EXPECT_NEAR(jointValue(problem, q, "shoulder"), -0.5, kTolerance);  // -1 + 0.25*2
-  EXPECT_NEAR(jointValue(problem, q, "elbow"), 3.0, kTolerance);      // -2 + 1*5
+  EXPECT_NEAR(jointValue(problem, q, "shoulder"), -0.5, kProblemTolerance);  // -1 + 0.25*2
+  EXPECT_NEAR(jointValue(problem, q, "elbow"), 3.0, kProblemTolerance);      // -2 + 1*5
 }
 
 TEST_F(KauthamProblemTest, MimicTagsAreIgnoredSoEachCoupledFingerFollowsTheFormula) {
@@ -379,9 +379,9 @@ TEST_F(KauthamProblemTest, MimicTagsAreIgnoredSoEachCoupledFingerFollowsTheFormu
   EXPECT_EQ(problem.scene.robots()[0].model->variableCount(), 2);
   const VectorX q = configurationFor(problem, {0.75});
   // left:  p = 0.5 + 1*(0.75-0.5) = 0.75  -> -0.5 + 0.75*1 = 0.25
-  EXPECT_NEAR(jointValue(problem, q, "left_joint"), 0.25, kTolerance);
+  EXPECT_NEAR(jointValue(problem, q, "left_joint"), 0.25, kProblemTolerance);
   // right: p = 0.5 - 1*(0.75-0.5) = 0.25  -> -0.4 + 0.25*1 = -0.15 (the mimic would give -0.25)
-  EXPECT_NEAR(jointValue(problem, q, "right_joint"), -0.15, kTolerance);
+  EXPECT_NEAR(jointValue(problem, q, "right_joint"), -0.15, kProblemTolerance);
 }
 
 TEST_F(KauthamProblemTest, SeveralRobotsAreMappedIndependently) {
@@ -396,12 +396,12 @@ TEST_F(KauthamProblemTest, SeveralRobotsAreMappedIndependently) {
   ASSERT_EQ(problem.scene.robots().size(), 2U);
   EXPECT_EQ(problem.scene.robots()[1].name, "right");
   const RobotStates goal = robotStatesFromControls(problem, problem.queries[0].goal, "goal");
-  EXPECT_NEAR(jointValue(problem, goal.configurations[0], "shoulder", 0), -1.0, kTolerance);  // p = 0
-  EXPECT_NEAR(jointValue(problem, goal.configurations[0], "elbow", 0), 0.5, kTolerance);      // middle
-  EXPECT_NEAR(jointValue(problem, goal.configurations[1], "shoulder", 1), 0.0, kTolerance);   // middle
-  EXPECT_NEAR(jointValue(problem, goal.configurations[1], "elbow", 1), 3.0, kTolerance);      // p = 1
-  EXPECT_TRUE(goal.basePoses[0].translation().isApprox(Vector3(-1, 0, 0), kTolerance));
-  EXPECT_TRUE(goal.basePoses[1].translation().isApprox(Vector3(2, 0, 0), kTolerance));  // 1 + 1
+  EXPECT_NEAR(jointValue(problem, goal.configurations[0], "shoulder", 0), -1.0, kProblemTolerance);  // p = 0
+  EXPECT_NEAR(jointValue(problem, goal.configurations[0], "elbow", 0), 0.5, kProblemTolerance);      // middle
+  EXPECT_NEAR(jointValue(problem, goal.configurations[1], "shoulder", 1), 0.0, kProblemTolerance);   // middle
+  EXPECT_NEAR(jointValue(problem, goal.configurations[1], "elbow", 1), 3.0, kProblemTolerance);      // p = 1
+  EXPECT_TRUE(goal.basePoses[0].translation().isApprox(Vector3(-1, 0, 0), kProblemTolerance));
+  EXPECT_TRUE(goal.basePoses[1].translation().isApprox(Vector3(2, 0, 0), kProblemTolerance));  // 1 + 1
 }
 
 TEST_F(KauthamProblemTest, ModelDirectoriesFromTheOptionsAreTriedLast) {

@@ -19,7 +19,7 @@ namespace {
 
 using ::testing::IsSupersetOf;
 
-constexpr double kTolerance = 1e-9;
+constexpr double kSharedDataTolerance = 1e-9;
 constexpr double kPi = std::numbers::pi;
 
 /// The problems checked by hand below (relative to the shared kautham directory).
@@ -84,18 +84,18 @@ RobotStates statesFor(const KauthamProblem& problem, const std::vector<double>& 
 /// Expects joint `joint` of robot 0 in `q` to be `expected`.
 void expectJoint(const KauthamProblem& problem, const VectorX& q, const std::string& joint, double expected) {
   const RobotModel& model = *problem.scene.robots()[0].model;
-  EXPECT_NEAR(q[model.variableIndex(joint)], expected, kTolerance) << joint;
+  EXPECT_NEAR(q[model.variableIndex(joint)], expected, kSharedDataTolerance) << joint;
 }
 
 void expectTranslation(const Pose& pose, const Vector3& expected) {
-  EXPECT_TRUE(pose.translation().isApprox(expected, kTolerance))
+  EXPECT_TRUE(pose.translation().isApprox(expected, kSharedDataTolerance))
       << pose.translation().transpose() << " vs " << expected.transpose();
 }
 
 /// Expects the rotation of `pose` to be a yaw of `angle`.
 void expectYaw(const Pose& pose, double angle) {
   EXPECT_TRUE(
-      pose.linear().isApprox(Eigen::AngleAxisd(angle, Vector3::UnitZ()).toRotationMatrix(), kTolerance))
+      pose.linear().isApprox(Eigen::AngleAxisd(angle, Vector3::UnitZ()).toRotationMatrix(), kSharedDataTolerance))
       << pose.linear();
 }
 
@@ -133,7 +133,7 @@ TEST(KauthamSharedData, Ur5TableMapsItsQuery) {
   expectJoint(problem, goal.configurations[0], "ElbowJoint", kUr5Lower + 0.625 * kUr5Span);
   // Home TH="1.0" with an all-zero axis: the identity.
   expectTranslation(init.basePoses[0], Vector3(0, 0, 0.01));
-  EXPECT_TRUE(init.basePoses[0].linear().isIdentity(kTolerance));
+  EXPECT_TRUE(init.basePoses[0].linear().isIdentity(kSharedDataTolerance));
   EXPECT_EQ(problem.planner.name, "omplRRT");
 }
 
@@ -173,7 +173,7 @@ TEST(KauthamSharedData, Ur5ConstrainedOrientationReordersNamedControls) {
   const Pose& wall = problem.scene.object("red_wall").pose;
   expectTranslation(wall, Vector3(0.2, 0.4, 0));
   EXPECT_TRUE(
-      (wall.linear() * Vector3::UnitZ()).isApprox(Vector3(std::sin(1.57), 0, std::cos(1.57)), kTolerance));
+      (wall.linear() * Vector3::UnitZ()).isApprox(Vector3(std::sin(1.57), 0, std::cos(1.57)), kSharedDataTolerance));
 }
 
 TEST(KauthamSharedData, CubeMazeMovesTheFreeFlyingCubeInTheHomeFrame) {
@@ -289,7 +289,7 @@ TEST(KauthamSharedData, Ur3eGripperCouplesMirroredFingers) {
   // wood_piece: TH = 1.570796 with an all-zero axis: no rotation.
   const Pose& wood = problem.scene.object("wood_piece").pose;
   expectTranslation(wood, Vector3(0.43, -0.62, 0.76));
-  EXPECT_TRUE(wood.linear().isIdentity(kTolerance));
+  EXPECT_TRUE(wood.linear().isIdentity(kSharedDataTolerance));
 }
 
 TEST(KauthamSharedData, TableRoomsUsesNamedControlsOffsetsAndObstacleControls) {

@@ -21,7 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-constexpr double kTolerance = 1e-12;
+constexpr double kMoveitTolerance = 1e-12;
 
 fs::path moveitData(const std::string& name) { return test::testDataDirectory() / "moveit" / name; }
 
@@ -86,10 +86,10 @@ std::string inputErrorOf(const std::function<void()>& read) {
 }
 
 void expectPose(const Pose& actual, const Vector3& translation, const Quaternion& rotation) {
-  EXPECT_TRUE(actual.translation().isApprox(translation, kTolerance) ||
-              (actual.translation() - translation).norm() < kTolerance)
+  EXPECT_TRUE(actual.translation().isApprox(translation, kMoveitTolerance) ||
+              (actual.translation() - translation).norm() < kMoveitTolerance)
       << actual.translation().transpose();
-  EXPECT_TRUE(actual.linear().isApprox(rotation.normalized().toRotationMatrix(), kTolerance))
+  EXPECT_TRUE(actual.linear().isApprox(rotation.normalized().toRotationMatrix(), kMoveitTolerance))
       << actual.linear();
 }
 

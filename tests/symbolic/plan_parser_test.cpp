@@ -15,7 +15,7 @@ using nlohmann::json;
 using ::testing::Contains;
 using ::testing::HasSubstr;
 
-PlanParseContext deskContext() {
+PlanParseContext parserDeskContext() {
   PlanParseContext context;
   context.objects = {"desk", "marker", "eraser", "holder"};
   context.planners = {"RRTConnect", "RRTstar", "PRM"};
@@ -34,17 +34,17 @@ json placeIn(const std::string& object, const std::string& target) {
   return {{"action", "place"}, {"object", object}, {"params", params}, {"refinements", nullptr}, {"planner", nullptr}};
 }
 
-json pick(const std::string& object) {
+json pickEntry(const std::string& object) {
   return {{"action", "pick"}, {"object", object}, {"params", nullptr}, {"refinements", nullptr}, {"planner", nullptr}};
 }
 
 json paperPlan() {
   return {{"reasoning", "one object at a time"},
-          {"actions", {pick("marker"), placeIn("marker", "holder"), pick("eraser"), placeIn("eraser", "holder")}}};
+          {"actions", {pickEntry("marker"), placeIn("marker", "holder"), pickEntry("eraser"), placeIn("eraser", "holder")}}};
 }
 
 /// The problems parsePlan reports for `document` (fails the test when it parses).
-std::vector<std::string> problemsOf(const json& document, const PlanParseContext& context = deskContext()) {
+std::vector<std::string> problemsOf(const json& document, const PlanParseContext& context = parserDeskContext()) {
   try {
     parsePlan(document, context);
   } catch (const PlanParseError& error) {
@@ -56,7 +56,7 @@ std::vector<std::string> problemsOf(const json& document, const PlanParseContext
 
 std::vector<std::string> problemsOfText(const std::string& text) {
   try {
-    parsePlanText(text, deskContext());
+    parsePlanText(text, parserDeskContext());
   } catch (const PlanParseError& error) {
     return error.problems();
   }
@@ -65,7 +65,7 @@ std::vector<std::string> problemsOfText(const std::string& text) {
 }
 
 TEST(PlanParserTest, ParsesThePaperPlan) {
-  const Plan plan = parsePlan(paperPlan(), deskContext());
+  const Plan plan = parsePlan(paperPlan(), parserDeskContext());
   ASSERT_EQ(plan.actions.size(), 4U);
   EXPECT_EQ(plan.actions[0].type, ActionType::kPick);
   EXPECT_EQ(plan.actions[1].type, ActionType::kPlace);
@@ -103,7 +103,7 @@ TEST(PlanParserTest, EveryProblemIsReportedNotOnlyTheFirst) {
 TEST(PlanParserTest, PlannerNamesAreCheckedOnlyWhenTheContextListsThem) {
   json document = paperPlan();
   document["actions"][0]["planner"] = "AnyPlanner";
-  PlanParseContext context = deskContext();
+  PlanParseContext context = parserDeskContext();
   context.planners.clear();
   EXPECT_EQ(parsePlan(document, context).actions[0].planner, "AnyPlanner");
   EXPECT_FALSE(problemsOf(document).empty());
@@ -179,7 +179,7 @@ TEST(PlanParserTest, AcceptsAbsentFieldsBareArraysLooseNamesAndArrayVectors) {
     {"action": "place", "object": "marker", "params": {"relation": "in front of", "target": "holder", "distance": 0.1}},
     {"action": "push", "object": "eraser", "params": {"direction": [0, 1, 0], "distance": 0.05}},
     {"action": "move", "params": {"configuration": "home"}}])");
-  const Plan plan = parsePlan(document, deskContext());
+  const Plan plan = parsePlan(document, parserDeskContext());
   ASSERT_EQ(plan.actions.size(), 4U);
   EXPECT_EQ(plan.actions[0].object, "marker");
   EXPECT_EQ(plan.actions[0].refinements.grasp, GraspDirection::kTop);
@@ -192,9 +192,9 @@ TEST(PlanParserTest, AcceptsAbsentFieldsBareArraysLooseNamesAndArrayVectors) {
 
 TEST(PlanParserTest, TextAnswersWithFencesOrLeadingProseAreAccepted) {
   const std::string body = paperPlan().dump();
-  EXPECT_EQ(parsePlanText("```json\n" + body + "\n```", deskContext()).actions.size(), 4U);
-  EXPECT_EQ(parsePlanText("Here is the plan:\n" + body + "\nHope this helps!", deskContext()).actions.size(), 4U);
-  EXPECT_EQ(parsePlanText("  " + body + "  trailing words", deskContext()).actions.size(), 4U);
+  EXPECT_EQ(parsePlanText("```json\n" + body + "\n```", parserDeskContext()).actions.size(), 4U);
+  EXPECT_EQ(parsePlanText("Here is the plan:\n" + body + "\nHope this helps!", parserDeskContext()).actions.size(), 4U);
+  EXPECT_EQ(parsePlanText("  " + body + "  trailing words", parserDeskContext()).actions.size(), 4U);
 }
 
 TEST(PlanParserTest, GarbageTextGetsAClearError) {
@@ -210,7 +210,7 @@ TEST(PlanParserTest, ErrorMessageListsAllProblems) {
   document["actions"][0]["object"] = "cup";
   document["actions"][1]["object"] = "mug";
   try {
-    parsePlan(document, deskContext());
+    parsePlan(document, parserDeskContext());
     FAIL() << "expected PlanParseError";
   } catch (const PlanParseError& error) {
     EXPECT_THAT(error.what(), HasSubstr("the plan has 2 problems:"));
@@ -239,7 +239,7 @@ TEST(PlanJsonTest, RoundTripThroughJsonGivesTheSamePlan) {
   plan.actions[2].object = "eraser";
 
   const json document = toJson(plan);
-  const Plan again = parsePlan(json::parse(document.dump()), deskContext());
+  const Plan again = parsePlan(json::parse(document.dump()), parserDeskContext());
   EXPECT_EQ(toJson(again), document);
   ASSERT_EQ(again.actions.size(), plan.actions.size());
   EXPECT_EQ(again.actions[0].refinements.grasp, GraspDirection::kSide);
@@ -306,7 +306,7 @@ TEST(PlanJsonTest, EveryNullFieldDocumentOfTheSchemaParses) {
     {"action": "move", "object": null, "params": {"relation": null, "target": null, "distance": null,
      "position": null, "orientation": null, "configuration": "home", "direction": null},
      "refinements": {"grasp": null, "approach": null}, "planner": null}]})");
-  const Plan plan = parsePlan(answer, deskContext());
+  const Plan plan = parsePlan(answer, parserDeskContext());
   ASSERT_EQ(plan.actions.size(), 1U);
   EXPECT_EQ(plan.actions[0].refinements.grasp, GraspDirection::kAuto);
 }

@@ -13,7 +13,7 @@ namespace {
 using ::testing::Contains;
 using ::testing::HasSubstr;
 
-SymbolicAction pick(const std::string& object) { return {ActionType::kPick, object, {}, {}, ""}; }
+SymbolicAction pickAction(const std::string& object) { return {ActionType::kPick, object, {}, {}, ""}; }
 
 SymbolicAction place(const std::string& object, SpatialRelation relation, const std::string& target) {
   SymbolicAction action{ActionType::kPlace, object, {}, {}, ""};
@@ -66,8 +66,8 @@ class PlanValidationTest : public ::testing::Test {
 };
 
 TEST_F(PlanValidationTest, PaperPlanIsValidAndPutsBothObjectsInTheHolder) {
-  const PlanValidation result = validate({pick("marker"), place("marker", SpatialRelation::kIn, "holder"),
-                                          pick("eraser"), place("eraser", SpatialRelation::kIn, "holder"),
+  const PlanValidation result = validate({pickAction("marker"), place("marker", SpatialRelation::kIn, "holder"),
+                                          pickAction("eraser"), place("eraser", SpatialRelation::kIn, "holder"),
                                           moveTo("home")});
   EXPECT_TRUE(result.valid()) << result.summary();
   EXPECT_EQ(result.finalState.inside.at("marker"), "holder");
@@ -79,7 +79,7 @@ TEST_F(PlanValidationTest, PaperPlanIsValidAndPutsBothObjectsInTheHolder) {
 }
 
 TEST_F(PlanValidationTest, PlaceBeforePickNamesTheStepAndTheObject) {
-  const PlanValidation result = validate({pick("marker"), place("marker", SpatialRelation::kIn, "holder"),
+  const PlanValidation result = validate({pickAction("marker"), place("marker", SpatialRelation::kIn, "holder"),
                                           place("eraser", SpatialRelation::kIn, "holder")});
   EXPECT_FALSE(result.valid());
   EXPECT_EQ(result.failedStep, 2U);
@@ -87,48 +87,48 @@ TEST_F(PlanValidationTest, PlaceBeforePickNamesTheStepAndTheObject) {
 }
 
 TEST_F(PlanValidationTest, UnknownObjectIsNamedWithTheValidOnes) {
-  const PlanValidation result = validate({pick("cup")});
+  const PlanValidation result = validate({pickAction("cup")});
   EXPECT_THAT(result.problems, Contains("step 1 (pick cup): there is no object \"cup\" (objects: desk, marker, eraser, holder)"));
 }
 
 TEST_F(PlanValidationTest, PickingTheHeldObjectAgainIsRejected) {
-  const PlanValidation result = validate({pick("marker"), pick("marker")});
+  const PlanValidation result = validate({pickAction("marker"), pickAction("marker")});
   EXPECT_THAT(result.problems, Contains("step 2 (pick marker): marker is already held"));
 }
 
 TEST_F(PlanValidationTest, PickingASecondObjectNeedsAFreeGripper) {
-  const PlanValidation result = validate({pick("marker"), pick("eraser")});
+  const PlanValidation result = validate({pickAction("marker"), pickAction("eraser")});
   EXPECT_THAT(result.problems,
               Contains("step 2 (pick eraser): the gripper is not free: the gripper holds marker; place it first"));
 }
 
 TEST_F(PlanValidationTest, PlacingInANonContainerListsTheContainers) {
-  const PlanValidation result = validate({pick("marker"), place("marker", SpatialRelation::kIn, "eraser")});
+  const PlanValidation result = validate({pickAction("marker"), place("marker", SpatialRelation::kIn, "eraser")});
   EXPECT_THAT(result.problems, Contains("step 2 (place marker in eraser): eraser is not a container (containers: holder)"));
 }
 
 TEST_F(PlanValidationTest, FixedObjectsCannotBePicked) {
-  EXPECT_THAT(validate({pick("desk")}).problems, Contains(HasSubstr("desk is fixed and cannot be picked")));
+  EXPECT_THAT(validate({pickAction("desk")}).problems, Contains(HasSubstr("desk is fixed and cannot be picked")));
 }
 
 TEST_F(PlanValidationTest, AnObjectWithSomethingInItIsNotClear) {
-  const PlanValidation result = validate({pick("marker"), place("marker", SpatialRelation::kIn, "holder"), pick("holder")});
+  const PlanValidation result = validate({pickAction("marker"), place("marker", SpatialRelation::kIn, "holder"), pickAction("holder")});
   EXPECT_THAT(result.problems, Contains("step 3 (pick holder): holder is not clear: marker is in it; move them first"));
 }
 
 TEST_F(PlanValidationTest, PlacingWhileHoldingAnotherObjectSaysWhatIsHeld) {
-  const PlanValidation result = validate({pick("marker"), place("eraser", SpatialRelation::kOn, "desk")});
+  const PlanValidation result = validate({pickAction("marker"), place("eraser", SpatialRelation::kOn, "desk")});
   EXPECT_THAT(result.problems, Contains(HasSubstr("eraser is not held (the gripper holds marker)")));
 }
 
 TEST_F(PlanValidationTest, StackingNeedsAClearTarget) {
-  const PlanValidation result = validate({pick("marker"), place("marker", SpatialRelation::kOn, "eraser"),
-                                          pick("holder"), place("holder", SpatialRelation::kOn, "eraser")});
+  const PlanValidation result = validate({pickAction("marker"), place("marker", SpatialRelation::kOn, "eraser"),
+                                          pickAction("holder"), place("holder", SpatialRelation::kOn, "eraser")});
   EXPECT_THAT(result.problems, Contains("step 4 (place holder on eraser): eraser is not clear: marker is on it"));
 }
 
 TEST_F(PlanValidationTest, PushNeedsAFreeGripperAndMoveAKnownConfiguration) {
-  EXPECT_THAT(validate({pick("marker"), push("eraser")}).problems,
+  EXPECT_THAT(validate({pickAction("marker"), push("eraser")}).problems,
               Contains(HasSubstr("step 2 (push eraser 0.05 m along (0, 1, 0)): push needs a free gripper")));
   EXPECT_THAT(validate({moveTo("dance")}).problems,
               Contains("step 1 (move to dance): the robot has no configuration \"dance\" (configurations: home)"));
@@ -136,7 +136,7 @@ TEST_F(PlanValidationTest, PushNeedsAFreeGripperAndMoveAKnownConfiguration) {
 }
 
 TEST_F(PlanValidationTest, PlacingBesideAnObjectLandsOnItsSupport) {
-  const PlanValidation result = validate({pick("marker"), place("marker", SpatialRelation::kLeftOf, "holder")});
+  const PlanValidation result = validate({pickAction("marker"), place("marker", SpatialRelation::kLeftOf, "holder")});
   ASSERT_TRUE(result.valid()) << result.summary();
   EXPECT_EQ(result.finalState.onTopOf.at("marker"), "desk");
   EXPECT_FALSE(goalHolds(result.finalState, relationGoal("marker", SpatialRelation::kLeftOf, "holder")).has_value());

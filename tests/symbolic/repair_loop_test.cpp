@@ -23,16 +23,16 @@ const char* const kPaperTask = "put the marker and eraser in the holder";
 json placeIn(const std::string& object) {
   return {{"action", "place"}, {"object", object}, {"params", {{"relation", "in"}, {"target", "holder"}}}};
 }
-json pick(const std::string& object) { return {{"action", "pick"}, {"object", object}}; }
+json pickStep(const std::string& object) { return {{"action", "pick"}, {"object", object}}; }
 
 std::string goodPlanText() {
-  return json({{"actions", {pick("marker"), placeIn("marker"), pick("eraser"), placeIn("eraser")}}}).dump();
+  return json({{"actions", {pickStep("marker"), placeIn("marker"), pickStep("eraser"), placeIn("eraser")}}}).dump();
 }
 std::string placeBeforePickText() {
-  return json({{"actions", {placeIn("marker"), pick("eraser"), placeIn("eraser")}}}).dump();
+  return json({{"actions", {placeIn("marker"), pickStep("eraser"), placeIn("eraser")}}}).dump();
 }
 
-PlanParseContext deskContext() {
+PlanParseContext repairDeskContext() {
   PlanParseContext context;
   context.objects = {"desk", "marker", "eraser", "holder"};
   return context;
@@ -65,7 +65,7 @@ class ScriptedPlanner final : public TaskPlanner {
     const std::string answer = answers_.front();
     answers_.pop_front();
     try {
-      return parsePlanText(answer, deskContext());
+      return parsePlanText(answer, repairDeskContext());
     } catch (const PlanParseError& error) {
       throw UnusableAnswerError(answer, error.what());
     }

@@ -13,7 +13,7 @@ using nlohmann::json;
 
 json vectorJson(const Vector3& v) { return {v.x(), v.y(), v.z()}; }
 
-json poseJson(const Pose& pose) {
+json runPoseJson(const Pose& pose) {
   const Quaternion q(pose.linear());
   return {{"position", vectorJson(pose.translation())}, {"orientation_wxyz", {q.w(), q.x(), q.y(), q.z()}}};
 }
@@ -69,7 +69,7 @@ json goalsJson(const RunOutcome& outcome) {
 json finalPosesJson(const Scene& scene) {
   json poses = json::object();
   for (const SceneObject& object : scene.objects()) {
-    json entry = poseJson(currentObjectPose(scene, object.name));
+    json entry = runPoseJson(currentObjectPose(scene, object.name));
     if (const Attachment* held = scene.findAttachment(object.name)) entry["held_by"] = held->robot + "/" + held->link;
     poses[object.name] = entry;
   }

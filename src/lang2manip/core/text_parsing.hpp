@@ -30,4 +30,7 @@ void requireFinite(double value, std::string_view what, const SourceLocation& wh
 /// Text with leading and trailing whitespace removed.
 std::string_view trimmed(std::string_view text);
 
+/// `text` with ASCII letters lower-cased.
+std::string lowercase(std::string text);
+
 }  // namespace lang2manip

@@ -69,8 +69,6 @@ std::optional<GroundingAttempt> groundPush(const GroundingContext& context, cons
 /// The robot's configuration in `world`.
 const VectorX& robotConfiguration(const ArmContext& arm, const Scene& world);
 
-/// How far an object's bottom may be from its support's top (m) for it to rest there.
-inline constexpr double kSupportTolerance = 0.015;
 
 /// Records `stage` and `reason` as the action's failure; returns no attempt.
 std::optional<GroundingAttempt> refuse(ActionExecution& record, const std::string& stage, std::string reason);

@@ -5,6 +5,7 @@
 
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/grounding/heuristic_grasp_planner.hpp"
+#include "lang2manip/grounding/object_geometry.hpp"
 
 namespace lang2manip {
 namespace {
@@ -13,16 +14,6 @@ const std::array<GraspPlannerEntry, 1> kRegistry{{
     {"heuristic", "top, front and side grasps from the object's shape, ranked by reachability and clearance",
      &makeHeuristicGraspPlanner},
 }};
-
-void checkLength(double value, const char* field) {
-  if (!std::isfinite(value) || value < 0.0) {
-    throw InputError(std::string("grasp settings: ") + field + " must be a finite length >= 0 (got " + std::to_string(value) + ")");
-  }
-}
-
-void checkCount(int value, const char* field) {
-  if (value < 1) throw InputError(std::string("grasp settings: ") + field + " must be >= 1 (got " + std::to_string(value) + ")");
-}
 
 }  // namespace
 
@@ -58,19 +49,19 @@ std::unique_ptr<GraspPlanner> makeGraspPlanner(const std::string& name) {
 }
 
 void checkGraspSettings(const GraspSettings& s) {
-  checkLength(s.approachDistance, "approachDistance");
-  checkLength(s.liftDistance, "liftDistance");
-  checkLength(s.openingMargin, "openingMargin");
-  checkLength(s.supportClearance, "supportClearance");
-  checkLength(s.minimumEngagement, "minimumEngagement");
-  checkLength(s.sectorHalfAngle, "sectorHalfAngle");
+  requireSettingLength(s.approachDistance, "grasp", "approachDistance");
+  requireSettingLength(s.liftDistance, "grasp", "liftDistance");
+  requireSettingLength(s.openingMargin, "grasp", "openingMargin");
+  requireSettingLength(s.supportClearance, "grasp", "supportClearance");
+  requireSettingLength(s.minimumEngagement, "grasp", "minimumEngagement");
+  requireSettingLength(s.sectorHalfAngle, "grasp", "sectorHalfAngle");
   for (double pitch : s.approachPitches) {
     if (!std::isfinite(pitch) || pitch < 0.0 || pitch >= M_PI / 2.0) throw InputError("grasp settings: approachPitches must be in [0, pi/2)");
   }
   if (s.approachPitches.empty()) throw InputError("grasp settings: approachPitches must not be empty");
-  checkCount(s.topYawSteps, "topYawSteps");
-  checkCount(s.maxCandidates, "maxCandidates");
-  checkCount(s.maxReachChecks, "maxReachChecks");
+  requireSettingCount(s.topYawSteps, "grasp", "topYawSteps");
+  requireSettingCount(s.maxCandidates, "grasp", "maxCandidates");
+  requireSettingCount(s.maxReachChecks, "grasp", "maxReachChecks");
 }
 
 }  // namespace lang2manip

@@ -11,7 +11,6 @@ namespace lang2manip {
 namespace {
 
 /// Height tolerance when looking for the support under the object.
-constexpr double kSupportTolerance = 0.015;
 
 double directionPreference(GraspDirection direction) {
   switch (direction) {

@@ -115,4 +115,14 @@ Pose currentObjectPose(const Scene& scene, const std::string& name) {
          attachment->linkToObject;
 }
 
+void requireSettingLength(double value, const char* settings, const char* field) {
+  if (!std::isfinite(value) || value < 0.0) {
+    throw InputError(std::string(settings) + " settings: " + field + " must be a finite length >= 0 (got " + std::to_string(value) + ")");
+  }
+}
+
+void requireSettingCount(int value, const char* settings, const char* field) {
+  if (value < 1) throw InputError(std::string(settings) + " settings: " + field + " must be >= 1 (got " + std::to_string(value) + ")");
+}
+
 }  // namespace lang2manip

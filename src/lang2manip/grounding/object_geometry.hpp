@@ -39,6 +39,15 @@ const SceneObject* supportUnder(const Scene& scene, const Vector3& point, double
 /// The object `object` currently rests on (see supportUnder()), from its world bounds.
 const SceneObject* currentSupport(const Scene& scene, const SceneObject& object, double tolerance);
 
+/// How far an object's bottom may be from its support's top (m) for it to rest there.
+inline constexpr double kSupportTolerance = 0.015;
+
+/// Throws InputError "<settings> settings: <field> must be a finite length >= 0 (got ...)".
+void requireSettingLength(double value, const char* settings, const char* field);
+
+/// Throws InputError "<settings> settings: <field> must be >= 1 (got ...)".
+void requireSettingCount(int value, const char* settings, const char* field);
+
 /// The pose of object `name` in the world, following its attachment when it is held.
 Pose currentObjectPose(const Scene& scene, const std::string& name);
 

@@ -10,7 +10,6 @@
 namespace lang2manip {
 namespace {
 
-constexpr double kSupportTolerance = 0.015;
 
 std::string sizeText(const Vector3& v) {
   char buffer[96];

@@ -16,7 +16,7 @@ constexpr double kMinDamping = 1e-12;
 constexpr double kMinAxisDamping = 1e-9;  // approach-axis targets: J J^T is singular
 constexpr double kMaxDamping = 1e3;
 /// Iterations of one descent before a restart.
-constexpr int kMaxIterations = 60;
+constexpr int kDescentIterations = 60;
 /// Re-solves of one step after holding joints on their limits.
 constexpr int kActiveSetPasses = 3;
 /// Largest joint step of one iteration (rad or m).
@@ -144,7 +144,7 @@ bool dlsDescend(const IkProblem& problem, DlsWorkspace& w, IkSearch& search) noe
   evaluate(problem, w.q, w.pose, w.jacobian, w.error);
   double cost = w.error.squaredNorm();
   double checkpoint = cost;
-  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+  for (int iteration = 0; iteration < kDescentIterations; ++iteration) {
     if (converged(problem, w.error)) return true;
     if (iteration > 0 && iteration % kStagnationWindow == 0) {
       if (cost > kStagnationFloor && cost > kStagnationProgress * checkpoint) break;

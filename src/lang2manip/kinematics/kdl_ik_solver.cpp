@@ -18,7 +18,7 @@ namespace lang2manip {
 namespace {
 
 /// KDL's defaults: 100 Newton-Raphson iterations; twist components below this end them.
-constexpr unsigned kMaxIterations = 100;
+constexpr unsigned kLmaIterations = 100;
 constexpr double kKdlEpsilon = 1e-6;
 
 KDL::JntArray toJntArray(const VectorX& values) {
@@ -52,7 +52,7 @@ struct KdlChainSolvers {
         chain(makeKdlChain(model, source)),
         fk(chain),
         velocity(chain),
-        ik(chain, fk, velocity, kMaxIterations, kKdlEpsilon) {}
+        ik(chain, fk, velocity, kLmaIterations, kKdlEpsilon) {}
   KdlChainSolvers(const KdlChainSolvers&) = delete;
   KdlChainSolvers& operator=(const KdlChainSolvers&) = delete;
 

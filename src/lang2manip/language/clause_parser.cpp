@@ -5,10 +5,6 @@
 namespace lang2manip::language_detail {
 namespace {
 
-bool contains(const std::vector<std::string>& list, const std::string& item) {
-  return std::find(list.begin(), list.end(), item) != list.end();
-}
-
 bool isDirectional(SpatialRelation relation) {
   return relation != SpatialRelation::kIn && relation != SpatialRelation::kOn;
 }
@@ -120,7 +116,7 @@ void StepParser::parseSameAs(Step& step, std::size_t length) {
   step.at = list.back().end;
   step.objects = groundList(step, list);
   const RelationSpec relation = *lastStepRelation_;
-  if (contains(step.objects, relation.target)) {
+  if (containsWord(step.objects, relation.target)) {
     throwGroundingError(joinWords(step.words), "cannot relate " + relation.target + " to itself");
   }
   addRelationGoals(step, relation);
@@ -163,7 +159,7 @@ std::vector<std::string> StepParser::groundList(Step& step, const std::vector<No
     const bool group = phrase.isPlural() && phrase.pronoun == Pronoun::kNone;
     if (group && list.size() == 1) step.listedExplicitly = false;
     for (const std::string& object : grounded) {
-      if (contains(objects, object)) continue;
+      if (containsWord(objects, object)) continue;
       objects.push_back(object);
       if (group) step.groupObjects.push_back(object);
     }
@@ -257,9 +253,9 @@ std::string StepParser::groundTarget(Step& step, const NounPhrase& phrase, bool 
   const std::string& target = targets.front();
   discourse_.lastTarget = target;
   discourse_.mention({target});
-  const bool inGroup = contains(step.groupObjects, target);
+  const bool inGroup = containsWord(step.groupObjects, target);
   std::erase(step.groupObjects, target);
-  if (contains(step.objects, target)) {
+  if (containsWord(step.objects, target)) {
     if (!inGroup) {
       throwGroundingError(joinWords(step.words), "cannot relate " + target + " to itself");
     }

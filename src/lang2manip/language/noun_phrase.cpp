@@ -16,25 +16,13 @@ constexpr int kKindTier = 1;
 constexpr int kSynonymTier = 2;
 constexpr int kGenericTier = 3;
 
-bool contains(const std::vector<std::string>& list, const std::string& item) {
-  return std::find(list.begin(), list.end(), item) != list.end();
-}
-
-std::string joinNames(const std::vector<std::string>& names, const char* separator = ", ") {
-  std::string text;
-  for (const std::string& name : names) {
-    if (!text.empty()) text += separator;
-    text += name;
-  }
-  return text;
-}
 
 /// Colour words and the colour name they mean.
 std::optional<std::string> colourWord(const std::string& word) {
   static const std::vector<std::pair<std::string, std::string>> aliases{
       {"gray", "grey"}, {"violet", "purple"}, {"magenta", "pink"}, {"navy", "blue"},
       {"gold", "yellow"}, {"golden", "yellow"}, {"turquoise", "cyan"}, {"teal", "cyan"}};
-  if (contains(colourNames(), word)) return word;
+  if (containsWord(colourNames(), word)) return word;
   for (const auto& [alias, name] : aliases) {
     if (word == alias) return name;
   }
@@ -46,8 +34,8 @@ std::optional<SizeWord> sizeWord(const std::string& word) {
                                             "largest", "huge", "giant"};
   static const std::vector<std::string> small{"small", "smaller", "smallest", "little", "tiny",
                                               "mini"};
-  if (contains(big, word)) return SizeWord::kBig;
-  if (contains(small, word)) return SizeWord::kSmall;
+  if (containsWord(big, word)) return SizeWord::kBig;
+  if (containsWord(small, word)) return SizeWord::kSmall;
   return std::nullopt;
 }
 
@@ -92,7 +80,7 @@ bool NounPhrase::isPlural() const {
 
 void Discourse::mention(const std::vector<std::string>& objects) {
   for (const std::string& object : objects) {
-    if (!contains(mentioned, object)) mentioned.push_back(object);
+    if (!containsWord(mentioned, object)) mentioned.push_back(object);
   }
 }
 
@@ -140,7 +128,7 @@ std::optional<NounMatch> NounPhraseReader::matchNoun(const Words& words, std::si
     if (!prefix) continue;
     const std::string& last = words[at + size - 1];
     const bool singular = last == entry.words.back();
-    const bool plural = !singular && contains(singularCandidates(last), entry.words.back());
+    const bool plural = !singular && containsWord(singularCandidates(last), entry.words.back());
     if (!singular && !plural) continue;
     const bool better = size > bestLength || (size == bestLength && entry.tier < bestTier);
     if (better) {
@@ -148,7 +136,7 @@ std::optional<NounMatch> NounPhraseReader::matchNoun(const Words& words, std::si
       bestTier = entry.tier;
       match = NounMatch{};
     }
-    if (size == bestLength && entry.tier == bestTier && !contains(match.objects, entry.object)) {
+    if (size == bestLength && entry.tier == bestTier && !containsWord(match.objects, entry.object)) {
       match.objects.push_back(entry.object);
       match.plural = plural;
     }
@@ -157,7 +145,7 @@ std::optional<NounMatch> NounPhraseReader::matchNoun(const Words& words, std::si
   // Keep scene order whatever order the entries matched in.
   std::vector<std::string> ordered;
   for (const ObjectDescriptor& object : objects_) {
-    if (contains(match.objects, object.name)) ordered.push_back(object.name);
+    if (containsWord(match.objects, object.name)) ordered.push_back(object.name);
   }
   match.objects = ordered;
   length = bestLength;

@@ -6,22 +6,10 @@
 namespace lang2manip::language_detail {
 namespace {
 
-bool contains(const std::vector<std::string>& list, const std::string& item) {
-  return std::find(list.begin(), list.end(), item) != list.end();
-}
-
-std::string joinNames(const std::vector<std::string>& names) {
-  std::string text;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (i > 0) text += i + 1 == names.size() ? " or " : ", ";
-    text += names[i];
-  }
-  return text;
-}
 
 bool hasColours(const ObjectDescriptor& object, const std::vector<std::string>& colours) {
   return std::all_of(colours.begin(), colours.end(), [&object](const std::string& colour) {
-    return contains(object.colours, colour);
+    return containsWord(object.colours, colour);
   });
 }
 
@@ -55,7 +43,7 @@ std::vector<std::string> NounPhraseReader::ground(const NounPhrase& phrase,
   std::vector<std::string> names = narrow(phrase, byNoun);
   if (byNoun.empty() && phrase.other) {
     throwGroundingError(phrase.text, "there is no other one: already mentioned " +
-                                         joinNames(discourse.mentioned));
+                                         joinAlternatives(discourse.mentioned));
   }
   if (names.empty()) {
     std::string why = "no object matches (objects: " + objectList() + ")";
@@ -76,12 +64,12 @@ std::vector<std::string> NounPhraseReader::ground(const NounPhrase& phrase,
   if (phrase.isPlural()) return names;
   if (phrase.quantity == Quantity::kIndefinite) {
     for (const std::string& name : names) {
-      if (!contains(discourse.mentioned, name)) return {name};
+      if (!containsWord(discourse.mentioned, name)) return {name};
     }
     return {names.front()};
   }
   if (names.size() > 1) {
-    throwGroundingError(phrase.text, "it is ambiguous: it could be " + joinNames(names) +
+    throwGroundingError(phrase.text, "it is ambiguous: it could be " + joinAlternatives(names) +
                                          "; say which (by name, colour, size or place)");
   }
   return names;
@@ -96,7 +84,7 @@ std::vector<std::string> NounPhraseReader::groundPronoun(
     }
     if (phrase.quantity == Quantity::kExactly &&
         static_cast<int>(discourse.lastObjects.size()) != phrase.count) {
-      throwGroundingError(phrase.text, "it refers to " + joinNames(discourse.lastObjects) +
+      throwGroundingError(phrase.text, "it refers to " + joinAlternatives(discourse.lastObjects) +
                                            ", not " + std::to_string(phrase.count) + " objects");
     }
     return discourse.lastObjects;
@@ -104,10 +92,10 @@ std::vector<std::string> NounPhraseReader::groundPronoun(
   // "it": the object acted on last, else the latest target; as the target of "in", a container.
   std::vector<std::string> previous;
   for (const std::string& object : discourse.lastObjects) {
-    if (!asTarget || !contains(actedOn, object)) previous.push_back(object);
+    if (!asTarget || !containsWord(actedOn, object)) previous.push_back(object);
   }
-  if (asTarget && !discourse.lastTarget.empty() && !contains(actedOn, discourse.lastTarget) &&
-      !contains(previous, discourse.lastTarget)) {
+  if (asTarget && !discourse.lastTarget.empty() && !containsWord(actedOn, discourse.lastTarget) &&
+      !containsWord(previous, discourse.lastTarget)) {
     if (previous.empty()) previous.push_back(discourse.lastTarget);
     else if (preferContainer) previous.push_back(discourse.lastTarget);
   }
@@ -122,7 +110,7 @@ std::vector<std::string> NounPhraseReader::groundPronoun(
     throwGroundingError(phrase.text, "nothing was mentioned before that it could refer to");
   }
   if (previous.size() > 1) {
-    throwGroundingError(phrase.text, "it could refer to " + joinNames(previous) + "; say which");
+    throwGroundingError(phrase.text, "it could refer to " + joinAlternatives(previous) + "; say which");
   }
   return previous;
 }
@@ -145,7 +133,7 @@ std::vector<std::string> NounPhraseReader::candidates(const NounPhrase& phrase,
   }
   if (phrase.other) {
     std::erase_if(names, [&discourse](const std::string& name) {
-      return contains(discourse.mentioned, name);
+      return containsWord(discourse.mentioned, name);
     });
   }
   return names;

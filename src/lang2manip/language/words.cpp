@@ -1,5 +1,6 @@
 #include "lang2manip/language/words.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <utility>
@@ -140,6 +141,28 @@ std::vector<std::string> singularCandidates(const std::string& word) {
   if (endsWith(word, "es")) result.push_back(word.substr(0, word.size() - 2));
   if (endsWith(word, "s") && !endsWith(word, "ss")) result.push_back(word.substr(0, word.size() - 1));
   return result;
+}
+
+bool containsWord(const Words& list, const std::string& word) {
+  return std::find(list.begin(), list.end(), word) != list.end();
+}
+
+std::string joinNames(const std::vector<std::string>& names, const char* separator) {
+  std::string text;
+  for (const std::string& name : names) {
+    if (!text.empty()) text += separator;
+    text += name;
+  }
+  return text;
+}
+
+std::string joinAlternatives(const std::vector<std::string>& names) {
+  std::string text;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) text += i + 1 == names.size() ? " or " : ", ";
+    text += names[i];
+  }
+  return text;
 }
 
 }  // namespace lang2manip

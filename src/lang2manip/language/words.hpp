@@ -24,6 +24,15 @@ std::string joinWords(const Words& words, std::size_t begin, std::size_t end);
 /// All of `words` joined by single spaces.
 std::string joinWords(const Words& words);
 
+/// True when `list` holds `word`.
+bool containsWord(const Words& list, const std::string& word);
+
+/// `names` joined by `separator` ("a, b, c").
+std::string joinNames(const std::vector<std::string>& names, const char* separator = ", ");
+
+/// `names` as alternatives: "a", "a or b", "a, b or c".
+std::string joinAlternatives(const std::vector<std::string>& names);
+
 /// True when `phrase` occurs in `words` starting at `at`.
 bool matchesAt(const Words& words, std::size_t at, const Words& phrase);
 

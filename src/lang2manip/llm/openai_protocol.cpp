@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "lang2manip/llm/llm_protocol.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/llm/llm_support.hpp"
 
 namespace lang2manip {
@@ -11,12 +12,6 @@ namespace lang2manip {
 namespace {
 
 using nlohmann::json;
-
-std::string lowercase(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
-}
 
 bool mentions(const std::string& text, const char* word) {
   return text.find(word) != std::string::npos;

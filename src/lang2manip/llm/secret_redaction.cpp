@@ -4,14 +4,10 @@
 #include <cctype>
 #include <nlohmann/json.hpp>
 
+#include "lang2manip/core/text_parsing.hpp"
+
 namespace lang2manip {
 namespace {
-
-std::string lowercase(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
-}
 
 /// How `secret` appears inside a JSON string ("a\"b" for a"b), without the quotes.
 std::string jsonEscaped(const std::string& secret) {

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/model/geometry.hpp"
 #include "lang2manip/model/moveit_yaml.hpp"
 
@@ -14,7 +15,6 @@ namespace lang2manip {
 namespace {
 
 using moveit_yaml::joined;
-using moveit_yaml::lowercase;
 using moveit_yaml::optionalText;
 using moveit_yaml::readBasePose;
 using moveit_yaml::readPose;

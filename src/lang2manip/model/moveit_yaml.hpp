@@ -50,7 +50,6 @@ class YamlValue {
   const std::string* file_;
 };
 
-std::string lowercase(std::string text);
 /// "a, b, c".
 std::string joined(const std::vector<std::string>& names);
 

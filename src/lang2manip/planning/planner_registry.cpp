@@ -41,6 +41,7 @@
 #include <ompl/geometric/planners/sbl/pSBL.h>
 #include <ompl/geometric/planners/stride/STRIDE.h>
 
+#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/planning/motion_planner.hpp"
 
@@ -163,12 +164,6 @@ const std::vector<std::pair<std::string, std::string>>& unsupportedKauthamPlanne
               "joint-space problems (28 vertices in 5 s on a 2-DOF test arm)"},
   };
   return planners;
-}
-
-std::string lowercase(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
 }
 
 const RegisteredPlanner* findPlanner(const std::string& name, bool caseSensitive) {
