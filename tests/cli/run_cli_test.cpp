@@ -10,6 +10,7 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <tuple>
 
 #include "cli/cli_run.hpp"
 #include "fake_llm_server.hpp"
@@ -109,6 +110,33 @@ TEST(RunCli, AnLlmPlanThatCannotBeGroundedIsRepaired) {
   EXPECT_EQ(report["task_planner"], "openai:gpt-test");
   ASSERT_EQ(server.requests().size(), 2u);
   EXPECT_THAT(server.requests()[1].body, HasSubstr("could not be executed"));
+}
+
+// Kautham's TX90 with its Robotiq gripper (linkage fingers, mimic joints, tool frame at the
+// palm, no SRDF) at the desk, unchanged: the paper task runs as on the built-in robots.
+TEST(RunCli, ThePaperTaskSucceedsWithKauthamsTx90AndRobotiqGripper) {
+  const auto shared = sharedDataDirectory();
+  if (!shared) GTEST_SKIP() << "../shared/data is absent";
+  const fs::path desk = fs::path(LANG2MANIP_TEST_DATA_DIR) / ".." / ".." / "data" / "models" / "obstacles" / "desk";
+  const TempDirectory directory;
+  std::string problem = "<Problem name=\"tx90_robotiq_desk\">\n  <Robot robot=\"" + (*shared / "kautham/models/robots/tx90_robotniq.urdf").string() +
+                        "\"><Home X=\"-0.45\" Y=\"0\" Z=\"0.752\" WX=\"0\" WY=\"0\" WZ=\"1\" TH=\"0\"/></Robot>\n";
+  for (const auto& [name, file, x, y] : {std::tuple{"desk", "desk.urdf", 0.0, 0.0}, std::tuple{"marker", "marker.urdf", 0.02, -0.18},
+                                         std::tuple{"eraser", "eraser.urdf", -0.02, 0.17}, std::tuple{"holder", "pen_holder.urdf", 0.12, 0.02}}) {
+    problem += "  <Obstacle obstacle=\"" + (desk / file).string() + "\"><Home X=\"" + std::to_string(x) + "\" Y=\"" + std::to_string(y) +
+               "\" Z=\"" + (std::string(name) == "desk" ? "0" : "0.75") + "\" WX=\"0\" WY=\"0\" WZ=\"1\" TH=\"0\"/><KauthamName name=\"" + name +
+               "\"/></Obstacle>\n";
+  }
+  problem += "</Problem>\n";
+  const fs::path file = directory.path() / "tx90_robotiq_desk.xml";
+  std::ofstream(file) << problem;
+  const RunResult result = run("run " + file.string() + " --task \"put the marker in the holder\"" + kBudgets + " --out " +
+                               (directory.path() / "out").string());
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("SUCCESS"));
+  const json report = readJson(directory.path() / "out" / "report.json");
+  ASSERT_TRUE(report.is_object());
+  EXPECT_TRUE(report["success"].get<bool>());
 }
 
 TEST(RunCli, AFailedTaskWritesItsPartialResultsAndExitsWithTwo) {

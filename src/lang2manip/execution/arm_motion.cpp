@@ -104,7 +104,7 @@ ArmContext::ArmContext(const Scene& scene, ExecutionSettings settings) : setting
   robot_ = settings_.robot.empty() ? scene.robots().front().name : settings_.robot;
   model_ = scene.robot(robot_).model;
   manipulator_ = findManipulator(*model_, settings_.manipulator);
-  gripper_ = describeGripper(*model_, manipulator_.name);
+  gripper_ = std::make_shared<const GripperGeometry>(describeGripper(*model_, manipulator_.name));
   ik_ = makeIkSolver(settings_.ikSolver);
   (void)makeGraspPlanner(settings_.graspPlanner);
   for (const std::string& joint : manipulator_.armJoints) armVariables_.push_back(model_->variableIndex(joint));
@@ -137,17 +137,15 @@ std::shared_ptr<const FclCollisionChecker> ArmContext::checkerFor(const Scene& w
 ReachabilityChecker ArmContext::reachIn(const Scene& world) const {
   ReachSettings reach = settings_.reach;
   reach.seed = settings_.seed;
-  return ReachabilityChecker(checkerFor(world), ik_, robot_, manipulator_.name, reach);
+  return ReachabilityChecker(checkerFor(world), ik_, robot_, manipulator_.name, reach, gripper_);
 }
 
 Pose ArmContext::toolPose(const Scene& world, const VectorX& q) const {
-  return world.robot(robot_).basePose * computeLinkPose(*model_, q, gripper_.toolFrame);
+  return world.robot(robot_).basePose * computeLinkPose(*model_, q, gripper_->toolFrame) * gripper_->graspFrame;
 }
 
 double ArmContext::gripperWidth(const VectorX& q) const {
-  const int variable = model_->variableIndex(gripper_.gripperJoints.front());
-  const double span = gripper_.openValues.front() - gripper_.closedValues.front();
-  return std::clamp((q[variable] - gripper_.closedValues.front()) / span, 0.0, 1.0) * gripper_.maxOpening;
+  return gripperOpening(*model_, *gripper_, q);
 }
 
 namespace {
@@ -267,7 +265,7 @@ MotionResult planCartesian(const ArmContext& arm, const Scene& world, const Vect
     IkRequest request;
     request.model = &arm.model();
     request.manipulator = arm.manipulator().name;
-    request.target = IkTarget::pose(X_WB.inverse() * X_WG);
+    request.target = IkTarget::pose(X_WB.inverse() * X_WG * arm.gripper().graspFrame.inverse());
     request.seed = segment.waypoints.back();
     request.timeoutSeconds = s.reach.ikTimeoutSeconds;
     request.randomSeed = s.seed;
@@ -324,6 +322,51 @@ MotionSegment gripperMotion(const ArmContext& arm, const Scene& world, const Vec
   segment.allowedContacts = std::move(allowedContacts);
   segment.waypoints = {start, withGripperOpening(arm.model(), arm.gripper(), start, width)};
   return segment;
+}
+
+namespace {
+
+/// Whether a finger of the arm touches `object` at configuration `q`.
+bool fingersTouch(const ArmContext& arm, const FclCollisionChecker& checker, CollisionContext& context, const VectorX& q,
+                  const std::string& object) {
+  const CollisionReport report = checker.checkState(checker.robotIndex(arm.robotName()), q, {}, context);
+  for (const CollisionContact& contact : report.contacts) {
+    const std::string& other = contact.first == object ? contact.second : contact.second == object ? contact.first : object;
+    for (const std::string& finger : arm.gripper().fingerLinks) {
+      if (other == arm.robotName() + "/" + finger) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+MotionResult closeGripperOn(const ArmContext& arm, const Scene& world, const VectorX& start, const std::string& object,
+                            const std::string& label) {
+  constexpr int kBisections = 12;
+  const auto checker = arm.checkerFor(world);
+  const auto context = checker->makeContext();
+  const GripperGeometry& gripper = arm.gripper();
+  double free = gripperFraction(arm.model(), gripper, start);
+  double touching = 0.0;
+  MotionResult result;
+  result.collisionChecks = 1;
+  if (!fingersTouch(arm, *checker, *context, withGripperFraction(arm.model(), gripper, start, touching), object)) {
+    return failedMotion("grasp", label + ": the fingers close fully without touching " + object);
+  }
+  for (int i = 0; i < kBisections && free > touching; ++i) {
+    const double middle = 0.5 * (free + touching);
+    ++result.collisionChecks;
+    (fingersTouch(arm, *checker, *context, withGripperFraction(arm.model(), gripper, start, middle), object) ? touching : free) =
+        middle;
+  }
+  MotionSegment segment;
+  segment.label = label;
+  segment.world = world;
+  segment.allowedContacts = fingerContacts(arm, object);
+  segment.waypoints = {start, withGripperFraction(arm.model(), gripper, start, free)};
+  result.segment = std::move(segment);
+  return result;
 }
 
 SegmentCheck checkSegment(const ArmContext& arm, const MotionSegment& segment, double resolution) {

@@ -22,13 +22,14 @@ namespace lang2manip {
 class ArmContext {
  public:
   /// For `settings.robot` / `settings.manipulator` of `scene`. Throws InputError for an unknown
-  /// robot, arm, IK solver or grasp planner, an arm without a gripper, or invalid settings.
+  /// robot, arm, IK solver or grasp planner, a gripper that does not open, or invalid settings
+  /// (an arm without a gripper is accepted: it moves and pushes; picks are refused).
   ArmContext(const Scene& scene, ExecutionSettings settings);
 
   [[nodiscard]] const std::string& robotName() const noexcept { return robot_; }
   [[nodiscard]] const RobotModel& model() const noexcept { return *model_; }
   [[nodiscard]] const Manipulator& manipulator() const noexcept { return manipulator_; }
-  [[nodiscard]] const GripperGeometry& gripper() const noexcept { return gripper_; }
+  [[nodiscard]] const GripperGeometry& gripper() const noexcept { return *gripper_; }
   [[nodiscard]] const ExecutionSettings& settings() const noexcept { return settings_; }
   [[nodiscard]] const std::shared_ptr<const IkSolver>& ik() const noexcept { return ik_; }
   /// The arm joints of the robot's named configuration "home", when it has one.
@@ -42,7 +43,8 @@ class ArmContext {
   [[nodiscard]] std::shared_ptr<const FclCollisionChecker> checkerFor(const Scene& world) const;
   /// A reachability checker (IK + collision) for `world`.
   [[nodiscard]] ReachabilityChecker reachIn(const Scene& world) const;
-  /// X_WG: the tool frame in the world for configuration `q` of the robot in `world`.
+  /// X_WG: the gripper's grasp frame (GripperGeometry::graspFrame) in the world for configuration
+  /// `q` of the robot in `world`.
   [[nodiscard]] Pose toolPose(const Scene& world, const VectorX& q) const;
   /// The gripper gap of configuration `q`.
   [[nodiscard]] double gripperWidth(const VectorX& q) const;
@@ -54,7 +56,7 @@ class ArmContext {
   std::string robot_;
   RobotModelPtr model_;
   Manipulator manipulator_;
-  GripperGeometry gripper_;
+  std::shared_ptr<const GripperGeometry> gripper_;
   ExecutionSettings settings_;
   std::shared_ptr<const IkSolver> ik_;
   std::vector<int> armVariables_;
@@ -120,6 +122,13 @@ MotionResult planCartesian(const ArmContext& arm, const Scene& world, const Vect
 MotionSegment gripperMotion(const ArmContext& arm, const Scene& world, const VectorX& start, double width,
                             const std::string& label,
                             std::vector<std::pair<std::string, std::string>> allowedContacts = {});
+
+/// Closes the gripper from `start` onto `object` and stops where the fingers first touch it: the
+/// travel is searched (bisection on the finger geometry against the object's, to 1/4096 of the
+/// travel) for the last position without contact, which is what the segment ends at. Fails with
+/// stage "grasp" when the fingers close fully without touching `object`.
+MotionResult closeGripperOn(const ArmContext& arm, const Scene& world, const VectorX& start, const std::string& object,
+                            const std::string& label);
 
 /// The outcome of checkSegment().
 struct SegmentCheck {

@@ -47,12 +47,10 @@ std::optional<GroundingAttempt> tryPick(const GroundingContext& c, const Scene& 
              record.times)) {
     return a;
   }
-  if (!a.add(arm, gripperMotion(arm, a.world, a.q, grasp.objectWidth, "close gripper on " + name, fingerContacts(arm, name)), c.counters)) {
-    return a;
-  }
+  if (!a.add(arm, closeGripperOn(arm, a.world, a.q, name, "close gripper on " + name), c.counters, record.times)) return a;
   const SceneObject* support = currentSupport(a.world, a.world.object(name), kSupportTolerance);
   const Pose X_GO = arm.toolPose(a.world, a.q).inverse() * a.world.object(name).pose;
-  a.world.attach({name, arm.robotName(), arm.gripper().toolFrame, X_GO});
+  a.world.attach({name, arm.robotName(), arm.gripper().toolFrame, arm.gripper().graspFrame * X_GO});
   CartesianAllowance leave;
   if (support != nullptr) leave.allowedContacts.emplace_back(name, support->name);
   a.add(arm, planCartesian(arm, a.world, a.q, grasp.postGraspPose, "lift " + name, leave), c.counters, record.times);
@@ -110,6 +108,7 @@ std::optional<GroundingAttempt> groundPick(const GroundingContext& c, const Scen
                                            ActionExecution& record) {
   const ArmContext& arm = c.arm;
   const SceneObject& object = world.object(action.object);
+  if (!arm.gripper().hasGripper()) return refuse(record, "precondition", noGripperReason(arm.model(), arm.gripper(), "pick " + object.name));
   if (world.findAttachment(object.name) != nullptr) return refuse(record, "precondition", object.name + " is already held");
   if (const Attachment* held = heldByRobot(world, arm.robotName())) {
     return refuse(record, "precondition", "cannot pick " + object.name + ": the gripper already holds " + held->object);

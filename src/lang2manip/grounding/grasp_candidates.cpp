@@ -140,6 +140,12 @@ void addGrasps(const GraspGeometryInput& in, const GripperGeometry& gripper, con
                               object.name + " is " + metres(width) + " wide across the fingers, the gripper opens " + metres(gripper.maxOpening)});
     return;
   }
+  if (width < gripper.minOpening) {
+    out.rejections.push_back({describe(approach.direction, a, c, 0.0), GraspFailure::kNotGraspable,
+                              object.name + " is " + metres(width) + " wide across the fingers, the gripper closes only to " +
+                                  metres(gripper.minOpening)});
+    return;
+  }
   const Matrix3 R = gripperRotation(gripper, a, c);
   const Vector3 t = a.cross(c);
   const Vector3 centre = objectCentre(object, in.objectPose);

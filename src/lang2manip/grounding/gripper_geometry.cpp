@@ -2,49 +2,153 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/grounding/gripper_fingers.hpp"
 #include "lang2manip/grounding/object_geometry.hpp"
 
 namespace lang2manip {
 namespace {
 
-/// Joints driven by gripper variable joint `source` (itself and its mimics).
-std::vector<int> drivenJoints(const RobotModel& model, int source) {
-  std::vector<int> joints{source};
-  const int variable = model.variableOfJoint(source);
-  for (int j = 0; j < static_cast<int>(model.joints().size()); ++j) {
-    if (j != source && model.mimicSource(j) == variable && variable >= 0) joints.push_back(j);
-  }
-  return joints;
+using gripper_detail::FingerSet;
+using gripper_detail::PadLayout;
+
+/// Samples of the pad gap over the travel.
+constexpr int kCurveSamples = 33;
+/// A gripper whose pad gap changes less than this over its travel does not open (m).
+constexpr double kMinimumTravel = 1e-3;
+/// The tool frame is between the pads when within this of them along the approach axis (m).
+constexpr double kTcpTolerance = 0.01;
+
+std::string millimetres(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.1f mm", value * 1000.0);
+  return buffer;
 }
 
-/// Every link below `joint` (its child and the child's descendants).
-void collectSubtree(const RobotModel& model, int joint, std::vector<int>& links) {
-  const int child = model.childLinkOf(joint);
-  links.push_back(child);
-  for (int j = 0; j < static_cast<int>(model.joints().size()); ++j) {
-    if (model.parentLinkOf(j) == child) collectSubtree(model, j, links);
-  }
+std::string where(const RobotModel& model, const Manipulator& manipulator) {
+  return "gripper of " + model.name() + "/" + manipulator.name;
 }
 
-double openingOf(const RobotModel& model, const Manipulator& manipulator) {
-  double opening = 0.0;
-  for (std::size_t i = 0; i < manipulator.gripperJoints.size(); ++i) {
-    const int source = model.jointIndex(manipulator.gripperJoints[i]);
-    const double travel = std::abs(manipulator.gripperOpen[i] - manipulator.gripperClosed[i]);
-    for (int joint : drivenJoints(model, source)) {
-      const Joint& j = model.joints()[static_cast<std::size_t>(joint)];
-      if (j.type != JointType::kPrismatic) continue;
-      opening += travel * (j.mimic ? std::abs(j.mimic->multiplier) : 1.0);
+std::vector<double> openingCurve(const FingerSet& fingers, const PadLayout& layout) {
+  std::vector<double> curve;
+  for (int i = 0; i < kCurveSamples; ++i) {
+    curve.push_back(gripper_detail::padGap(fingers, layout, fingers.linkPoses(i / (kCurveSamples - 1.0))));
+  }
+  return curve;
+}
+
+/// Bounds of the pads' points along `axis` when open.
+std::pair<double, double> padRange(const FingerSet& fingers, const PadLayout& layout, const Vector3& axis) {
+  const std::vector<Pose> open = fingers.linkPoses(1.0);
+  double low = std::numeric_limits<double>::infinity();
+  double high = -low;
+  for (std::size_t pad : layout.pads) {
+    for (const Vector3& p : fingers.pointsInTool(pad, open)) {
+      low = std::min(low, p.dot(axis));
+      high = std::max(high, p.dot(axis));
     }
   }
-  return opening;
+  return {low, high};
 }
 
-void checkHasGripper(const Manipulator& manipulator, const RobotModel& model) {
-  if (manipulator.gripperJoints.empty()) {
-    throw InputError("gripper of " + model.name() + "/" + manipulator.name + ": the manipulator has no gripper joint");
+/// X_TH: the tool frame when its origin lies between the open pads, else the pads' centre; the
+/// rotation keeps T's when T's +z is the approach axis, else turns +z onto it and +y onto closing.
+Pose graspFrameOf(const FingerSet& fingers, const PadLayout& layout) {
+  const Vector3 a = layout.approach;
+  const Vector3 c = layout.closing;
+  const Vector3 t = a.cross(c);
+  const auto [aLow, aHigh] = padRange(fingers, layout, a);
+  const auto [tLow, tHigh] = padRange(fingers, layout, t);
+  const double gap = gripper_detail::padGap(fingers, layout, fingers.linkPoses(1.0));
+  const auto [cLow, cHigh] = padRange(fingers, layout, c);
+  const double middle = layout.radial ? layout.axisPoint.dot(c) : 0.5 * (cLow + cHigh);
+  const bool between = aLow - kTcpTolerance <= 0.0 && 0.0 <= aHigh + kTcpTolerance && tLow - kTcpTolerance <= 0.0 &&
+                       0.0 <= tHigh + kTcpTolerance && std::abs(middle) <= 0.5 * std::max(gap, 0.0) + kTcpTolerance;
+  Pose X_TH = Pose::Identity();
+  if (!a.isApprox(Vector3::UnitZ(), 1e-9)) X_TH.linear() << c.cross(a), c, a;
+  if (!between) X_TH.translation() = a * 0.5 * (aLow + aHigh) + c * middle + t * 0.5 * (tLow + tHigh);
+  return X_TH;
+}
+
+void describeFingers(const RobotModel& model, const FingerSet& fingers, const PadLayout& layout, GripperGeometry& g) {
+  g.graspFrame = graspFrameOf(fingers, layout);
+  const Pose X_HT = g.graspFrame.inverse();
+  g.approachAxis = Vector3::UnitZ();
+  g.closingAxis = (X_HT.linear() * layout.closing).normalized();
+  g.fingerCount = layout.radial ? static_cast<int>(layout.pads.size()) : 2;
+  const auto [aLow, aHigh] = padRange(fingers, layout, layout.approach);
+  g.padDepth = aHigh - aLow;
+  const std::vector<Pose> open = fingers.linkPoses(1.0);
+  double rootLow = aLow;
+  for (std::size_t i = 0; i < fingers.links().size(); ++i) {
+    for (const Vector3& p : fingers.pointsInTool(i, open)) rootLow = std::min(rootLow, p.dot(layout.approach));
+  }
+  g.fingerLength = aHigh - rootLow;
+  for (std::size_t pad : layout.pads) g.padLinks.push_back(model.links()[static_cast<std::size_t>(fingers.links()[pad].link)].name);
+  for (int link : fingers.movedLinks()) g.fingerLinks.push_back(model.links()[static_cast<std::size_t>(link)].name);
+  // Over the whole travel: linkage fingers reach farther along the approach axis half-closed.
+  for (int i = 0; i < kCurveSamples; ++i) {
+    const std::vector<Pose> poses = fingers.linkPoses(i / (kCurveSamples - 1.0));
+    for (int link : fingers.movedLinks()) {
+      const Pose X_HL = X_HT * poses[static_cast<std::size_t>(link)];
+      for (const Shape& shape : model.links()[static_cast<std::size_t>(link)].collisions) {
+        g.fingerBounds.extend(transformedBox(shapeBounds(shape), X_HL));
+      }
+    }
+  }
+}
+
+/// Bounds of the collision geometry below the last arm joint, in the tool frame (a tool without
+/// gripper: what pushes).
+AlignedBox3 toolBounds(const RobotModel& model, const Manipulator& manipulator) {
+  AlignedBox3 bounds;
+  if (manipulator.armJoints.empty()) return bounds;
+  const VectorX q = model.middleConfiguration();
+  const std::vector<Pose> poses = model.linkPoses(q);
+  const Pose X_TR = poses[static_cast<std::size_t>(model.linkIndex(manipulator.toolFrame))].inverse();
+  std::vector<int> stack{model.childLinkOf(model.jointIndex(manipulator.armJoints.back()))};
+  while (!stack.empty()) {
+    const int link = stack.back();
+    stack.pop_back();
+    for (const Shape& shape : model.links()[static_cast<std::size_t>(link)].collisions) {
+      bounds.extend(transformedBox(shapeBounds(shape), X_TR * poses[static_cast<std::size_t>(link)]));
+    }
+    for (int j = 0; j < static_cast<int>(model.joints().size()); ++j) {
+      if (model.parentLinkOf(j) == link) stack.push_back(model.childLinkOf(j));
+    }
+  }
+  return bounds;
+}
+
+void describeGripperJoints(const RobotModel& model, const Manipulator& manipulator, GripperGeometry& g, bool mayReverse = true) {
+  const std::string context = where(model, manipulator);
+  const FingerSet fingers(model, g.toolFrame, g.gripperJoints, g.closedValues, g.openValues);
+  if (mayReverse && fingers.spread(0.0) > fingers.spread(1.0)) {
+    // The fingers spread wider at the "closed" end: the travel runs the other way.
+    std::swap(g.openValues, g.closedValues);
+    describeGripperJoints(model, manipulator, g, false);
+    return;
+  }
+  const PadLayout layout = gripper_detail::layoutPads(fingers, context);
+  g.openingCurve = openingCurve(fingers, layout);
+  if (mayReverse && g.openingCurve.front() > g.openingCurve.back()) {
+    // The limits' "open" end is where the pads meet: the travel runs the other way.
+    std::swap(g.openValues, g.closedValues);
+    describeGripperJoints(model, manipulator, g, false);
+    return;
+  }
+  for (std::size_t i = 1; i < g.openingCurve.size(); ++i) g.openingCurve[i] = std::max(g.openingCurve[i], g.openingCurve[i - 1]);
+  for (double& width : g.openingCurve) width = std::max(width, 0.0);
+  g.minOpening = g.openingCurve.front();
+  g.maxOpening = g.openingCurve.back();
+  describeFingers(model, fingers, layout, g);
+  if (g.maxOpening - g.minOpening < kMinimumTravel) {
+    throw InputError(context + ": it does not open: the gap between its pads (" + g.padLinks.front() + " and " + g.padLinks.back() +
+                     ") stays between " + millimetres(g.minOpening) + " and " + millimetres(g.maxOpening) +
+                     " over the travel of its joints (check their limits, or the SRDF's open and closed states)");
   }
 }
 
@@ -64,45 +168,72 @@ const Manipulator& findManipulator(const RobotModel& model, const std::string& n
 
 GripperGeometry describeGripper(const RobotModel& model, const std::string& manipulatorName) {
   const Manipulator& manipulator = findManipulator(model, manipulatorName);
-  checkHasGripper(manipulator, model);
   GripperGeometry gripper;
   gripper.manipulator = manipulator.name;
   gripper.toolFrame = manipulator.toolFrame;
   gripper.gripperJoints = manipulator.gripperJoints;
   gripper.openValues = manipulator.gripperOpen;
   gripper.closedValues = manipulator.gripperClosed;
-  gripper.maxOpening = openingOf(model, manipulator);
-  if (!(gripper.maxOpening > 0.0)) {
-    throw InputError("gripper of " + model.name() + "/" + manipulator.name + ": it does not open (open == closed)");
-  }
-  const VectorX q = withGripperOpening(model, gripper, model.middleConfiguration(), gripper.maxOpening);
-  const std::vector<Pose> poses = model.linkPoses(q);
-  const Pose X_GR = poses[static_cast<std::size_t>(model.linkIndex(gripper.toolFrame))].inverse();
-  std::vector<int> fingers;
-  for (const std::string& name : manipulator.gripperJoints) {
-    for (int joint : drivenJoints(model, model.jointIndex(name))) collectSubtree(model, joint, fingers);
-  }
-  const int firstJoint = model.jointIndex(manipulator.gripperJoints.front());
-  const Pose& X_RP = poses[static_cast<std::size_t>(model.parentLinkOf(firstJoint))];
-  const Joint& joint = model.joints()[static_cast<std::size_t>(firstJoint)];
-  gripper.closingAxis = (X_GR.linear() * X_RP.linear() * joint.origin.linear() * joint.axis).normalized();
-  for (int link : fingers) {
-    const Link& l = model.links()[static_cast<std::size_t>(link)];
-    gripper.fingerLinks.push_back(l.name);
-    const Pose X_GL = X_GR * poses[static_cast<std::size_t>(link)];
-    for (const Shape& shape : l.collisions) gripper.fingerBounds.extend(transformedBox(shapeBounds(shape), X_GL));
+  if (gripper.hasGripper()) {
+    describeGripperJoints(model, manipulator, gripper);
+  } else {
+    gripper.fingerBounds = toolBounds(model, manipulator);
   }
   if (gripper.fingerBounds.isEmpty()) gripper.fingerBounds = AlignedBox3(Vector3::Zero(), Vector3::Zero());
   return gripper;
 }
 
-VectorX withGripperOpening(const RobotModel& model, const GripperGeometry& gripper, VectorX q, double width) {
-  const double fraction = std::clamp(width / gripper.maxOpening, 0.0, 1.0);
+std::string noGripperReason(const RobotModel& model, const GripperGeometry& gripper, const std::string& action) {
+  if (gripper.hasGripper()) return {};
+  return action + ": robot " + model.name() + " has no gripper (manipulator " + gripper.manipulator +
+                   " ends at " + gripper.toolFrame +
+                   " with no gripper joint after it); it can move and push. To pick, give the robot a gripper, or name its "
+                   "gripper joints in an SRDF end effector group";
+}
+
+VectorX withGripperFraction(const RobotModel& model, const GripperGeometry& gripper, VectorX q, double fraction) {
+  const double s = std::clamp(fraction, 0.0, 1.0);
   for (std::size_t i = 0; i < gripper.gripperJoints.size(); ++i) {
     const int variable = model.variableIndex(gripper.gripperJoints[i]);
-    q[variable] = gripper.closedValues[i] + fraction * (gripper.openValues[i] - gripper.closedValues[i]);
+    q[variable] = gripper.closedValues[i] + s * (gripper.openValues[i] - gripper.closedValues[i]);
   }
   return q;
+}
+
+double gripperFraction(const RobotModel& model, const GripperGeometry& gripper, const VectorX& q) {
+  for (std::size_t i = 0; i < gripper.gripperJoints.size(); ++i) {
+    const double span = gripper.openValues[i] - gripper.closedValues[i];
+    if (std::abs(span) < 1e-12) continue;
+    const int variable = model.variableIndex(gripper.gripperJoints[i]);
+    return std::clamp((q[variable] - gripper.closedValues[i]) / span, 0.0, 1.0);
+  }
+  return 0.0;
+}
+
+double openingAtFraction(const GripperGeometry& gripper, double fraction) {
+  const std::vector<double>& curve = gripper.openingCurve;
+  if (curve.empty()) return 0.0;
+  const double x = std::clamp(fraction, 0.0, 1.0) * static_cast<double>(curve.size() - 1);
+  const std::size_t i = std::min(static_cast<std::size_t>(x), curve.size() - 2);
+  return curve[i] + (x - static_cast<double>(i)) * (curve[i + 1] - curve[i]);
+}
+
+double fractionForOpening(const GripperGeometry& gripper, double width) {
+  const std::vector<double>& curve = gripper.openingCurve;
+  if (curve.empty() || width >= curve.back()) return 1.0;
+  if (width <= curve.front()) return 0.0;
+  const std::size_t i = static_cast<std::size_t>(std::lower_bound(curve.begin(), curve.end(), width) - curve.begin());
+  const double rise = curve[i] - curve[i - 1];
+  const double within = rise > 0.0 ? (width - curve[i - 1]) / rise : 1.0;
+  return (static_cast<double>(i - 1) + within) / static_cast<double>(curve.size() - 1);
+}
+
+VectorX withGripperOpening(const RobotModel& model, const GripperGeometry& gripper, VectorX q, double width) {
+  return withGripperFraction(model, gripper, std::move(q), fractionForOpening(gripper, width));
+}
+
+double gripperOpening(const RobotModel& model, const GripperGeometry& gripper, const VectorX& q) {
+  return gripper.hasGripper() ? openingAtFraction(gripper, gripperFraction(model, gripper, q)) : 0.0;
 }
 
 }  // namespace lang2manip

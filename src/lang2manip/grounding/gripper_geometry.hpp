@@ -1,7 +1,14 @@
 #pragma once
-/// @file What grasp planning needs to know about a parallel gripper, derived from the robot model
-/// alone (no robot is named in code): tool frame, approach and closing axes, opening range, where
-/// the fingers are, and how to turn an opening width into gripper joint values.
+/// @file What grasp planning needs to know about a robot's gripper, derived from the robot model
+/// alone by forward kinematics of the finger geometry (no robot is named in code): the grasp
+/// frame, approach and closing axes, the pad gap over the gripper's travel, the pads' depth and
+/// the fingers' length, and how to turn a pad gap into gripper joint values.
+///
+/// Works for parallel grippers with sliding fingers, with rotating or linkage fingers driven
+/// through <mimic> joints (Robotiq 2F, OnRobot RG2/RG6, Kautham's models), for grippers with
+/// several actuated joints moved together, and for hands with three or more fingers. A tool
+/// without gripper joints (suction cup, bare flange) is described too: it can move and push,
+/// and hasGripper() says it cannot pick.
 
 #include <string>
 #include <vector>
@@ -11,47 +18,91 @@
 
 namespace lang2manip {
 
-/// A two-finger parallel gripper, expressed in its tool frame G (the TCP).
+/// A gripper, expressed in its grasp frame H.
 ///
 /// Conventions (documented for every consumer of the grounding API):
-/// - the approach axis is the tool frame's +z: a grasp moves the TCP along +z into the object;
-/// - the closing axis is the direction the gripper joint moves a finger, expressed in G;
-/// - widths are distances between the finger pads; 0 = closed, maxOpening = fully open.
+/// - H is the manipulator's tool frame T when T's origin already lies between the finger pads
+///   (a TCP); otherwise H is placed between the pads (midway across, at the middle of their
+///   depth), so that an SRDF or URDF whose tool frame is the palm or the flange still grasps
+///   with the pads. graspFrame is X_TH; IK targets the tool frame at X_WH * X_TH^-1.
+/// - the approach axis is H's +z: a grasp moves H along +z into the object;
+/// - the closing axis is the direction the fingers close along, expressed in H (H's +-y unless
+///   T's own axes are kept);
+/// - openings are gaps between the finger pads, measured on the pads' geometry by forward
+///   kinematics at each gripper position (not joint values).
 struct GripperGeometry {
   std::string manipulator;
-  /// Link of the tool frame (TCP).
+  /// Link of the tool frame T.
   std::string toolFrame;
-  /// Unit vectors in G.
+  /// Pose of the grasp frame H in the tool frame (X_TH).
+  Pose graspFrame = Pose::Identity();
+  /// Unit vectors in H.
   Vector3 approachAxis = Vector3::UnitZ();
   Vector3 closingAxis = Vector3::UnitY();
-  /// Largest distance between the finger pads (m).
+  /// Fingers found on the gripper (2 for a parallel gripper; 0 without a gripper).
+  int fingerCount = 0;
+  /// Gap between the pads when fully open and when closed (m).
   double maxOpening = 0.0;
+  double minOpening = 0.0;
+  /// Extent of the pads along the approach axis (m).
+  double padDepth = 0.0;
+  /// From the roots of the fingers to their tips along the approach axis (m).
+  double fingerLength = 0.0;
   /// Links that move with the gripper joints (the fingers); the only links a grasped object may
-  /// touch.
+  /// touch. Empty without a gripper.
   std::vector<std::string> fingerLinks;
-  /// Bounds of the open fingers' collision geometry in G.
+  /// The fingertip links (the farthest-reaching link of each finger).
+  std::vector<std::string> padLinks;
+  /// Bounds in H of the fingers' collision geometry over the whole travel; for a tool without
+  /// gripper, of the geometry rigidly attached below the last arm joint.
   AlignedBox3 fingerBounds;
-  /// Gripper joints (non-mimic) and their values when open and closed.
+  /// Gripper joints (the manipulator's, mimics excluded) and their values when open and closed.
+  /// Open is the end of the travel where the pads are farther apart, whatever the limits say.
   std::vector<std::string> gripperJoints;
   std::vector<double> openValues;
   std::vector<double> closedValues;
+  /// Pad gap (m) at evenly spaced fractions of the travel, from closed (0) to open (1).
+  std::vector<double> openingCurve;
 
-  /// How far the fingertips reach beyond the TCP along the approach axis.
+  /// False for a tool without gripper joints: it moves and pushes but cannot pick.
+  [[nodiscard]] bool hasGripper() const noexcept { return !gripperJoints.empty(); }
+  /// How far the fingertips reach beyond H along the approach axis.
   [[nodiscard]] double fingertipOffset() const { return fingerBounds.max().z(); }
-  /// How far the fingers reach back from the TCP along the approach axis (positive).
+  /// How far the fingers reach back from H along the approach axis (positive).
   [[nodiscard]] double fingerReachBehind() const { return -fingerBounds.min().z(); }
 };
 
 /// The gripper of manipulator `manipulator` of `model` (the first manipulator when empty).
-/// Throws InputError for an unknown manipulator (listing them) and for a manipulator without a
-/// gripper joint or whose gripper does not open (open == closed).
+/// Throws InputError for an unknown manipulator (listing them), and for gripper joints whose
+/// pads do not open (the gap stays within 1 mm over the whole travel; the message gives the gap
+/// and the joints' values). A manipulator without gripper joints gets a description with
+/// hasGripper() false.
 GripperGeometry describeGripper(const RobotModel& model, const std::string& manipulator = {});
+
+/// "<action>: robot R has no gripper ..." (naming the manipulator, its tool frame and how to
+/// declare a gripper), or empty when `gripper` has one; `action` names what needed it ("pick X").
+std::string noGripperReason(const RobotModel& model, const GripperGeometry& gripper, const std::string& action);
 
 /// The manipulator named `name` (the first when empty); throws InputError listing the valid names.
 const Manipulator& findManipulator(const RobotModel& model, const std::string& name);
 
-/// `q` with the gripper joints set for a finger gap of `width` (clamped to [0, maxOpening]).
-VectorX withGripperOpening(const RobotModel& model, const GripperGeometry& gripper, VectorX q,
-                           double width);
+/// `q` with the gripper joints at `fraction` of their travel (0 closed, 1 open; clamped).
+VectorX withGripperFraction(const RobotModel& model, const GripperGeometry& gripper, VectorX q, double fraction);
+
+/// The fraction of the travel the gripper of configuration `q` is at (0 without a gripper).
+double gripperFraction(const RobotModel& model, const GripperGeometry& gripper, const VectorX& q);
+
+/// The pad gap at `fraction` of the travel (interpolated on openingCurve).
+double openingAtFraction(const GripperGeometry& gripper, double fraction);
+
+/// The smallest fraction of the travel whose pad gap is at least `width` (1 when wider than
+/// maxOpening, 0 when narrower than minOpening).
+double fractionForOpening(const GripperGeometry& gripper, double width);
+
+/// `q` with the gripper joints set for a pad gap of `width` (clamped to the gripper's range).
+VectorX withGripperOpening(const RobotModel& model, const GripperGeometry& gripper, VectorX q, double width);
+
+/// The pad gap of configuration `q` (0 without a gripper).
+double gripperOpening(const RobotModel& model, const GripperGeometry& gripper, const VectorX& q);
 
 }  // namespace lang2manip

@@ -15,16 +15,6 @@
 namespace lang2manip {
 namespace {
 
-void checkLength(double value, const char* field) {
-  if (!std::isfinite(value) || value < 0.0) {
-    throw InputError(std::string("placement settings: ") + field + " must be a finite length >= 0 (got " + std::to_string(value) + ")");
-  }
-}
-
-void checkCount(int value, const char* field) {
-  if (value < 1) throw InputError(std::string("placement settings: ") + field + " must be >= 1 (got " + std::to_string(value) + ")");
-}
-
 PlacementPlan failed(PlacementPlan plan, PlacementFailure failure, std::string reason) {
   plan.failure = failure;
   plan.reason = std::move(reason);
@@ -33,7 +23,8 @@ PlacementPlan failed(PlacementPlan plan, PlacementFailure failure, std::string r
 
 /// X_OG of an object the robot holds, from the scene's attachment at the current configuration.
 Pose heldGrasp(const ReachabilityChecker& reach, const std::string& object) {
-  const Pose X_WG = reach.robot().basePose * computeLinkPose(reach.model(), reach.currentConfiguration(), reach.gripper().toolFrame);
+  const Pose X_WG = reach.robot().basePose * computeLinkPose(reach.model(), reach.currentConfiguration(), reach.gripper().toolFrame) *
+                     reach.gripper().graspFrame;
   return currentObjectPose(reach.scene(), object).inverse() * X_WG;
 }
 
@@ -55,7 +46,7 @@ class HeldObjectReach {
     auto& slot = checkers_[index];
     if (!slot) {
       Scene scene = reach_.scene();
-      scene.attach({object_, reach_.robot().name, reach_.gripper().toolFrame, X_OG.inverse()});
+      scene.attach({object_, reach_.robot().name, reach_.gripper().toolFrame, reach_.gripper().graspFrame * X_OG.inverse()});
       slot = std::make_unique<ReachabilityChecker>(reach_.withScene(std::move(scene)));
     }
     return *slot;
@@ -183,18 +174,18 @@ void checkPlacementSettings(const PlacementSettings& s) {
                               {s.wallMargin, "wallMargin"}, {s.edgeMargin, "edgeMargin"}, {s.approachHeight, "approachHeight"},
                               {s.retreatDistance, "retreatDistance"}, {s.supportTolerance, "supportTolerance"},
                               {s.releaseMargin, "releaseMargin"}}) {
-    checkLength(value, field);
+    requireSettingLength(value, "placement", field);
   }
-  for (double drop : s.dropHeights) checkLength(drop, "dropHeights");
-  checkLength(s.rimClearance, "rimClearance");
+  for (double drop : s.dropHeights) requireSettingLength(drop, "placement", "dropHeights");
+  requireSettingLength(s.rimClearance, "placement", "rimClearance");
   for (double shift : s.lateralShifts) {
     if (!std::isfinite(shift)) throw InputError("placement settings: lateralShifts must be finite");
   }
   if (s.lateralShifts.empty()) throw InputError("placement settings: lateralShifts must not be empty");
-  checkCount(s.cavityGrid, "cavityGrid");
-  checkCount(s.surfaceSamples, "surfaceSamples");
-  checkCount(s.maxCandidates, "maxCandidates");
-  checkCount(s.maxReachChecks, "maxReachChecks");
+  requireSettingCount(s.cavityGrid, "placement", "cavityGrid");
+  requireSettingCount(s.surfaceSamples, "placement", "surfaceSamples");
+  requireSettingCount(s.maxCandidates, "placement", "maxCandidates");
+  requireSettingCount(s.maxReachChecks, "placement", "maxReachChecks");
 }
 
 PlacementPlan planPlacement(const ReachabilityChecker& reach, const PlacementRequest& request) {

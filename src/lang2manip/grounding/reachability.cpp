@@ -54,15 +54,16 @@ std::string reachFailureName(ReachFailure failure) {
 
 ReachabilityChecker::ReachabilityChecker(std::shared_ptr<const CollisionChecker> checker,
                                          std::shared_ptr<const IkSolver> ik, const std::string& robot,
-                                         const std::string& manipulator, ReachSettings settings)
-    : checker_(std::move(checker)), ik_(std::move(ik)), settings_(settings) {
+                                         const std::string& manipulator, ReachSettings settings,
+                                         std::shared_ptr<const GripperGeometry> gripper)
+    : checker_(std::move(checker)), ik_(std::move(ik)), gripper_(std::move(gripper)), settings_(settings) {
   if (!checker_) throw InputError("reachability: no collision checker");
   if (!ik_) throw InputError("reachability: no IK solver");
   if (checker_->scene().robots().empty()) throw InputError("reachability: the scene has no robot");
   robotName_ = robot.empty() ? checker_->scene().robots().front().name : robot;
   robotIndex_ = checker_->robotIndex(robotName_);
-  gripper_ = describeGripper(model(), manipulator);
-  const Manipulator& arm = findManipulator(model(), gripper_.manipulator);
+  if (!gripper_) gripper_ = std::make_shared<const GripperGeometry>(describeGripper(model(), manipulator));
+  const Manipulator& arm = findManipulator(model(), gripper_->manipulator);
   chainBase_ = this->robot().basePose * computeLinkPose(model(), currentConfiguration(), arm.baseLink);
   chainReach_ = KinematicChain(model(), arm.baseLink, arm.toolFrame).reach();
   context_ = std::shared_ptr<CollisionContext>(checker_->makeContext());
@@ -76,7 +77,7 @@ bool ReachabilityChecker::allowedContact(const CollisionContact& contact, const 
   if (contact.first == touchable) other = &contact.second;
   if (contact.second == touchable) other = &contact.first;
   if (other == nullptr) return false;
-  for (const std::string& finger : gripper_.fingerLinks) {
+  for (const std::string& finger : gripper_->fingerLinks) {
     if (*other == robotName_ + "/" + finger) return true;
   }
   return false;
@@ -102,16 +103,16 @@ std::string ReachabilityChecker::collisionReason(const VectorX& q, const std::st
 ReachResult ReachabilityChecker::reach(const Pose& X_WG, const VectorX& seed, double opening,
                                        const std::string& touchable) const {
   ReachResult result;
-  const Pose X_BG = chainBase_.inverse() * X_WG;
-  if (X_BG.translation().norm() > chainReach_) {
+  const Pose X_BT = chainBase_.inverse() * X_WG * gripper_->graspFrame.inverse();
+  if (X_BT.translation().norm() > chainReach_) {
     result.failure = ReachFailure::kOutOfReach;
-    result.reason = "out of reach: " + metres(X_BG.translation().norm()) + " from the arm base, reach " + metres(chainReach_);
+    result.reason = "out of reach: " + metres(X_BT.translation().norm()) + " from the arm base, reach " + metres(chainReach_);
     return result;
   }
   IkRequest request;
   request.model = &model();
-  request.manipulator = gripper_.manipulator;
-  request.target = IkTarget::pose(X_BG);
+  request.manipulator = gripper_->manipulator;
+  request.target = IkTarget::pose(X_BT);
   request.seed = seed.size() == 0 ? currentConfiguration() : seed;
   request.timeoutSeconds = settings_.ikTimeoutSeconds;
   request.solutionCount = settings_.ikSolutions;
@@ -124,12 +125,12 @@ ReachResult ReachabilityChecker::reach(const Pose& X_WG, const VectorX& seed, do
     return result;
   }
   for (const VectorX& solution : ik.solutions) {
-    VectorX q = withGripperOpening(model(), gripper_, nearestTurns(model(), solution, request.seed), opening);
+    VectorX q = withGripperOpening(model(), *gripper_, nearestTurns(model(), solution, request.seed), opening);
     if (isFree(q, touchable)) result.solutions.push_back(std::move(q));
   }
   if (result.solutions.empty()) {
     result.failure = ReachFailure::kInCollision;
-    result.reason = collisionReason(withGripperOpening(model(), gripper_, ik.solutions.front(), opening), touchable);
+    result.reason = collisionReason(withGripperOpening(model(), *gripper_, ik.solutions.front(), opening), touchable);
   }
   return result;
 }
@@ -151,7 +152,7 @@ ReachabilityChecker ReachabilityChecker::withScene(Scene scene) const {
     }
   }
   auto checker = std::make_shared<const FclCollisionChecker>(std::move(scene), fcl);
-  return ReachabilityChecker(checker, ik_, robotName_, gripper_.manipulator, settings_);
+  return ReachabilityChecker(checker, ik_, robotName_, gripper_->manipulator, settings_, gripper_);
 }
 
 }  // namespace lang2manip

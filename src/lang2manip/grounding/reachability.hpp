@@ -51,15 +51,16 @@ struct ReachStatistics {
 class ReachabilityChecker {
  public:
   /// Throws InputError for a null checker or solver, an unknown robot (empty = the first robot
-  /// of the checker's scene), an unknown manipulator or one without a gripper.
+  /// of the checker's scene) or an unknown manipulator. `gripper` is the manipulator's
+  /// describeGripper() when the caller has it already (null = described here).
   ReachabilityChecker(std::shared_ptr<const CollisionChecker> checker, std::shared_ptr<const IkSolver> ik,
                       const std::string& robot = {}, const std::string& manipulator = {},
-                      ReachSettings settings = {});
+                      ReachSettings settings = {}, std::shared_ptr<const GripperGeometry> gripper = nullptr);
 
   [[nodiscard]] const Scene& scene() const { return checker_->scene(); }
   [[nodiscard]] const SceneRobot& robot() const;
   [[nodiscard]] const RobotModel& model() const { return *robot().model; }
-  [[nodiscard]] const GripperGeometry& gripper() const { return gripper_; }
+  [[nodiscard]] const GripperGeometry& gripper() const { return *gripper_; }
   [[nodiscard]] const ReachSettings& settings() const { return settings_; }
   [[nodiscard]] const CollisionChecker& checker() const { return *checker_; }
   [[nodiscard]] const ReachStatistics& statistics() const { return statistics_; }
@@ -93,7 +94,7 @@ class ReachabilityChecker {
   std::shared_ptr<const IkSolver> ik_;
   std::string robotName_;
   int robotIndex_ = 0;
-  GripperGeometry gripper_;
+  std::shared_ptr<const GripperGeometry> gripper_;
   ReachSettings settings_;
   Pose chainBase_ = Pose::Identity();
   double chainReach_ = 0.0;

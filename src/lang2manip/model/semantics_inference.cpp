@@ -32,10 +32,13 @@ class TreeWalker {
   // A finger starts at a prismatic joint, or at one of several movable joints on the same link
   // whose subtree holds at most one more movable joint (arms hold more). Every movable joint at
   // or below a finger's start belongs to the gripper.
+  // Siblings are counted on the rigid body the joint hangs from (links joined by fixed joints:
+  // fingers are often mounted on links of their own), mimics included (a mimic finger is a
+  // finger all the same).
   bool startsFinger(const Joint& joint) const {
     if (!isMovable(joint)) return false;
     if (joint.type == JointType::kPrismatic) return true;
-    return movableChildCount(joint.parentLink) > 1 && movableDepthBelow(joint.childLink) <= 1;
+    return actuatedOnBody(rigidRoot(joint.parentLink)) > 1 && movableDepthBelow(joint.childLink) <= 1;
   }
 
   bool isGripperJoint(const Joint& joint) const {
@@ -68,11 +71,24 @@ class TreeWalker {
   }
 
  private:
-  int movableChildCount(const std::string& link) const {
-    const auto children = childJoints_.find(link);
-    if (children == childJoints_.end()) return 0;
-    return static_cast<int>(std::count_if(children->second.begin(), children->second.end(),
-                                           [](const Joint* joint) { return isMovable(*joint); }));
+  /// The topmost link reached from `link` through fixed joints.
+  std::string rigidRoot(std::string link) const {
+    for (auto parent = parentJoint_.find(link); parent != parentJoint_.end() && parent->second->type == JointType::kFixed;
+         parent = parentJoint_.find(link)) {
+      link = parent->second->parentLink;
+    }
+    return link;
+  }
+
+  /// Movable joints, mimics included, whose parent is rigidly attached to `root`.
+  int actuatedOnBody(const std::string& root) const {
+    int count = 0;
+    for (const Joint& joint : robot_.joints) {
+      const bool moves = joint.type == JointType::kRevolute || joint.type == JointType::kContinuous ||
+                         joint.type == JointType::kPrismatic;
+      if (moves && rigidRoot(joint.parentLink) == root) ++count;
+    }
+    return count;
   }
 
   bool hasArmJointBelow(const std::string& link) const {

@@ -1,5 +1,6 @@
 #include "lang2manip/model/urdf_reader.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <mutex>
 #include <sstream>
@@ -152,7 +153,7 @@ JointType jointTypeFromUrdf(int type) {
   }
 }
 
-Joint jointFromUrdf(const urdf::Joint& urdfJoint, double scale, bool ignoreMimic) {
+Joint jointFromUrdf(const urdf::Joint& urdfJoint, double scale) {
   Joint joint;
   joint.name = urdfJoint.name;
   joint.type = jointTypeFromUrdf(urdfJoint.type);
@@ -173,7 +174,7 @@ Joint jointFromUrdf(const urdf::Joint& urdfJoint, double scale, bool ignoreMimic
     joint.limits.upper = limitScale * urdfJoint.safety->soft_upper_limit;
     joint.limits.soft = true;
   }
-  if (urdfJoint.mimic && !ignoreMimic) {
+  if (urdfJoint.mimic) {
     joint.mimic = JointMimic{urdfJoint.mimic->joint_name, urdfJoint.mimic->multiplier,
                              limitScale * urdfJoint.mimic->offset};
   }
@@ -192,6 +193,27 @@ std::vector<std::filesystem::path> packageSearchPaths(const UrdfReadOptions& opt
     }
   }
   return paths;
+}
+
+/// Every joint becomes its own variable (UrdfReadOptions::ignoreMimic). The gripper still closes
+/// as the mimics said: each mimic of a gripper joint joins the gripper with the values its mimic
+/// gave it when open and closed (within its limits).
+void decoupleMimics(RobotModelData& data) {
+  for (Manipulator& manipulator : data.semantics.manipulators) {
+    const std::size_t sources = manipulator.gripperJoints.size();
+    for (std::size_t i = 0; i < sources; ++i) {
+      for (const Joint& joint : data.joints) {
+        if (!joint.mimic || joint.mimic->sourceJoint != manipulator.gripperJoints[i]) continue;
+        const auto follow = [&](double value) {
+          return std::clamp(joint.mimic->multiplier * value + joint.mimic->offset, joint.limits.lower, joint.limits.upper);
+        };
+        manipulator.gripperJoints.push_back(joint.name);
+        manipulator.gripperOpen.push_back(follow(manipulator.gripperOpen[i]));
+        manipulator.gripperClosed.push_back(follow(manipulator.gripperClosed[i]));
+      }
+    }
+  }
+  for (Joint& joint : data.joints) joint.mimic.reset();
 }
 
 RobotSemantics semanticsFor(const RobotModelData& data, const std::filesystem::path& urdfPath,
@@ -241,11 +263,12 @@ RobotModelPtr readUrdf(const XmlDocument& document, const std::filesystem::path&
   }
   for (const pugi::xml_node& node : document.root().children("joint")) {
     data.joints.push_back(jointFromUrdf(urdfdomElement(urdf->joints_, document, node, "joint"),
-                                        options.scale, options.ignoreMimic));
+                                        options.scale));
     requirePositionInRange(data.joints.back().origin.translation(),
                            "joint \"" + data.joints.back().name + "\" origin", document.where(node));
   }
   data.semantics = semanticsFor(data, urdfPath, options);
+  if (options.ignoreMimic) decoupleMimics(data);
   return std::make_shared<const RobotModel>(std::move(data));
 }
 

@@ -22,7 +22,8 @@ struct UrdfReadOptions {
   std::filesystem::path srdf;
   /// <mimic> tags are ignored, so every movable joint is its own variable (Kautham couples joints
   /// through its control files instead; the Kautham reader uses this when a control drives a
-  /// joint the URDF marks as a mimic).
+  /// joint the URDF marks as a mimic). The semantics are resolved with the mimics first, so a
+  /// gripper keeps closing as its mimics say: their joints join the manipulator's gripper joints.
   bool ignoreMimic = false;
   /// Load mesh files (off: geometry references are kept but meshes are not read).
   bool loadMeshes = true;

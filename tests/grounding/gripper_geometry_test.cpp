@@ -1,0 +1,233 @@
+// Gripper descriptions by forward kinematics of the finger geometry: sliding, rotating, mimic-
+// driven and reversed fingers, three-finger hands, Kautham's Robotiq and RG6 models, tools without
+// gripper, and grippers that cannot grasp.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "grounding_test_support.hpp"
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/grounding/gripper_geometry.hpp"
+#include "lang2manip/model/urdf_reader.hpp"
+#include "test_paths.hpp"
+
+namespace lang2manip::test {
+namespace {
+
+using ::testing::HasSubstr;
+
+/// A two-joint arm ending in a palm box whose +z points away from the arm, then `tool`.
+std::string armWith(const std::string& tool) {
+  return R"(<robot name="probe">
+  <link name="base"/>
+  <link name="upper"><collision><origin xyz="0 0 0.2"/><geometry><box size="0.05 0.05 0.4"/></geometry></collision></link>
+  <link name="palm"><collision><origin xyz="0 0 0.02"/><geometry><box size="0.06 0.12 0.04"/></geometry></collision></link>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="wrist" type="revolute"><parent link="upper"/><child link="palm"/><origin xyz="0 0 0.4"/><axis xyz="0 1 0"/>
+    <limit lower="-2" upper="2" effort="1" velocity="1"/></joint>
+)" + tool + "</robot>";
+}
+
+/// A finger box 1 cm thick, 2 cm wide and 6 cm long hanging along +z from its joint, inner face
+/// on the joint's plane facing `inward` (+1: toward +y).
+std::string fingerLink(const std::string& name, double inward) {
+  char text[400];
+  std::snprintf(text, sizeof text,
+                R"(<link name="%s"><collision><origin xyz="0 %g 0.03"/><geometry><box size="0.02 0.01 0.06"/></geometry></collision></link>
+)",
+                name.c_str(), -0.005 * inward);
+  return text;
+}
+
+RobotModelPtr probe(const std::string& tool, const UrdfReadOptions& options = {}) {
+  return readUrdfString(armWith(tool), "probe.urdf", ".", options);
+}
+
+/// Sliding fingers whose joint limits run from open (lower) to closed (upper): open is found by
+/// the pads' gap, not by the limits.
+std::string reversedSlidingFingers() {
+  return fingerLink("left", -1) + fingerLink("right", 1) + R"(
+  <joint name="left_slide" type="prismatic"><parent link="palm"/><child link="left"/><origin xyz="0 0 0.04"/>
+    <axis xyz="0 -1 0"/><limit lower="-0.03" upper="0" effort="1" velocity="1"/></joint>
+  <joint name="right_slide" type="prismatic"><parent link="palm"/><child link="right"/><origin xyz="0 0 0.04"/>
+    <axis xyz="0 1 0"/><limit lower="-0.03" upper="0" effort="1" velocity="1"/><mimic joint="left_slide"/></joint>
+)";
+}
+
+/// Fingers hinged 6 cm apart, turning about x; the right one mimics.
+std::string rotatingFingers() {
+  return fingerLink("left", -1) + fingerLink("right", 1) + R"(
+  <joint name="left_hinge" type="revolute"><parent link="palm"/><child link="left"/><origin xyz="0 0.03 0.04"/>
+    <axis xyz="1 0 0"/><limit lower="0" upper="0.5" effort="1" velocity="1"/></joint>
+  <joint name="right_hinge" type="revolute"><parent link="palm"/><child link="right"/><origin xyz="0 -0.03 0.04"/>
+    <axis xyz="1 0 0"/><limit lower="-0.5" upper="0" effort="1" velocity="1"/><mimic joint="left_hinge" multiplier="-1"/></joint>
+)";
+}
+
+/// Three fingers 120 degrees apart, each hinged 3 cm from the axis and turning inward.
+std::string threeFingers() {
+  std::string text;
+  for (int f = 0; f < 3; ++f) {
+    const double angle = 2.0 * M_PI * f / 3.0;
+    const std::string name = "finger" + std::to_string(f);
+    char joint[600];
+    std::snprintf(joint, sizeof joint,
+                  R"(<link name="%s_base"/>
+  <joint name="%s_mount" type="fixed"><parent link="palm"/><child link="%s_base"/><origin xyz="0 0 0.04" rpy="0 0 %.17g"/></joint>
+  <joint name="%s_hinge" type="revolute"><parent link="%s_base"/><child link="%s"/><origin xyz="0 0.03 0"/><axis xyz="1 0 0"/>
+    <limit lower="0" upper="0.5" effort="1" velocity="1"/>%s</joint>
+)",
+                  name.c_str(), name.c_str(), name.c_str(), angle, name.c_str(), name.c_str(), name.c_str(),
+                  f == 0 ? "" : "<mimic joint=\"finger0_hinge\"/>");
+    text += fingerLink(name, -1) + joint;
+  }
+  return text;
+}
+
+TEST(GripperGeometry, TheBuiltInGrippersKeepTheirToolFrameAndOpening) {
+  for (const char* robot : {"panda", "ur5", "iiwa14", "tx90", "yumi"}) {
+    const Scene scene = deskScene(robot);
+    const GripperGeometry gripper = describeGripper(*scene.robots().front().model);
+    SCOPED_TRACE(robot);
+    EXPECT_EQ(gripper.fingerCount, 2);
+    EXPECT_TRUE(gripper.graspFrame.translation().isZero(1e-12)) << "the built-in tool frames are TCPs between the pads";
+    EXPECT_GT(gripper.maxOpening, 0.04);
+    EXPECT_NEAR(gripper.minOpening, 0.0, 2e-3);
+    EXPECT_GT(gripper.padDepth, 0.01);
+    EXPECT_GE(gripper.fingerLength, gripper.padDepth);
+    EXPECT_EQ(gripper.padLinks.size(), 2u);
+  }
+  const Scene panda = deskScene("panda");
+  EXPECT_NEAR(describeGripper(*panda.robots().front().model).maxOpening, 0.08, 1e-6);
+}
+
+TEST(GripperGeometry, OpeningsComeFromThePadsNotFromTheJointValues) {
+  const RobotModelPtr model = probe(reversedSlidingFingers());
+  const GripperGeometry gripper = describeGripper(*model);
+  // The limits say open = 0 (upper); the pads are 6 cm apart at -0.03 and touch at 0.
+  ASSERT_EQ(gripper.gripperJoints, std::vector<std::string>{"left_slide"});
+  EXPECT_NEAR(gripper.openValues.front(), -0.03, 1e-12);
+  EXPECT_NEAR(gripper.closedValues.front(), 0.0, 1e-12);
+  EXPECT_NEAR(gripper.maxOpening, 0.06, 1e-9);
+  EXPECT_NEAR(gripper.minOpening, 0.0, 1e-9);
+  EXPECT_NEAR(std::abs(gripper.closingAxis.y()), 1.0, 1e-9);
+  const VectorX half = withGripperOpening(*model, gripper, model->middleConfiguration(), 0.03);
+  EXPECT_NEAR(half[model->variableIndex("left_slide")], -0.015, 1e-6);
+  EXPECT_NEAR(gripperOpening(*model, gripper, half), 0.03, 1e-6);
+}
+
+TEST(GripperGeometry, RotatingFingersOpenAsTheirGeometrySays) {
+  const RobotModelPtr model = probe(rotatingFingers());
+  const GripperGeometry gripper = describeGripper(*model);
+  // Inner faces on the hinges, 6 cm apart at 0 rad; the upper limit (0.5 rad) swings the 6 cm
+  // fingertips 6 * sin(0.5) = 2.88 cm inward each, leaving 2.4 mm: open is the lower limit.
+  EXPECT_NEAR(gripper.maxOpening, 0.06, 1e-9);
+  EXPECT_NEAR(gripper.minOpening, 0.06 - 0.12 * std::sin(0.5), 1e-9);
+  EXPECT_NEAR(gripper.openValues.front(), 0.0, 1e-12);
+  EXPECT_NEAR(std::abs(gripper.closingAxis.y()), 1.0, 1e-9);
+  EXPECT_EQ(gripper.fingerCount, 2);
+  // The palm is the tool frame, 4 cm below the finger roots: the grasp frame moves between the
+  // pads, along the approach axis.
+  EXPECT_GT(gripper.graspFrame.translation().z(), 0.04);
+  EXPECT_NEAR(gripper.graspFrame.translation().y(), 0.0, 1e-9);
+  // Widths map back to joint values through forward kinematics, not linearly.
+  for (double width : {gripper.minOpening, 0.5 * (gripper.minOpening + gripper.maxOpening), gripper.maxOpening}) {
+    const VectorX q = withGripperOpening(*model, gripper, model->middleConfiguration(), width);
+    EXPECT_NEAR(gripperOpening(*model, gripper, q), width, 2e-4);
+  }
+}
+
+TEST(GripperGeometry, AThreeFingerHandIsOneGripper) {
+  const RobotModelPtr model = probe(threeFingers());
+  const GripperGeometry gripper = describeGripper(*model);
+  EXPECT_EQ(gripper.fingerCount, 3);
+  EXPECT_EQ(gripper.padLinks.size(), 3u);
+  EXPECT_EQ(gripper.gripperJoints, std::vector<std::string>{"finger0_hinge"});
+  EXPECT_GT(gripper.maxOpening, gripper.minOpening + 0.01);
+  EXPECT_EQ(gripper.fingerLinks.size(), 3u);
+}
+
+TEST(GripperGeometry, ACoupledAndADecoupledRobotDescribeTheSameGripper) {
+  const RobotModelPtr coupled = probe(rotatingFingers());
+  UrdfReadOptions options;
+  options.ignoreMimic = true;
+  const RobotModelPtr decoupled = probe(rotatingFingers(), options);
+  const GripperGeometry a = describeGripper(*coupled);
+  const GripperGeometry b = describeGripper(*decoupled);
+  EXPECT_EQ(b.gripperJoints, (std::vector<std::string>{"left_hinge", "right_hinge"}));
+  EXPECT_NEAR(b.openValues[1], -b.openValues[0], 1e-12);
+  EXPECT_NEAR(a.maxOpening, b.maxOpening, 1e-9);
+  EXPECT_NEAR(a.minOpening, b.minOpening, 1e-9);
+}
+
+TEST(GripperGeometry, AToolWithoutGripperIsDescribedAndCannotPick) {
+  const RobotModelPtr model = probe(R"(<link name="tool0"/>
+  <joint name="flange" type="fixed"><parent link="palm"/><child link="tool0"/><origin xyz="0 0 0.04"/></joint>
+)");
+  const GripperGeometry gripper = describeGripper(*model);
+  EXPECT_FALSE(gripper.hasGripper());
+  EXPECT_EQ(gripper.fingerCount, 0);
+  EXPECT_FALSE(gripper.fingerBounds.isEmpty());
+  EXPECT_DOUBLE_EQ(gripperOpening(*model, gripper, model->middleConfiguration()), 0.0);
+  const std::string reason = noGripperReason(*model, gripper, "pick marker");
+  EXPECT_THAT(reason, HasSubstr("pick marker: robot probe has no gripper"));
+  EXPECT_THAT(reason, HasSubstr("it can move and push"));
+  EXPECT_TRUE(noGripperReason(*probe(rotatingFingers()), describeGripper(*probe(rotatingFingers())), "pick").empty());
+}
+
+TEST(GripperGeometryBadInput, FingersThatDoNotOpenOrHaveNoGeometryAreRefusedWithTheReason) {
+  std::string stuck = rotatingFingers();
+  for (const char* limits : {"lower=\"0\" upper=\"0.5\"", "lower=\"-0.5\" upper=\"0\""}) {
+    stuck.replace(stuck.find(limits), std::string(limits).size(), "lower=\"0.2\" upper=\"0.2\"");
+  }
+  try {
+    static_cast<void>(describeGripper(*probe(stuck)));
+    FAIL() << "a finger whose limits leave it no travel does not open";
+  } catch (const InputError& error) {
+    EXPECT_THAT(error.what(), HasSubstr("gripper of probe/arm"));
+    EXPECT_THAT(error.what(), HasSubstr("do not move across the approach axis"));
+  }
+  const std::string bare = R"(<link name="left"/><link name="right"/>
+  <joint name="left_slide" type="prismatic"><parent link="palm"/><child link="left"/><axis xyz="0 1 0"/>
+    <limit lower="0" upper="0.04" effort="1" velocity="1"/></joint>
+  <joint name="right_slide" type="prismatic"><parent link="palm"/><child link="right"/><axis xyz="0 -1 0"/>
+    <limit lower="0" upper="0.04" effort="1" velocity="1"/><mimic joint="left_slide"/></joint>
+)";
+  try {
+    static_cast<void>(describeGripper(*probe(bare)));
+    FAIL() << "fingers without collision geometry cannot grasp";
+  } catch (const InputError& error) {
+    EXPECT_THAT(error.what(), HasSubstr("left_slide"));
+    EXPECT_THAT(error.what(), HasSubstr("move no link with collision geometry"));
+  }
+}
+
+TEST(GripperGeometry, KauthamRobotiqAndRg6GrippersOpenAsTheirVendorsSay) {
+  const auto shared = sharedDataDirectory();
+  if (!shared) GTEST_SKIP() << "../shared/data is absent";
+  struct Case {
+    const char* file;
+    double opening;  // the vendor's stroke (m)
+  };
+  for (const Case& c : {Case{"kautham/models/robots/tx90_robotniq.urdf", 0.085}, Case{"kautham/models/robots/ur3e_gripper_rg6.urdf", 0.160}}) {
+    SCOPED_TRACE(c.file);
+    for (bool decoupled : {false, true}) {
+      UrdfReadOptions options;
+      options.ignoreMimic = decoupled;
+      const RobotModelPtr model = readUrdfFile(*shared / c.file, options);
+      const GripperGeometry gripper = describeGripper(*model);
+      EXPECT_EQ(gripper.fingerCount, 2);
+      EXPECT_NEAR(gripper.maxOpening, c.opening, 0.02);
+      EXPECT_LT(gripper.minOpening, 0.02);
+      EXPECT_GT(gripper.padDepth, 0.01);
+      EXPECT_GT(gripper.graspFrame.translation().norm(), 0.05) << "the tool frame is the palm, the pads are ahead of it";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace lang2manip::test
