@@ -112,31 +112,56 @@ TEST(RunCli, AnLlmPlanThatCannotBeGroundedIsRepaired) {
   EXPECT_THAT(server.requests()[1].body, HasSubstr("could not be executed"));
 }
 
-// Kautham's TX90 with its Robotiq gripper (linkage fingers, mimic joints, tool frame at the
-// palm, no SRDF) at the desk, unchanged: the paper task runs as on the built-in robots.
-TEST(RunCli, ThePaperTaskSucceedsWithKauthamsTx90AndRobotiqGripper) {
-  const auto shared = sharedDataDirectory();
-  if (!shared) GTEST_SKIP() << "../shared/data is absent";
+/// The paper's desk scene with a robot of ../shared/data/kautham at (x, 0) behind the desk, the
+/// robot's URDF and the desk objects referred to by absolute paths.
+fs::path writeKauthamRobotAtDesk(const fs::path& directory, const fs::path& robot, double x) {
   const fs::path desk = fs::path(LANG2MANIP_TEST_DATA_DIR) / ".." / ".." / "data" / "models" / "obstacles" / "desk";
-  const TempDirectory directory;
-  std::string problem = "<Problem name=\"tx90_robotiq_desk\">\n  <Robot robot=\"" + (*shared / "kautham/models/robots/tx90_robotniq.urdf").string() +
-                        "\"><Home X=\"-0.45\" Y=\"0\" Z=\"0.752\" WX=\"0\" WY=\"0\" WZ=\"1\" TH=\"0\"/></Robot>\n";
-  for (const auto& [name, file, x, y] : {std::tuple{"desk", "desk.urdf", 0.0, 0.0}, std::tuple{"marker", "marker.urdf", 0.02, -0.18},
-                                         std::tuple{"eraser", "eraser.urdf", -0.02, 0.17}, std::tuple{"holder", "pen_holder.urdf", 0.12, 0.02}}) {
-    problem += "  <Obstacle obstacle=\"" + (desk / file).string() + "\"><Home X=\"" + std::to_string(x) + "\" Y=\"" + std::to_string(y) +
+  std::string problem = "<Problem name=\"" + robot.stem().string() + "_desk\">\n  <Robot robot=\"" + robot.string() + "\"><Home X=\"" +
+                        std::to_string(x) + "\" Y=\"0\" Z=\"0.752\" WX=\"0\" WY=\"0\" WZ=\"1\" TH=\"0\"/></Robot>\n";
+  for (const auto& [name, file, ox, oy] : {std::tuple{"desk", "desk.urdf", 0.0, 0.0}, std::tuple{"marker", "marker.urdf", 0.02, -0.18},
+                                           std::tuple{"eraser", "eraser.urdf", -0.02, 0.17}, std::tuple{"holder", "pen_holder.urdf", 0.12, 0.02}}) {
+    problem += "  <Obstacle obstacle=\"" + (desk / file).string() + "\"><Home X=\"" + std::to_string(ox) + "\" Y=\"" + std::to_string(oy) +
                "\" Z=\"" + (std::string(name) == "desk" ? "0" : "0.75") + "\" WX=\"0\" WY=\"0\" WZ=\"1\" TH=\"0\"/><KauthamName name=\"" + name +
                "\"/></Obstacle>\n";
   }
-  problem += "</Problem>\n";
-  const fs::path file = directory.path() / "tx90_robotiq_desk.xml";
-  std::ofstream(file) << problem;
-  const RunResult result = run("run " + file.string() + " --task \"put the marker in the holder\"" + kBudgets + " --out " +
-                               (directory.path() / "out").string());
-  EXPECT_EQ(result.exitCode, 0) << result.output;
-  EXPECT_THAT(result.output, HasSubstr("SUCCESS"));
-  const json report = readJson(directory.path() / "out" / "report.json");
-  ASSERT_TRUE(report.is_object());
-  EXPECT_TRUE(report["success"].get<bool>());
+  const fs::path file = directory / (robot.stem().string() + "_desk.xml");
+  std::ofstream(file) << problem + "</Problem>\n";
+  return file;
+}
+
+// Kautham's TX90 with its Robotiq 2F gripper and UR3e with its OnRobot RG6 (linkage fingers,
+// mimic joints, tool frames at the palm, no SRDF) at the desk, unchanged: the paper task runs as
+// on the built-in robots.
+TEST(RunCli, ThePaperTaskSucceedsWithKauthamsGripperRobots) {
+  const auto shared = sharedDataDirectory();
+  if (!shared) GTEST_SKIP() << "../shared/data is absent";
+  for (const auto& [robot, x] : {std::pair{"tx90_robotniq.urdf", -0.45}, std::pair{"ur3e_gripper_rg6.urdf", -0.25}}) {
+    SCOPED_TRACE(robot);
+    const TempDirectory directory;
+    const fs::path problem = writeKauthamRobotAtDesk(directory.path(), *shared / "kautham/models/robots" / robot, x);
+    const RunResult result = run("run " + problem.string() + " --task \"put the marker in the holder\"" + kBudgets + " --out " +
+                                 (directory.path() / "out").string());
+    EXPECT_EQ(result.exitCode, 0) << result.output;
+    EXPECT_THAT(result.output, HasSubstr("SUCCESS"));
+    const json report = readJson(directory.path() / "out" / "report.json");
+    ASSERT_TRUE(report.is_object());
+    EXPECT_TRUE(report["success"].get<bool>());
+  }
+}
+
+// Kautham's own gripper scenes, as they are: which obstacles move is inferred.
+TEST(RunCli, APickSucceedsOnKauthamsGripperScenesAsTheyAre) {
+  const auto shared = sharedDataDirectory();
+  if (!shared) GTEST_SKIP() << "../shared/data is absent";
+  for (const auto& [scene, task] : {std::pair{"OMPL_geo_demos/UR3e/ur3e_fib_upc.xml", "pick up the wood piece"},
+                                    std::pair{"OMPL_geo_demos/TX90_IOC/OMPL_RRTConnect_TX90_gripper_TwoCan.xml", "pick up the can"}}) {
+    SCOPED_TRACE(scene);
+    const TempDirectory directory;
+    const RunResult result = run("run " + (*shared / "kautham" / scene).string() + " --task \"" + task + "\"" + kBudgets + " --out " +
+                                 directory.path().string());
+    EXPECT_EQ(result.exitCode, 0) << result.output;
+    EXPECT_THAT(result.output, HasSubstr("SUCCESS"));
+  }
 }
 
 TEST(RunCli, AFailedTaskWritesItsPartialResultsAndExitsWithTwo) {

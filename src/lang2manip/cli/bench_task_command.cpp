@@ -35,7 +35,7 @@ using Clock = std::chrono::steady_clock;
 struct BenchTaskOptions {
   std::string problem;
   std::string robot = "panda";
-  std::vector<std::string> xacroArguments;
+  SceneOptions scene;
   std::string arm;
   std::string task = "put the marker and eraser in the holder";
   int trials = 100;
@@ -163,7 +163,7 @@ void checkOptions(const BenchTaskOptions& options) {
 
 void runBench(const BenchTaskOptions& options, std::ostream& out) {
   checkOptions(options);
-  const LoadedProblem loaded = loadProblem(options.problem, options.robot, options.xacroArguments);
+  const LoadedProblem loaded = loadProblem(options.problem, options.robot, options.scene);
   ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(options.seed));
   Figures ours, paper;
   ours.label = "lang2manip (dls IK)";
@@ -208,7 +208,7 @@ void addBenchTaskCommand(CLI::App& bench, std::ostream& out) {
   command->add_option("PROBLEM", options->problem, "Built-in problem or Kautham problem file (default: " + defaultProblemName() + ")");
   command->add_option("--task", options->task, "The instruction")->capture_default_str();
   command->add_option("--robot", options->robot, "Built-in robot for MoveIt scenes")->capture_default_str();
-  addXacroArgumentOption(*command, options->xacroArguments);
+  addSceneOptions(*command, options->scene);
   command->add_option("--arm", options->arm, "The arm that executes the task");
   command->add_option("--trials", options->trials, "Randomized scenes")->capture_default_str();
   command->add_option("--spread", options->spread, "Largest shift of each movable object in x and y (m)")->capture_default_str();

@@ -17,7 +17,7 @@ using nlohmann::json;
 struct CheckOptions {
   std::string problem;
   std::string robot = "panda";
-  std::vector<std::string> xacroArguments;
+  SceneOptions scene;
   bool robotGiven = false;
   std::vector<double> config;
   bool json = false;
@@ -89,7 +89,7 @@ std::string checkText(const json& report) {
 }
 
 void runCheck(const CheckOptions& options, std::ostream& out) {
-  const LoadedProblem loaded = loadProblem(options.problem, options.robot, options.xacroArguments);
+  const LoadedProblem loaded = loadProblem(options.problem, options.robot, options.scene);
   if (options.config.empty() && loaded.queries.empty()) {
     throw InputError("nothing was checked: problem " + loaded.name +
                      " has no query; give a configuration with --config");
@@ -121,7 +121,7 @@ void addCheckCommand(CLI::App& app, std::ostream& out) {
                       "Robot whose --config is given (default: the first); built-in robot for "
                       "MoveIt scenes")
       ->capture_default_str();
-  addXacroArgumentOption(*command, options->xacroArguments);
+  addSceneOptions(*command, options->scene);
   command->add_option("--config", options->config, "Joint values of the robot (one per variable)");
   command->add_flag("--json", options->json, "Print JSON");
   command->callback([options, command, &out] {

@@ -21,6 +21,7 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   addRunCommand(app, out);
   addBenchCommand(app, out);
   addXacroCommand(app, out);
+  addDescribeCommand(app, out);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

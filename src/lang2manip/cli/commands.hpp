@@ -45,6 +45,10 @@ void addRunCommand(CLI::App& app, std::ostream& out);
 /// `lang2manip xacro FILE [NAME:=VALUE ...] [--package-path DIR]`: prints the URDF a xacro file
 /// expands to.
 void addXacroCommand(CLI::App& app, std::ostream& out);
+
+/// `lang2manip describe [PROBLEM] [--write-srdf FILE] [--json]`: the arms, tool frames, grippers
+/// (measured by forward kinematics), named states and object semantics lang2manip understood.
+void addDescribeCommand(CLI::App& app, std::ostream& out);
 /// A command ran to its end but the task failed (its results were written); exit status 2.
 class TaskFailedError : public std::runtime_error {
  public:

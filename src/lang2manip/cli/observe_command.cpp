@@ -9,7 +9,7 @@ namespace {
 struct ObserveOptions {
   std::string problem;
   std::string robot = "panda";
-  std::vector<std::string> xacroArguments;
+  SceneOptions scene;
   bool json = false;
 };
 
@@ -23,10 +23,10 @@ void addObserveCommand(CLI::App& app, std::ostream& out) {
                       "Built-in problem name, Kautham problem .xml, or MoveIt scene .yaml (default: " +
                           defaultProblemName() + ")");
   command->add_option("--robot", options->robot, "Built-in robot for MoveIt scenes")->capture_default_str();
-  addXacroArgumentOption(*command, options->xacroArguments);
+  addSceneOptions(*command, options->scene);
   command->add_flag("--json", options->json, "Print the observation as JSON");
   command->callback([options, &out] {
-    const LoadedProblem loaded = loadProblem(options->problem, options->robot, options->xacroArguments);
+    const LoadedProblem loaded = loadProblem(options->problem, options->robot, options->scene);
     const nlohmann::json observation = observeEnvironment(loaded.problem.scene);
     out << (options->json ? observation.dump(2) + "\n" : observationText(observation));
   });

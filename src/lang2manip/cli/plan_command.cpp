@@ -16,7 +16,7 @@ namespace {
 struct PlanOptions {
   std::string problem;
   std::string robot = "panda";
-  std::vector<std::string> xacroArguments;
+  SceneOptions scene;
   std::string task;
   TaskPlannerChoice planner;
   int rounds = RepairOptions{}.maxRounds;
@@ -105,7 +105,7 @@ void addPlanCommand(CLI::App& app, std::ostream& out) {
                       "Built-in problem name, Kautham problem .xml, or MoveIt scene .yaml (default: " +
                           defaultProblemName() + ")");
   command->add_option("--robot", options->robot, "Built-in robot for MoveIt scenes")->capture_default_str();
-  addXacroArgumentOption(*command, options->xacroArguments);
+  addSceneOptions(*command, options->scene);
   command->add_option("--task", options->task, "The instruction, e.g. \"put the marker and eraser in the holder\"");
   addTaskPlannerOptions(*command, options->planner);
   command->add_option("--rounds", options->rounds, "Planner rounds at most (repairs included)")->capture_default_str();
@@ -114,7 +114,7 @@ void addPlanCommand(CLI::App& app, std::ostream& out) {
                     "Print the prompt a task planner receives (system prompt, task, observation) and exit");
   command->callback([options, &out] {
     checkOptions(*options);
-    const LoadedProblem loaded = loadProblem(options->problem, options->robot, options->xacroArguments);
+    const LoadedProblem loaded = loadProblem(options->problem, options->robot, options->scene);
     if (options->printPrompt) {
       printPrompt(*options, loaded.problem.scene, out);
     } else {

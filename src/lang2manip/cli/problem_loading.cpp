@@ -66,10 +66,8 @@ LoadedProblem loadKautham(const std::filesystem::path& file, const XacroArgument
   return loaded;
 }
 
-}  // namespace
-
-LoadedProblem loadProblem(const std::string& nameOrPath, const std::string& robot,
-                          const std::vector<std::string>& xacroArguments) {
+LoadedProblem loadProblemFile(const std::string& nameOrPath, const std::string& robot,
+                              const std::vector<std::string>& xacroArguments) {
   XacroArguments arguments;
   for (const std::string& argument : xacroArguments) {
     const auto [name, value] = parseXacroArgument(argument);
@@ -87,9 +85,21 @@ LoadedProblem loadProblem(const std::string& nameOrPath, const std::string& robo
   return loadKautham(file, arguments);
 }
 
-void addXacroArgumentOption(CLI::App& command, std::vector<std::string>& arguments) {
-  command.add_option("--xacro-arg", arguments,
+}  // namespace
+
+LoadedProblem loadProblem(const std::string& nameOrPath, const std::string& robot, const SceneOptions& options) {
+  LoadedProblem loaded = loadProblemFile(nameOrPath, robot, options.xacroArguments);
+  loaded.objectSemantics = inferObjectSemantics(loaded.problem.scene, {options.movable, options.fixed});
+  return loaded;
+}
+
+void addSceneOptions(CLI::App& command, SceneOptions& options) {
+  command.add_option("--xacro-arg", options.xacroArguments,
                      "NAME:=VALUE for the <xacro:arg>s of .xacro robots (repeatable; over a problem's <XacroArg>s)");
+  command.add_option("--movable", options.movable, "Objects to treat as movable (comma-separated; over the model and inference)")
+      ->delimiter(',');
+  command.add_option("--fixed", options.fixed, "Objects to treat as fixed (comma-separated; over the model and inference)")
+      ->delimiter(',');
 }
 
 }  // namespace lang2manip

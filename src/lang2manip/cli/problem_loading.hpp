@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "lang2manip/grounding/object_semantics.hpp"
 #include "lang2manip/model/kautham_problem.hpp"
 
 namespace lang2manip {
@@ -22,18 +23,30 @@ struct LoadedProblem {
   KauthamProblem problem;
   /// Start and goal of each query: configurations and base poses per robot.
   std::vector<std::pair<RobotStates, RobotStates>> queries;
+  /// Which objects move and what they are for, with the reason (inferObjectSemantics).
+  std::vector<ObjectSemanticsDecision> objectSemantics;
+};
+
+/// What commands that load problems accept beside PROBLEM and --robot.
+struct SceneOptions {
+  /// "NAME:=VALUE" for every xacro robot read, over a problem's own <XacroArg>s.
+  std::vector<std::string> xacroArguments;
+  /// Objects to treat as movable / fixed whatever their models say or inference finds.
+  std::vector<std::string> movable;
+  std::vector<std::string> fixed;
 };
 
 /// Loads `nameOrPath` (empty: the default built-in problem): a built-in name, a Kautham problem
 /// .xml, a MoveIt scene .yaml, or a robot description (.urdf or .xacro: a scene holding only that
 /// robot, at the middle of its joint ranges, with no query). `robot` names the robot of MoveIt
-/// scenes: a built-in robot or a .urdf/.xacro file. `xacroArguments` ("name:=value") go to every
-/// xacro robot read, over a problem's own <XacroArg>s. Throws InputError on any problem with the
-/// input.
-LoadedProblem loadProblem(const std::string& nameOrPath, const std::string& robot,
-                          const std::vector<std::string>& xacroArguments = {});
+/// scenes: a built-in robot or a .urdf/.xacro file. Objects whose models do not say what they are
+/// for are inferred (inferObjectSemantics), then `options.movable` / `options.fixed` apply.
+/// Throws InputError on any problem with the input, an unknown object name in the overrides, or
+/// an object named both movable and fixed.
+LoadedProblem loadProblem(const std::string& nameOrPath, const std::string& robot, const SceneOptions& options = {});
 
-/// Adds `--xacro-arg NAME:=VALUE` (repeatable) to a command that loads problems.
-void addXacroArgumentOption(CLI::App& command, std::vector<std::string>& arguments);
+/// Adds `--xacro-arg NAME:=VALUE` (repeatable), `--movable A,B` and `--fixed C` to a command that
+/// loads problems.
+void addSceneOptions(CLI::App& command, SceneOptions& options);
 
 }  // namespace lang2manip

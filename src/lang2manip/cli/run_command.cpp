@@ -32,7 +32,7 @@ constexpr const char* kPaperTask = "put the marker and eraser in the holder";
 struct RunOptions {
   std::string problem;
   std::string robot = "panda";
-  std::vector<std::string> xacroArguments;
+  SceneOptions scene;
   std::string arm;
   std::string task = kPaperTask;
   TaskPlannerChoice planner;
@@ -120,7 +120,7 @@ void writeOutputs(const fs::path& out, const RunOutcome& outcome) {
 void runTask(const RunOptions& options, std::ostream& out) {
   const auto began = Clock::now();
   checkOptions(options);
-  const LoadedProblem loaded = loadProblem(options.problem, options.robot, options.xacroArguments);
+  const LoadedProblem loaded = loadProblem(options.problem, options.robot, options.scene);
   const Scene& scene = loaded.problem.scene;
   TaskExecutor executor(scene, executionSettings(options));
   const SelectedTaskPlanner selected = makeTaskPlanner(options.planner);
@@ -164,7 +164,7 @@ void addRunCommand(CLI::App& app, std::ostream& out) {
                       "Motion planner of the actions that name none (OMPL or Kautham name; default RRTConnect)");
   command->add_option("--ik", options->ik, "IK solver (dls, kdl, kdl_restarts; default dls)");
   command->add_option("--robot", options->robot, "Built-in robot for MoveIt scenes")->capture_default_str();
-  addXacroArgumentOption(*command, options->xacroArguments);
+  addSceneOptions(*command, options->scene);
   command->add_option("--arm", options->arm, "The arm (manipulator) that executes the task (default: the robot's first)");
   command->add_option("--rounds", options->rounds, "Task planner rounds at most (repairs included)")->capture_default_str();
   command->add_option("--seed", options->seed, "Random seed of planners, IK restarts and placement samples")->capture_default_str();

@@ -41,12 +41,15 @@ json robotJson(const SceneRobot& robot) {
           {"semantics", model.semantics().inferred ? "inferred" : model.semantics().source}};
 }
 
-json objectJson(const SceneObject& object) {
+json objectJson(const SceneObject& object, const std::vector<ObjectSemanticsDecision>& decisions) {
   const Vector3 size = object.dimensions();
   json report{{"name", object.name}, {"kind", object.kind}, {"pose", poseJson(object.pose)},
               {"size", {size.x(), size.y(), size.z()}}, {"movable", object.movable},
-              {"role", objectRoleName(object.role)}, {"collision_enabled", object.collisionEnabled},
-              {"shapes", object.collisions.size()}};
+              {"role", objectRoleName(object.role)}, {"semantics", semanticsSourceName(object.semantics)},
+              {"collision_enabled", object.collisionEnabled}, {"shapes", object.collisions.size()}};
+  for (const ObjectSemanticsDecision& decision : decisions) {
+    if (decision.object == object.name && decision.source != SemanticsSource::kGiven) report["semantics_reason"] = decision.reason;
+  }
   if (object.cavity) {
     report["cavity"] = {{"min", {object.cavity->min().x(), object.cavity->min().y(), object.cavity->min().z()}},
                         {"max", {object.cavity->max().x(), object.cavity->max().y(), object.cavity->max().z()}}};
@@ -140,6 +143,9 @@ std::string objectsText(const json& objects) {
             (object["movable"].get<bool>() ? ", movable" : ", fixed") +
             (object["role"] == "none" ? "" : ", " + object["role"].get<std::string>()) + ") " +
             poseText(object["pose"]) + " size [" + numbers(object["size"]) + "]\n";
+    if (object.contains("semantics_reason")) {
+      text += "    " + object["semantics"].get<std::string>() + ": " + object["semantics_reason"].get<std::string>() + "\n";
+    }
   }
   return text;
 }
@@ -172,7 +178,7 @@ nlohmann::json problemReport(const LoadedProblem& loaded) {
   json robots = json::array();
   for (const SceneRobot& robot : loaded.problem.scene.robots()) robots.push_back(robotJson(robot));
   json objects = json::array();
-  for (const SceneObject& object : loaded.problem.scene.objects()) objects.push_back(objectJson(object));
+  for (const SceneObject& object : loaded.problem.scene.objects()) objects.push_back(objectJson(object, loaded.objectSemantics));
   json attachments = json::array();
   for (const Attachment& attachment : loaded.problem.scene.attachments()) {
     attachments.push_back({{"object", attachment.object}, {"robot", attachment.robot}, {"link", attachment.link}});

@@ -9,7 +9,7 @@ namespace {
 struct ShowOptions {
   std::string problem;
   std::string robot = "panda";
-  std::vector<std::string> xacroArguments;
+  SceneOptions scene;
   bool json = false;
 };
 
@@ -24,10 +24,10 @@ void addShowCommand(CLI::App& app, std::ostream& out) {
                           defaultProblemName() + ")");
   command->add_option("--robot", options->robot, "Built-in robot for MoveIt scenes")
       ->capture_default_str();
-  addXacroArgumentOption(*command, options->xacroArguments);
+  addSceneOptions(*command, options->scene);
   command->add_flag("--json", options->json, "Print JSON");
   command->callback([options, &out] {
-    const nlohmann::json report = problemReport(loadProblem(options->problem, options->robot, options->xacroArguments));
+    const nlohmann::json report = problemReport(loadProblem(options->problem, options->robot, options->scene));
     out << (options->json ? report.dump(2) + "\n" : problemReportText(report));
   });
 }

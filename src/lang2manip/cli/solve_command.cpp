@@ -23,7 +23,7 @@ using nlohmann::json;
 struct SolveOptions {
   std::string problem;
   std::string robot = "panda";
-  std::vector<std::string> xacroArguments;
+  SceneOptions scene;
   std::string planner;
   std::vector<std::string> parameters;
   double timeLimit = 0.0;
@@ -149,7 +149,7 @@ void writeOutputs(const std::string& out, const json& report, const std::vector<
 
 void runSolve(const SolveOptions& options, std::ostream& out) {
   ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(options.seed));
-  LoadedProblem loaded = loadProblem(options.problem, options.robot, options.xacroArguments);
+  LoadedProblem loaded = loadProblem(options.problem, options.robot, options.scene);
   MotionPlanningOptions planningOptions;
   planningOptions.resolution = options.resolution;
   PlanningSession session(planningOptions);
@@ -206,7 +206,7 @@ void addSolveCommand(CLI::App& app, std::ostream& out) {
                       "Built-in problem name, Kautham problem .xml, or MoveIt scene .yaml (default: " +
                           defaultProblemName() + ")");
   command->add_option("--robot", options->robot, "Built-in robot for MoveIt scenes")->capture_default_str();
-  addXacroArgumentOption(*command, options->xacroArguments);
+  addSceneOptions(*command, options->scene);
   command->add_option("--planner", options->planner, "Planner name (OMPL or Kautham name)");
   command->add_option("--param", options->parameters, "Planner parameter NAME=VALUE (repeatable)");
   command->add_option("--time-limit", options->timeLimit, "Planning time limit per query, seconds")

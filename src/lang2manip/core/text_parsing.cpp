@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cstdio>
 #include <cmath>
 
 namespace lang2manip {
@@ -10,6 +11,12 @@ namespace lang2manip {
 std::string lowercase(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+std::string metresText(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f m", value);
   return text;
 }
 

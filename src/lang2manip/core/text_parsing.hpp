@@ -33,4 +33,7 @@ std::string_view trimmed(std::string_view text);
 /// `text` with ASCII letters lower-cased.
 std::string lowercase(std::string text);
 
+/// A length for messages: "0.123 m" (three decimals).
+std::string metresText(double value);
+
 }  // namespace lang2manip

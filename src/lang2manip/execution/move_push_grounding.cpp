@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/execution/action_grounding.hpp"
 #include "lang2manip/grounding/object_geometry.hpp"
 #include "lang2manip/symbolic/spatial_relations.hpp"
@@ -76,12 +77,6 @@ Pose shifted(const Pose& pose, const Vector3& offset) {
   Pose result = pose;
   result.translation() += offset;
   return result;
-}
-
-std::string metres(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3f m", value);
-  return text;
 }
 
 /// The joints a named configuration sets, but the executing arm's gripper (a held object stays
@@ -167,7 +162,7 @@ GroundingAttempt tryPush(const GroundingContext& c, const Scene& world, const Sc
   carry.carried = object.name;
   carry.carriedStart = object.pose;
   carry.carriedDisplacement = direction * distance;
-  if (!a.add(arm, planCartesian(arm, a.world, a.q, end, "push " + object.name + " " + metres(distance), carry), c.counters,
+  if (!a.add(arm, planCartesian(arm, a.world, a.q, end, "push " + object.name + " " + metresText(distance), carry), c.counters,
              record.times)) {
     a.stage = "push";
     return a;
@@ -222,7 +217,7 @@ std::optional<GroundingAttempt> groundPush(const GroundingContext& c, const Scen
   for (const Pose& contact : {push.contact, turned}) {
     GroundingAttempt a = tryPush(c, world, object, direction, distance, contact, action, record);
     if (a.stage.empty()) {
-      record.choice = "contact behind " + object.name + ", " + metres(distance);
+      record.choice = "contact behind " + object.name + ", " + metresText(distance);
       return a;
     }
     stage = a.stage;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/grounding/object_geometry.hpp"
 
 namespace lang2manip {
@@ -29,20 +30,20 @@ Matrix3 gripperRotation(const GripperGeometry& gripper, const Vector3& a, const 
   return world * tool.transpose();
 }
 
-/// Largest |corner . axis| over the finger bounds (in G).
-double fingerHalfExtent(const GripperGeometry& gripper, const Vector3& axisG) {
+/// Largest |corner . axis| over finger bounds `fingers` (in G).
+double fingerHalfExtent(const AlignedBox3& fingers, const Vector3& axisG) {
   double half = 0.0;
   for (int corner = 0; corner < 8; ++corner) {
-    half = std::max(half, std::abs(gripper.fingerBounds.corner(static_cast<AlignedBox3::CornerType>(corner)).dot(axisG)));
+    half = std::max(half, std::abs(fingers.corner(static_cast<AlignedBox3::CornerType>(corner)).dot(axisG)));
   }
   return half;
 }
 
-/// Lowest world z of the finger bounds relative to the TCP for rotation R_WG.
-double fingerLowest(const GripperGeometry& gripper, const Matrix3& R) {
+/// Lowest world z of finger bounds `fingers` relative to the TCP for rotation R_WG.
+double fingerLowest(const AlignedBox3& fingers, const Matrix3& R) {
   double lowest = 0.0;
   for (int corner = 0; corner < 8; ++corner) {
-    lowest = std::min(lowest, (R * gripper.fingerBounds.corner(static_cast<AlignedBox3::CornerType>(corner))).z());
+    lowest = std::min(lowest, (R * fingers.corner(static_cast<AlignedBox3::CornerType>(corner))).z());
   }
   return lowest;
 }
@@ -117,12 +118,6 @@ std::string describe(GraspDirection direction, const Vector3& a, const Vector3& 
   return buffer;
 }
 
-std::string metres(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3f m", value);
-  return buffer;
-}
-
 /// Grasp points along the fingers' width axis: the centre, and both ends for long objects.
 std::vector<double> graspOffsets(double halfLength, double padHalfWidth) {
   const double end = halfLength - padHalfWidth - 0.005;
@@ -137,31 +132,35 @@ void addGrasps(const GraspGeometryInput& in, const GripperGeometry& gripper, con
   const double width = 2.0 * halfExtentAlong(object, in.objectPose, c);
   if (width > gripper.maxOpening) {
     out.rejections.push_back({describe(approach.direction, a, c, 0.0), GraspFailure::kTooWide,
-                              object.name + " is " + metres(width) + " wide across the fingers, the gripper opens " + metres(gripper.maxOpening)});
+                              object.name + " is " + metresText(width) + " wide across the fingers, the gripper opens " + metresText(gripper.maxOpening)});
     return;
   }
   if (width < gripper.minOpening) {
     out.rejections.push_back({describe(approach.direction, a, c, 0.0), GraspFailure::kNotGraspable,
-                              object.name + " is " + metres(width) + " wide across the fingers, the gripper closes only to " +
-                                  metres(gripper.minOpening)});
+                              object.name + " is " + metresText(width) + " wide across the fingers, the gripper closes only to " +
+                                  metresText(gripper.minOpening)});
     return;
   }
   const Matrix3 R = gripperRotation(gripper, a, c);
   const Vector3 t = a.cross(c);
   const Vector3 centre = objectCentre(object, in.objectPose);
-  const double padHalfWidth = fingerHalfExtent(gripper, R.transpose() * t);
+  // The fingers as they are from the opening the grasp approaches with down to the object's
+  // width, and where the pads are then: linkage fingers move along the approach axis.
+  const AlignedBox3 fingers = gripper.fingerBoundsBetween(width, std::min(gripper.maxOpening, width + 2.0 * settings.openingMargin));
+  const double pads = gripper.padCentreAt(width);
+  const double padHalfWidth = fingerHalfExtent(fingers, R.transpose() * t);
   const double depthHalf = halfExtentAlong(object, in.objectPose, a);
-  const double depth = std::min(depthHalf, gripper.fingerReachBehind() - settings.supportClearance);
+  const double depth = std::min(depthHalf, pads - fingers.min().z() - settings.supportClearance);
   const double top = centre.z() + halfExtentAlong(object, in.objectPose, kUp);
   for (double offset : graspOffsets(halfExtentAlong(object, in.objectPose, t), padHalfWidth)) {
-    Vector3 p = centre + t * offset + a * (depth - depthHalf);
-    const double lift = std::max(0.0, in.supportTop + settings.supportClearance - (p.z() + fingerLowest(gripper, R)));
+    Vector3 p = centre + t * offset + a * (depth - depthHalf - pads);
+    const double lift = std::max(0.0, in.supportTop + settings.supportClearance - (p.z() + fingerLowest(fingers, R)));
     p.z() += lift;
     const std::string label = describe(approach.direction, a, c, offset);
     // Lifted across the closing axis, the object is no longer between the pads: then the TCP
     // itself must be below the top; otherwise the fingertips must be.
     const bool centred = std::abs(lift * c.z()) <= kCentringTolerance;
-    const double lowestHold = centred ? p.z() + fingerLowest(gripper, R) : p.z();
+    const double lowestHold = centred ? p.z() + fingerLowest(fingers, R) : p.z() + (R * Vector3(0.0, 0.0, pads)).z();
     if (lowestHold > top - settings.minimumEngagement) {
       out.rejections.push_back({label, GraspFailure::kNotGraspable,
                                 object.name + ": the fingers cannot close below its top without touching its support"});

@@ -136,6 +136,17 @@ void layoutRadial(const FingerSet& fingers, const std::vector<Vector3>& motion, 
   }
 }
 
+/// Along the closing axis: the inner face of the + side pad (its lowest point) and of the - side
+/// pad (its highest; the tool frame's axis when one finger closes onto it).
+std::pair<double, double> innerFaces(const FingerSet& fingers, const PadLayout& layout, const std::vector<Pose>& poses) {
+  double inner = std::numeric_limits<double>::infinity();
+  for (const Vector3& p : fingers.pointsInTool(layout.pads[0], poses)) inner = std::min(inner, p.dot(layout.closing));
+  if (layout.pads.size() < 2) return {inner, 0.0};
+  double outer = -std::numeric_limits<double>::infinity();
+  for (const Vector3& p : fingers.pointsInTool(layout.pads[1], poses)) outer = std::max(outer, p.dot(layout.closing));
+  return {inner, outer};
+}
+
 }  // namespace
 
 std::vector<Vector3> collisionPoints(const Link& link, std::size_t limit) {
@@ -263,15 +274,14 @@ double padGap(const FingerSet& fingers, const PadLayout& layout, const std::vect
     }
     return 2.0 * radius;
   }
-  double inner = std::numeric_limits<double>::infinity();
-  for (const Vector3& p : fingers.pointsInTool(layout.pads[0], poses)) inner = std::min(inner, p.dot(layout.closing));
-  double outer = -std::numeric_limits<double>::infinity();
-  if (layout.pads.size() > 1) {
-    for (const Vector3& p : fingers.pointsInTool(layout.pads[1], poses)) outer = std::max(outer, p.dot(layout.closing));
-  } else {
-    outer = 0.0;  // one moving finger closes onto the tool frame's axis
-  }
+  const auto [inner, outer] = innerFaces(fingers, layout, poses);
   return inner - outer;
+}
+
+double gapMiddle(const FingerSet& fingers, const PadLayout& layout, const std::vector<Pose>& poses) {
+  if (layout.radial) return layout.axisPoint.dot(layout.closing);
+  const auto [inner, outer] = innerFaces(fingers, layout, poses);
+  return 0.5 * (inner + outer);
 }
 
 }  // namespace lang2manip::gripper_detail

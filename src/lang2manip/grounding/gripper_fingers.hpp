@@ -74,6 +74,10 @@ PadLayout layoutPads(const FingerSet& fingers, const std::string& where);
 /// The gap between the pads (m) for link poses `poses` (negative when they overlap).
 double padGap(const FingerSet& fingers, const PadLayout& layout, const std::vector<Pose>& poses);
 
+/// Where along the closing axis the middle of the gap between the pads lies (for radial
+/// fingers, the hand's axis).
+double gapMiddle(const FingerSet& fingers, const PadLayout& layout, const std::vector<Pose>& poses);
+
 /// Points on the collision geometry of `link` in its frame: box corners, cylinder rims, sphere
 /// poles and equator, mesh vertices (at most `limit` per mesh, evenly picked).
 std::vector<Vector3> collisionPoints(const Link& link, std::size_t limit = 4000);

@@ -62,9 +62,9 @@ Pose graspFrameOf(const FingerSet& fingers, const PadLayout& layout) {
   const Vector3 t = a.cross(c);
   const auto [aLow, aHigh] = padRange(fingers, layout, a);
   const auto [tLow, tHigh] = padRange(fingers, layout, t);
-  const double gap = gripper_detail::padGap(fingers, layout, fingers.linkPoses(1.0));
-  const auto [cLow, cHigh] = padRange(fingers, layout, c);
-  const double middle = layout.radial ? layout.axisPoint.dot(c) : 0.5 * (cLow + cHigh);
+  const std::vector<Pose> open = fingers.linkPoses(1.0);
+  const double gap = gripper_detail::padGap(fingers, layout, open);
+  const double middle = gripper_detail::gapMiddle(fingers, layout, open);
   const bool between = aLow - kTcpTolerance <= 0.0 && 0.0 <= aHigh + kTcpTolerance && tLow - kTcpTolerance <= 0.0 &&
                        0.0 <= tHigh + kTcpTolerance && std::abs(middle) <= 0.5 * std::max(gap, 0.0) + kTcpTolerance;
   Pose X_TH = Pose::Identity();
@@ -89,16 +89,32 @@ void describeFingers(const RobotModel& model, const FingerSet& fingers, const Pa
   g.fingerLength = aHigh - rootLow;
   for (std::size_t pad : layout.pads) g.padLinks.push_back(model.links()[static_cast<std::size_t>(fingers.links()[pad].link)].name);
   for (int link : fingers.movedLinks()) g.fingerLinks.push_back(model.links()[static_cast<std::size_t>(link)].name);
-  // Over the whole travel: linkage fingers reach farther along the approach axis half-closed.
+  // At every sample of the travel: linkage fingers reach farther along the approach axis as
+  // they close, so what a grasp needs depends on its width.
   for (int i = 0; i < kCurveSamples; ++i) {
     const std::vector<Pose> poses = fingers.linkPoses(i / (kCurveSamples - 1.0));
+    AlignedBox3 bounds;
     for (int link : fingers.movedLinks()) {
       const Pose X_HL = X_HT * poses[static_cast<std::size_t>(link)];
       for (const Shape& shape : model.links()[static_cast<std::size_t>(link)].collisions) {
-        g.fingerBounds.extend(transformedBox(shapeBounds(shape), X_HL));
+        bounds.extend(transformedBox(shapeBounds(shape), X_HL));
       }
     }
+    g.fingerBoundsCurve.push_back(bounds);
+    g.fingerBounds.extend(bounds);
+    double low = std::numeric_limits<double>::infinity();
+    double high = -low;
+    for (std::size_t pad : layout.pads) {
+      for (const Vector3& p : fingers.pointsInTool(pad, poses)) {
+        const double z = (X_HT * p).z();
+        low = std::min(low, z);
+        high = std::max(high, z);
+      }
+    }
+    g.padCentreCurve.push_back(0.5 * (low + high));
   }
+  const double whenOpen = g.padCentreCurve.back();
+  for (double& centre : g.padCentreCurve) centre -= whenOpen;
 }
 
 /// Bounds of the collision geometry below the last arm joint, in the tool frame (a tool without
@@ -189,6 +205,24 @@ std::string noGripperReason(const RobotModel& model, const GripperGeometry& grip
                    " ends at " + gripper.toolFrame +
                    " with no gripper joint after it); it can move and push. To pick, give the robot a gripper, or name its "
                    "gripper joints in an SRDF end effector group";
+}
+
+AlignedBox3 GripperGeometry::fingerBoundsBetween(double narrow, double wide) const {
+  if (fingerBoundsCurve.empty()) return fingerBounds;
+  const double last = static_cast<double>(fingerBoundsCurve.size() - 1);
+  const auto first = static_cast<std::size_t>(std::floor(fractionForOpening(*this, std::min(narrow, wide)) * last));
+  const auto end = static_cast<std::size_t>(std::ceil(fractionForOpening(*this, std::max(narrow, wide)) * last));
+  AlignedBox3 bounds;
+  for (std::size_t i = first; i <= end && i < fingerBoundsCurve.size(); ++i) bounds.extend(fingerBoundsCurve[i]);
+  return bounds.isEmpty() ? fingerBounds : bounds;
+}
+
+double GripperGeometry::padCentreAt(double width) const {
+  if (padCentreCurve.empty()) return 0.0;
+  const double x = fractionForOpening(*this, width) * static_cast<double>(padCentreCurve.size() - 1);
+  const std::size_t i = std::min(static_cast<std::size_t>(x), padCentreCurve.size() - 1);
+  const std::size_t next = std::min(i + 1, padCentreCurve.size() - 1);
+  return padCentreCurve[i] + (x - static_cast<double>(i)) * (padCentreCurve[next] - padCentreCurve[i]);
 }
 
 VectorX withGripperFraction(const RobotModel& model, const GripperGeometry& gripper, VectorX q, double fraction) {

@@ -63,6 +63,17 @@ struct GripperGeometry {
   std::vector<double> closedValues;
   /// Pad gap (m) at evenly spaced fractions of the travel, from closed (0) to open (1).
   std::vector<double> openingCurve;
+  /// At the same fractions: the fingers' bounds in H, and how far the middle of the pads has
+  /// moved along the approach axis from where it is when open (linkage fingers move along it
+  /// as they close; sliding fingers do not).
+  std::vector<AlignedBox3> fingerBoundsCurve;
+  std::vector<double> padCentreCurve;
+
+  /// Bounds in H of the fingers swept while the pad gap goes from `wide` down to `narrow`.
+  [[nodiscard]] AlignedBox3 fingerBoundsBetween(double narrow, double wide) const;
+  /// How far the middle of the pads has moved along the approach axis at pad gap `width` from
+  /// where it is when open.
+  [[nodiscard]] double padCentreAt(double width) const;
 
   /// False for a tool without gripper joints: it moves and pushes but cannot pick.
   [[nodiscard]] bool hasGripper() const noexcept { return !gripperJoints.empty(); }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/collision/fcl_collision_checker.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/kinematics/forward_kinematics.hpp"
@@ -13,12 +14,6 @@ namespace lang2manip {
 namespace {
 
 std::string contactText(const CollisionContact& contact) { return contact.first + " - " + contact.second; }
-
-std::string metres(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3f m", value);
-  return buffer;
-}
 
 /// `q` with each revolute joint turned by whole turns (within its limits) to the value nearest
 /// to `seed`'s: the same pose, and no needless full turn for a motion planner to make.
@@ -106,7 +101,7 @@ ReachResult ReachabilityChecker::reach(const Pose& X_WG, const VectorX& seed, do
   const Pose X_BT = chainBase_.inverse() * X_WG * gripper_->graspFrame.inverse();
   if (X_BT.translation().norm() > chainReach_) {
     result.failure = ReachFailure::kOutOfReach;
-    result.reason = "out of reach: " + metres(X_BT.translation().norm()) + " from the arm base, reach " + metres(chainReach_);
+    result.reason = "out of reach: " + metresText(X_BT.translation().norm()) + " from the arm base, reach " + metresText(chainReach_);
     return result;
   }
   IkRequest request;

@@ -35,6 +35,7 @@ void applyMetadata(SceneObject& object, const std::filesystem::path& urdf, doubl
   const pugi::xml_node metadata = document.root().child("lang2manip_object");
   if (!metadata) {
     object.role = inferredRole(object);
+    object.semantics = SemanticsSource::kInferred;
     return;
   }
   if (const pugi::xml_attribute kind = metadata.attribute("kind")) object.kind = kind.value();

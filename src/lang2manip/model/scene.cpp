@@ -15,6 +15,15 @@ std::string objectRoleName(ObjectRole role) {
   return "none";
 }
 
+std::string semanticsSourceName(SemanticsSource source) {
+  switch (source) {
+    case SemanticsSource::kGiven: return "given";
+    case SemanticsSource::kInferred: return "inferred";
+    case SemanticsSource::kUser: return "user";
+  }
+  return "given";
+}
+
 ObjectRole objectRoleFromName(const std::string& name) {
   for (const ObjectRole role : {ObjectRole::kNone, ObjectRole::kSupport, ObjectRole::kContainer}) {
     if (objectRoleName(role) == name) return role;

@@ -17,6 +17,14 @@ enum class ObjectRole { kNone, kSupport, kContainer };
 
 /// "none", "support", "container".
 std::string objectRoleName(ObjectRole role);
+
+/// Where an object's movable flag and role come from: its model (a <lang2manip_object> element,
+/// or the code that built it), inference from the scene's geometry (inferObjectSemantics), or
+/// the user's --movable / --fixed.
+enum class SemanticsSource { kGiven, kInferred, kUser };
+
+/// "given", "inferred", "user".
+std::string semanticsSourceName(SemanticsSource source);
 /// Inverse of objectRoleName(); throws InputError listing the valid names.
 ObjectRole objectRoleFromName(const std::string& name);
 
@@ -49,6 +57,7 @@ struct SceneObject {
   std::vector<Shape> visuals;
   bool movable = false;
   ObjectRole role = ObjectRole::kNone;
+  SemanticsSource semantics = SemanticsSource::kGiven;
   /// For containers: the free interior in the object frame.
   std::optional<AlignedBox3> cavity;
   /// False when the problem disables collision checking for this object.

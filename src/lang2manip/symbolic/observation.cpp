@@ -156,6 +156,7 @@ json objectJson(const SceneObject& object, const Pose& base, const SymbolicState
   if (object.cavity) {
     report["cavity"] = {{"min", vectorJson(object.cavity->min())}, {"max", vectorJson(object.cavity->max())}};
   }
+  if (object.semantics != SemanticsSource::kGiven) report["semantics"] = semanticsSourceName(object.semantics);
   return report;
 }
 

@@ -91,6 +91,7 @@ std::string objectState(const json& object) {
 std::string objectText(const json& object) {
   std::string role = object["movable"].get<bool>() ? "movable" : "fixed";
   if (object["role"] != "none") role += " " + object["role"].get<std::string>();
+  if (object.contains("semantics")) role += " (" + object["semantics"].get<std::string>() + ")";
   const json& d = object["dimensions"];
   return "  " + object["name"].get<std::string>() + ": kind " + object["kind"].get<std::string>() + ", " + role +
          "; at " + numbers(object["position"]) + " world, " + numbers(object["position_in_base"]) +

@@ -4,18 +4,13 @@
 #include <cmath>
 #include <cstdio>
 
+#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/model/scene.hpp"
 #include "lang2manip/symbolic/plan_validation.hpp"
 
 namespace lang2manip {
 namespace {
-
-std::string metres(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3f m", value);
-  return buffer;
-}
 
 const SceneObject& objectNamed(const Scene& scene, const std::string& name, const std::string& role) {
   const SceneObject* object = scene.findObject(name);
@@ -55,10 +50,10 @@ std::string sideWords(SpatialRelation relation) {
 
 GoalCheck checkSide(const Goal& goal, const Vector3& offset, const SpatialOptions& options) {
   const double along = offsetAlong(*goal.relation, offset);
-  const std::string words = goal.object + " is " + metres(along) + " " + sideWords(*goal.relation) + " " + goal.target;
+  const std::string words = goal.object + " is " + metresText(along) + " " + sideWords(*goal.relation) + " " + goal.target;
   if (goal.distance) {
     const bool holds = std::abs(along - *goal.distance) <= options.distanceTolerance;
-    return {holds, words + " (wanted " + metres(*goal.distance) + ")"};
+    return {holds, words + " (wanted " + metresText(*goal.distance) + ")"};
   }
   return {along > options.directionMargin, words};
 }
@@ -66,7 +61,7 @@ GoalCheck checkSide(const Goal& goal, const Vector3& offset, const SpatialOption
 GoalCheck checkNextTo(const Goal& goal, const SceneObject& a, const SceneObject& b, const SpatialOptions& options) {
   const double gap = boxGap(a.worldBounds(), b.worldBounds());
   const double limit = goal.distance ? *goal.distance + options.distanceTolerance : options.nearDistance;
-  return {gap <= limit, goal.object + " is " + metres(gap) + " from " + goal.target + " (at most " + metres(limit) + ")"};
+  return {gap <= limit, goal.object + " is " + metresText(gap) + " from " + goal.target + " (at most " + metresText(limit) + ")"};
 }
 
 GoalCheck checkDisplaced(const Scene& scene, const Goal& goal, const GoalCheckOptions& options) {

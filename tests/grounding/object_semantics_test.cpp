@@ -1,0 +1,133 @@
+// Object semantics inferred from a scene's geometry (Kautham obstacles carry no
+// <lang2manip_object>): supports, containers with their hollow, movable objects, and the user's
+// --movable / --fixed.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "grounding_test_support.hpp"
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/grounding/object_semantics.hpp"
+#include "lang2manip/model/kautham_problem.hpp"
+#include "test_paths.hpp"
+
+namespace lang2manip::test {
+namespace {
+
+using ::testing::HasSubstr;
+
+Shape boxAt(const Vector3& size, const Vector3& centre) {
+  Shape shape;
+  shape.geometry = Box{size};
+  shape.origin.translation() = centre;
+  return shape;
+}
+
+/// An object whose semantics are left to inference, with its frame at the centre of its bottom.
+SceneObject untagged(const std::string& name, std::vector<Shape> shapes, const Vector3& position) {
+  SceneObject object;
+  object.name = name;
+  object.kind = name;
+  object.collisions = std::move(shapes);
+  object.pose.translation() = position;
+  object.semantics = SemanticsSource::kInferred;
+  return object;
+}
+
+/// The Panda desk with the desk, a block, a cup (open box of 5 walls), a tall cabinet and a
+/// floating ball left to inference.
+Scene inferenceScene() {
+  Scene scene = deskScene("panda");
+  for (const char* name : {"marker", "eraser", "holder"}) scene.removeObject(name);
+  scene.object("desk").semantics = SemanticsSource::kInferred;
+  scene.addObject(untagged("block", {boxAt({0.04, 0.04, 0.04}, {0, 0, 0.02})}, {0.1, -0.2, 0.75}));
+  std::vector<Shape> cup{boxAt({0.08, 0.08, 0.005}, {0, 0, 0.0025})};
+  for (double side : {-1.0, 1.0}) {
+    cup.push_back(boxAt({0.005, 0.08, 0.1}, {side * 0.0375, 0, 0.05}));
+    cup.push_back(boxAt({0.08, 0.005, 0.1}, {0, side * 0.0375, 0.05}));
+  }
+  scene.addObject(untagged("cup", cup, {0.1, 0.2, 0.75}));
+  scene.addObject(untagged("cabinet", {boxAt({0.3, 0.2, 0.5}, {0, 0, 0.25})}, {0.4, 0.3, 0.75}));
+  scene.addObject(untagged("ball", {boxAt({0.03, 0.03, 0.03}, {0, 0, 0.015})}, {0.0, 0.0, 1.2}));
+  return scene;
+}
+
+const ObjectSemanticsDecision& decisionFor(const std::vector<ObjectSemanticsDecision>& decisions, const std::string& name) {
+  for (const ObjectSemanticsDecision& decision : decisions) {
+    if (decision.object == name) return decision;
+  }
+  throw std::runtime_error("no decision for " + name);
+}
+
+TEST(ObjectSemantics, SupportsContainersAndMovableObjectsAreInferredWithTheReason) {
+  Scene scene = inferenceScene();
+  const std::vector<ObjectSemanticsDecision> decisions = inferObjectSemantics(scene);
+  EXPECT_EQ(scene.object("desk").role, ObjectRole::kSupport);
+  EXPECT_FALSE(scene.object("desk").movable);
+  EXPECT_TRUE(scene.object("block").movable);
+  EXPECT_THAT(decisionFor(decisions, "block").reason, HasSubstr("rests on desk"));
+  EXPECT_EQ(scene.object("cup").role, ObjectRole::kContainer);
+  EXPECT_TRUE(scene.object("cup").movable) << "0.08 m fits the Panda's 0.08 m opening";
+  ASSERT_TRUE(scene.object("cup").cavity.has_value());
+  EXPECT_NEAR(scene.object("cup").cavity->min().z(), 0.005, 2e-3);
+  EXPECT_NEAR(scene.object("cup").cavity->sizes().x(), 0.07, 2e-3);
+  EXPECT_FALSE(scene.object("cabinet").movable);
+  EXPECT_THAT(decisionFor(decisions, "cabinet").reason, HasSubstr("the widest gripper opens 0.080 m"));
+  EXPECT_FALSE(scene.object("ball").movable);
+  EXPECT_THAT(decisionFor(decisions, "ball").reason, HasSubstr("rests on nothing"));
+  EXPECT_EQ(decisionFor(decisions, "block").source, SemanticsSource::kInferred);
+}
+
+TEST(ObjectSemantics, ObjectsTheirModelsDescribeAreLeftAsGiven) {
+  Scene scene = deskScene("panda");
+  const std::vector<ObjectSemanticsDecision> decisions = inferObjectSemantics(scene);
+  EXPECT_EQ(decisionFor(decisions, "holder").source, SemanticsSource::kGiven);
+  EXPECT_EQ(scene.object("holder").role, ObjectRole::kContainer);
+  EXPECT_TRUE(scene.object("marker").movable);
+}
+
+TEST(ObjectSemantics, TheUsersWordComesLast) {
+  Scene scene = inferenceScene();
+  const std::vector<ObjectSemanticsDecision> decisions = inferObjectSemantics(scene, {{"cabinet"}, {"block"}});
+  EXPECT_TRUE(scene.object("cabinet").movable);
+  EXPECT_FALSE(scene.object("block").movable);
+  EXPECT_EQ(scene.object("block").semantics, SemanticsSource::kUser);
+  EXPECT_EQ(decisionFor(decisions, "cabinet").reason, "movable: --movable");
+}
+
+TEST(ObjectSemanticsBadInput, ContradictingOrUnknownNamesAreRefused) {
+  Scene scene = inferenceScene();
+  try {
+    static_cast<void>(inferObjectSemantics(scene, {{"block"}, {"block"}}));
+    FAIL() << "block cannot be both";
+  } catch (const InputError& error) {
+    EXPECT_THAT(error.what(), HasSubstr("\"block\" is named both --movable and --fixed"));
+  }
+  try {
+    static_cast<void>(inferObjectSemantics(scene, {{"unicorn"}, {}}));
+    FAIL() << "no object is named unicorn";
+  } catch (const InputError& error) {
+    EXPECT_THAT(error.what(), HasSubstr("unicorn"));
+    EXPECT_THAT(error.what(), HasSubstr("block"));
+  }
+}
+
+TEST(ObjectSemantics, KauthamScenesAsTheyAre) {
+  const auto shared = sharedDataDirectory();
+  if (!shared) GTEST_SKIP() << "../shared/data is absent";
+  KauthamProblem ur3e = readKauthamProblem(*shared / "kautham/OMPL_geo_demos/UR3e/ur3e_fib_upc.xml");
+  static_cast<void>(inferObjectSemantics(ur3e.scene));
+  EXPECT_TRUE(ur3e.scene.object("wood_piece").movable);
+  EXPECT_EQ(ur3e.scene.object("table").role, ObjectRole::kSupport);
+  EXPECT_FALSE(ur3e.scene.object("wall").movable);
+  KauthamProblem tx90 = readKauthamProblem(*shared / "kautham/OMPL_geo_demos/TX90_IOC/OMPL_RRTConnect_TX90_gripper_TwoCan.xml");
+  static_cast<void>(inferObjectSemantics(tx90.scene));
+  EXPECT_TRUE(tx90.scene.object("can").movable);
+  KauthamProblem noGripper = readKauthamProblem(*shared / "kautham/OMPL_geo_demos/TX90_IOC/OMPL_RRTConnect_TX90_TwoCan.xml");
+  const std::vector<ObjectSemanticsDecision> decisions = inferObjectSemantics(noGripper.scene);
+  EXPECT_FALSE(noGripper.scene.object("can").movable);
+  EXPECT_THAT(decisionFor(decisions, "can").reason, HasSubstr("no robot has a gripper"));
+}
+
+}  // namespace
+}  // namespace lang2manip::test
