@@ -146,6 +146,7 @@ const std::vector<FuzzTarget>& fuzzTargets() {
       {"xacro", feedXacro},
       {"kautham_problem", feedKauthamProblem},
       {"kautham_controls", feedKauthamControls},
+      {"kautham_benchmark", feedKauthamBenchmark},
       {"moveit_problem", feedMoveItProblem},
       {"mesh_stl", feedStlMesh},
       {"mesh_obj", feedObjMesh},

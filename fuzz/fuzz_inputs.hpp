@@ -56,6 +56,8 @@ InputOutcome feedSrdf(std::string_view input);
 InputOutcome feedKauthamProblem(std::string_view input);
 /// A Kautham .cntr file; an accepted control set must read again from its own XML.
 InputOutcome feedKauthamControls(std::string_view input);
+/// A Kautham <Benchmark> file (its problem files are not read).
+InputOutcome feedKauthamBenchmark(std::string_view input);
 
 /// A MoveIt planning scene YAML and its motion plan request for the built-in Panda, in one
 /// input: the scene, then a line holding exactly kMoveItRequestSeparator, then the request

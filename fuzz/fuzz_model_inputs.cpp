@@ -5,6 +5,7 @@
 #include "fuzz_inputs.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/model/builtin_data.hpp"
+#include "lang2manip/model/kautham_benchmark.hpp"
 #include "lang2manip/model/kautham_controls.hpp"
 #include "lang2manip/model/kautham_problem.hpp"
 #include "lang2manip/model/mesh_loader.hpp"
@@ -87,6 +88,10 @@ InputOutcome feedKauthamProblem(std::string_view input) {
   options.modelDirectories = {builtinDataDirectory() / "models",
                               builtinDataDirectory() / "problems" / "desk"};
   return outcomeOf([&] { (void)readKauthamProblem(file, options); });
+}
+
+InputOutcome feedKauthamBenchmark(std::string_view input) {
+  return outcomeOf([&] { (void)readKauthamBenchmarkString(std::string(input), "fuzz_benchmark.xml", "/nonexistent"); });
 }
 
 InputOutcome feedKauthamControls(std::string_view input) {

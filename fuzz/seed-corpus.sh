@@ -53,6 +53,7 @@ add_files kautham_problem "$kTextLimit" "$repo/data/problems" -name '*.xml'
 add_files kautham_problem "$kTextLimit" "$shared/kautham" -name '*.xml'
 add_files kautham_controls "$kTextLimit" "$repo/data" -name '*.cntr'
 add_files kautham_controls "$kTextLimit" "$shared/kautham" -name '*.cntr'
+add_files kautham_benchmark "$kTextLimit" "$shared/kautham" -name 'benchmark*.xml'
 for format in stl obj dae ply iv wrl; do
   add_files "mesh_$format" "$kMeshLimit" "$repo/tests/data/meshes" -iname "*.$format"
   add_files "mesh_$format" "$kMeshLimit" "$shared" -iname "*.$format"

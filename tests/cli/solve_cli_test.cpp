@@ -130,6 +130,37 @@ TEST(BenchMbmCli, OneProblemPerFamilyWithJsonAndOmplLog) {
   EXPECT_THAT(text, HasSubstr("\n.\n"));
 }
 
+TEST(BenchKauthamCli, RunsEveryProblemOfABenchmarkFileAndWritesOmplsLog) {
+  const auto shared = sharedDataDirectory();
+  if (!shared) GTEST_SKIP() << "../shared/data is absent";
+  const TempDirectory directory;
+  const std::filesystem::path log = directory.path() / "result.log";
+  const RunResult result = run("bench kautham " + (*shared / "kautham/OMPL_geo_demos/Cube-sPassage_R2/benchmarking_RRT-RRTstar.xml").string() +
+                                   " --runs 2 --time-limit 1 --json --log " + log.string(),
+                               false);
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  const nlohmann::json report = nlohmann::json::parse(result.output);
+  ASSERT_EQ(report["problems"].size(), 2U);
+  EXPECT_EQ(report["problems"][0]["alias"], "RRT");
+  EXPECT_EQ(report["problems"][1]["alias"], "RRTstar");
+  EXPECT_EQ(report["problems"][0]["runs"], 2);
+  EXPECT_EQ(report["ignored_parameters"], nlohmann::json({"displayProgress", "timeBetweenUpdates"}));
+  const std::string text = readFileText(log);
+  EXPECT_THAT(text, HasSubstr("geometric_RRT\n"));
+  EXPECT_THAT(text, HasSubstr("geometric_RRTstar\n"));
+  EXPECT_THAT(text, HasSubstr("2 runs"));
+}
+
+TEST(BenchKauthamCli, ABadBenchmarkFileIsAClearError) {
+  const TempDirectory directory;
+  const std::filesystem::path file = directory.path() / "bench.xml";
+  std::ofstream(file) << "<Benchmark>\n  <Problem File=\"missing.xml\"/>\n</Benchmark>\n";
+  const RunResult result = run("bench kautham " + file.string() + " --runs 1");
+  EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_THAT(result.output, HasSubstr(file.string() + ":2"));
+  EXPECT_THAT(result.output, HasSubstr("missing.xml"));
+}
+
 TEST(BenchMbmCli, BadDirectoryAndFamily) {
   RunResult result = run("bench mbm /nonexistent");
   EXPECT_EQ(result.exitCode, 1);

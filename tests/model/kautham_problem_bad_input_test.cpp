@@ -177,12 +177,57 @@ TEST_F(KauthamBadInputTest, MissingRobotControl) {
                                  HasSubstr("no <RobotControl> for control \"a\"")));
 }
 
-TEST_F(KauthamBadInputTest, TwoObstaclesWithTheSameName) {
+/// Warnings logged while `action` runs.
+template <typename Action>
+std::vector<std::string> warningsOf(Action action) {
+  std::vector<std::string> warnings;
+  setLogSink([&](LogLevel level, std::string_view message) {
+    if (level == LogLevel::kWarn) warnings.emplace_back(message);
+  });
+  action();
+  setLogSink({});
+  return warnings;
+}
+
+TEST_F(KauthamBadInputTest, TwoObstaclesWithTheSameNameAreBothKeptWithAWarning) {
   const std::string text =
       writeProblem(std::string(kArmRobotElement) + "  <Obstacle obstacle=\"obstacles/crate.urdf\"/>\n" +
-                   "  <Obstacle obstacle=\"obstacles/crate.urdf\" scale=\"2\"/>\n");
-  EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "scale=\"2\""))),
-                                 HasSubstr("\"crate_model\""), HasSubstr("<KauthamName>")));
+                   "  <Obstacle obstacle=\"obstacles/crate.urdf\" scale=\"2\"/>\n" + kArmControls);
+  KauthamProblem problem;
+  const std::vector<std::string> warnings = warningsOf([&] { problem = read(); });
+  ASSERT_EQ(problem.scene.objects().size(), 2U);
+  EXPECT_EQ(problem.scene.objects()[0].name, "crate_model");
+  EXPECT_EQ(problem.scene.objects()[1].name, "crate_model_2");
+  ASSERT_EQ(warnings.size(), 1U);
+  EXPECT_THAT(warnings[0], AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "scale=\"2\""))), HasSubstr("\"crate_model_2\""),
+                                 HasSubstr("<KauthamName>")));
+}
+
+TEST_F(KauthamBadInputTest, ANumberWithASpaceInsideIsReadAsKauthamReadsIt) {
+  const std::string text = writeProblem("  <Robot robot=\"robots/arm.urdf\">\n    <Home X=\"0.5 0.3\" Y=\" 0.25 \"/>\n  </Robot>\n" +
+                                        std::string(kArmControls));
+  KauthamProblem problem;
+  const std::vector<std::string> warnings = warningsOf([&] { problem = read(); });
+  EXPECT_DOUBLE_EQ(problem.scene.robots()[0].basePose.translation().x(), 0.5);
+  EXPECT_DOUBLE_EQ(problem.scene.robots()[0].basePose.translation().y(), 0.25);
+  ASSERT_EQ(warnings.size(), 1U);
+  EXPECT_THAT(warnings[0], AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "<Home"))), HasSubstr("\"0.5 0.3\" has a space inside"),
+                                 HasSubstr("as Kautham does")));
+  writeProblem("  <Robot robot=\"robots/arm.urdf\">\n    <Home X=\"half 0.3\"/>\n  </Robot>\n" + std::string(kArmControls));
+  EXPECT_THAT(readError(), HasSubstr("\"half\" is not a number"));
+}
+
+TEST_F(KauthamBadInputTest, AMeshPathWithALeadingSlashIsFoundBesideTheUrdf) {
+  writeModel("obstacles/meshes/crate.stl", "solid crate\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 0.1 0 0\nvertex 0 0.1 0\n"
+                                            "endloop\nendfacet\nendsolid crate\n");
+  writeModel("obstacles/meshed.urdf", R"(<robot name="meshed"><link name="body"><collision><geometry>
+    <mesh filename="/meshes/crate.stl"/></geometry></collision></link></robot>)");
+  writeProblem(std::string(kArmRobotElement) + "  <Obstacle obstacle=\"obstacles/meshed.urdf\"/>\n" + kArmControls);
+  KauthamProblem problem;
+  const std::vector<std::string> warnings = warningsOf([&] { problem = read(); });
+  EXPECT_EQ(problem.scene.object("meshed").collisions.size(), 1U);
+  ASSERT_EQ(warnings.size(), 1U);
+  EXPECT_THAT(warnings[0], AllOf(HasSubstr("\"/meshes/crate.stl\" is absolute but does not exist"), HasSubstr("as Kautham does")));
 }
 
 TEST_F(KauthamBadInputTest, InitialAttachedObstacleNamingAnUnknownLink) {

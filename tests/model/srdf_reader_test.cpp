@@ -96,6 +96,44 @@ TEST(SrdfReader, InfersTwoArmsOnATwoArmRobot) {
   EXPECT_EQ(semantics.manipulators[0].name, "arm_r3");
 }
 
+// base -torso (prismatic)-> t -j1-> l1 -j2-> l2 -j3-> hand; hand -finger-> left; hand -mimic-> right
+TEST(SrdfReader, APrismaticTorsoIsPartOfTheArmNotAFinger) {
+  RobotModelData data = gripperArm();
+  data.links.push_back({"t", {}, {}});
+  data.joints.push_back(joint("torso", JointType::kPrismatic, "t", "base", 0.0, 0.4));
+  data.links.push_back({"world", {}, {}});
+  data.joints.push_back(joint("mount", JointType::kFixed, "world", "t"));
+  const RobotSemantics semantics = inferSemantics(data);
+  ASSERT_EQ(semantics.manipulators.size(), 1U);
+  EXPECT_THAT(semantics.manipulators[0].armJoints, ElementsAre("torso", "j1", "j2"));
+  EXPECT_THAT(semantics.manipulators[0].gripperJoints, ElementsAre("finger"));
+}
+
+// An arm carrying a hand of three fingers with three joints each, none a mimic: one gripper.
+TEST(SrdfReader, TheFingersOfAHandAreOneGripper) {
+  RobotModelData data;
+  data.name = "hand";
+  for (const char* name : {"base", "l1", "l2", "palm", "mount0", "mount1", "mount2"}) data.links.push_back({name, {}, {}});
+  data.joints = {joint("j1", JointType::kRevolute, "base", "l1"), joint("j2", JointType::kRevolute, "l1", "l2"),
+                 joint("wrist", JointType::kRevolute, "l2", "palm")};
+  for (int f = 0; f < 3; ++f) {
+    const std::string finger = "f" + std::to_string(f);
+    data.joints.push_back(joint(finger + "_mount", JointType::kFixed, "palm", "mount" + std::to_string(f)));
+    std::string parent = "mount" + std::to_string(f);
+    for (int k = 0; k < 3; ++k) {
+      const std::string link = finger + "_" + std::to_string(k);
+      data.links.push_back({link, {}, {}});
+      data.joints.push_back(joint(link + "_joint", JointType::kRevolute, parent, link, 0.0, 1.0));
+      parent = link;
+    }
+  }
+  const RobotSemantics semantics = inferSemantics(data);
+  ASSERT_EQ(semantics.manipulators.size(), 1U);
+  EXPECT_THAT(semantics.manipulators[0].armJoints, ElementsAre("j1", "j2", "wrist"));
+  EXPECT_EQ(semantics.manipulators[0].gripperJoints.size(), 9U);
+  EXPECT_EQ(semantics.manipulators[0].toolFrame, "palm");
+}
+
 struct BadSrdf {
   const char* name;
   const char* xml;

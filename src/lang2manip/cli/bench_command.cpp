@@ -9,6 +9,7 @@ void addBenchCommand(CLI::App& app, std::ostream& out) {
   bench->require_subcommand(1);
   addBenchIkCommand(*bench, out);
   addBenchMbmCommand(*bench, out);
+  addBenchKauthamCommand(*bench, out);
   addBenchTaskCommand(*bench, out);
 }
 

@@ -15,6 +15,10 @@ void addBenchIkCommand(CLI::App& bench, std::ostream& out);
 /// [--json] [--log FILE]`: the MotionBenchMaker Panda problems (docs/benchmarks.md).
 void addBenchMbmCommand(CLI::App& bench, std::ostream& out);
 
+/// `lang2manip bench kautham FILE [--runs N] [--time-limit S] [--log FILE] [--seed N] [--json]`:
+/// a Kautham <Benchmark> file, every problem it lists with its own planner, with OMPL's log.
+void addBenchKauthamCommand(CLI::App& bench, std::ostream& out);
+
 /// `lang2manip bench task [PROBLEM] [--task "..."] [--trials N] [--spread M] [--turn RAD] [--seed N]
 /// [--baseline-ik NAME] [--json]`: randomized trials of a task (docs/benchmarks.md, task level).
 void addBenchTaskCommand(CLI::App& bench, std::ostream& out);

@@ -2,7 +2,6 @@
 // the built-in Panda, the exact FCL checker and an OMPL planner; every solution re-verified.
 #include <chrono>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -10,8 +9,6 @@
 #include <set>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 #include <ompl/util/RandomNumbers.h>
@@ -108,22 +105,9 @@ void addTo(FamilyFigures& figures, const MotionPlan& plan) {
 }
 
 BenchmarkRun logRun(const MotionPlan& plan, int familyIndex) {
-  const auto statusIndex = [&plan] {
-    const auto& names = omplStatusNames();
-    const std::string wanted = plan.solved() ? "Exact solution" : "Timeout";
-    return std::to_string(std::find(names.begin(), names.end(), wanted) - names.begin());
-  }();
-  return {{"time REAL", std::to_string(plan.statistics.planningSeconds)},
-          {"solved BOOLEAN", plan.solved() ? "1" : "0"},
-          {"status ENUM", statusIndex},
-          {"simplification time REAL", std::to_string(plan.statistics.simplifySeconds)},
-          {"solution length REAL", std::to_string(plan.statistics.lengthBeforeSimplification)},
-          {"simplified solution length REAL", std::to_string(plan.statistics.lengthAfterSimplification)},
-          {"graph states INTEGER", std::to_string(plan.statistics.vertices)},
-          {"graph motions INTEGER", std::to_string(plan.statistics.edges)},
-          {"state checks INTEGER", std::to_string(plan.statistics.stateChecks)},
-          {"motion checks INTEGER", std::to_string(plan.statistics.motionChecks)},
-          {"family INTEGER", std::to_string(familyIndex)}};
+  BenchmarkRun run = benchmarkRunOf(plan);
+  run["family INTEGER"] = std::to_string(familyIndex);
+  return run;
 }
 
 class MbmRunner {
@@ -194,21 +178,10 @@ std::string figuresLine(const json& f) {
   return line;
 }
 
-std::string currentTime() {
-  const std::time_t now = std::time(nullptr);
-  char text[64];
-  std::strftime(text, sizeof text, "%Y-%b-%d %H:%M:%S", std::localtime(&now));
-  return text;
-}
-
 void writeLog(const MbmOptions& options, const PlannerSettings& settings, std::vector<BenchmarkRun> runs,
               double seconds) {
-  BenchmarkExperiment experiment;
-  experiment.name = "lang2manip MotionBenchMaker panda" + (options.family.empty() ? "" : " " + options.family);
-  char host[256] = "UNKNOWN";
-  gethostname(host, sizeof host - 1);
-  experiment.host = host;
-  experiment.startTime = currentTime();
+  BenchmarkExperiment experiment =
+      startBenchmarkExperiment("lang2manip MotionBenchMaker panda" + (options.family.empty() ? "" : " " + options.family));
   experiment.setupInfo = "lang2manip bench mbm: built-in Panda, FCL exact checker, motion resolution " +
                          std::to_string(options.resolution) + " rad, paths re-verified\n";
   experiment.seed = static_cast<unsigned long>(options.seed);

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <fstream>
 
+#include <nlohmann/json.hpp>
+
 #include "lang2manip/cli/commands.hpp"
 #include "lang2manip/cli/problem_loading.hpp"
 #include "lang2manip/core/error.hpp"
@@ -55,7 +57,7 @@ json gripperJson(const RobotModel& model, const Manipulator& arm) {
   return report;
 }
 
-json robotJson(const SceneRobot& robot) {
+json robotDescriptionJson(const SceneRobot& robot) {
   const RobotModel& model = *robot.model;
   const RobotSemantics& semantics = model.semantics();
   json report{{"name", robot.name}, {"model", model.name()},
@@ -111,6 +113,10 @@ std::string describeText(const json& report) {
     for (const json& state : robot["named_states"]) {
       text += "  named state " + state["name"].get<std::string>() + " (" + state["group"].get<std::string>() + ")\n";
     }
+    if (robot["semantics"].get<std::string>().rfind("inferred", 0) == 0) {
+      text += "  (guessed from the tree: to change the arm, tool frame or gripper, write them as an SRDF with --write-srdf, edit it and\n"
+              "   keep it beside the URDF under its name, e.g. robot.srdf for robot.urdf)\n";
+    }
   }
   for (const json& object : report["objects"]) {
     text += "object " + object["name"].get<std::string>() + ": " + (object["movable"].get<bool>() ? "movable" : "fixed") + ", role " +
@@ -123,7 +129,7 @@ std::string describeText(const json& report) {
 void describe(const DescribeOptions& options, std::ostream& out) {
   const LoadedProblem loaded = loadProblem(options.problem, options.robot, options.scene);
   json report{{"robots", json::array()}, {"objects", json::array()}};
-  for (const SceneRobot& robot : loaded.problem.scene.robots()) report["robots"].push_back(robotJson(robot));
+  for (const SceneRobot& robot : loaded.problem.scene.robots()) report["robots"].push_back(robotDescriptionJson(robot));
   for (const ObjectSemanticsDecision& decision : loaded.objectSemantics) {
     report["objects"].push_back({{"name", decision.object}, {"movable", decision.movable}, {"role", objectRoleName(decision.role)},
                                  {"source", semanticsSourceName(decision.source)}, {"reason", decision.reason}});

@@ -25,6 +25,22 @@ class ProblemReader {
                      options.modelDirectories.end());
   }
 
+  /// Attribute `name` of `node` as a number (`fallback` when absent). Kautham reads numbers with
+  /// strtod, which stops at the first space: "0.5 0.3" or "0. 5" are read as the number before
+  /// the space, with a warning; anything else that is not a number is an error.
+  double number(const pugi::xml_node& node, const char* name, double fallback) const {
+    const pugi::xml_attribute attribute = node.attribute(name);
+    if (!attribute) return fallback;
+    const std::string_view text = trimmed(attribute.value());
+    const std::size_t space = text.find_first_of(" \t\r\n");
+    const std::string what = std::string("<") + node.name() + "> attribute " + name;
+    if (space == std::string_view::npos) return parseFiniteNumber(text, what, document_.where(node));
+    const double value = parseFiniteNumber(text.substr(0, space), what, document_.where(node));
+    logWarning(document_.where(node).toString() + ": " + what + " \"" + std::string(text) + "\" has a space inside: read " +
+               exactNumber(value) + ", the number before it, as Kautham does");
+    return value;
+  }
+
   KauthamProblem read() {
     const pugi::xml_node root = document_.root();
     if (std::string(root.name()) != "Problem") {
@@ -61,14 +77,14 @@ class ProblemReader {
   Pose readHome(const pugi::xml_node& entity) const {
     const pugi::xml_node home = entity.child("Home");
     if (!home) return Pose::Identity();
-    const Vector3 translation(document_.numberAttribute(home, "X", 0.0),
-                              document_.numberAttribute(home, "Y", 0.0),
-                              document_.numberAttribute(home, "Z", 0.0));
-    const Vector3 axis(document_.numberAttribute(home, "WX", 0.0),
-                       document_.numberAttribute(home, "WY", 0.0),
-                       document_.numberAttribute(home, "WZ", 0.0));
+    const Vector3 translation(number(home, "X", 0.0),
+                              number(home, "Y", 0.0),
+                              number(home, "Z", 0.0));
+    const Vector3 axis(number(home, "WX", 0.0),
+                       number(home, "WY", 0.0),
+                       number(home, "WZ", 0.0));
     requirePositionInRange(translation, "<Home> X Y Z", document_.where(home));
-    const double angle = document_.numberAttribute(home, "TH", 0.0);
+    const double angle = number(home, "TH", 0.0);
     if (axis.isZero(0.0) && angle != 0.0) {
       logWarning(document_.where(home).toString() + ": <Home> has the zero rotation axis WX=WY=WZ=0 with TH=" +
                  exactNumber(angle) + ": taken as no rotation, as Kautham does");
@@ -110,7 +126,7 @@ class ProblemReader {
     entity.isRobot = isRobot;
     const char* attribute = isRobot ? "robot" : "obstacle";
     entity.reference = document_.requiredAttribute(node, attribute);
-    entity.scale = document_.numberAttribute(node, "scale", 1.0);
+    entity.scale = number(node, "scale", 1.0);
     if (entity.scale <= 0.0) throw InputError(document_.where(node), "scale must be positive");
     entity.resolvedPath = resolve(entity.reference, node, isRobot ? "robot model" : "obstacle model");
     for (const pugi::xml_node& argument : node.children("XacroArg")) {
@@ -120,10 +136,15 @@ class ProblemReader {
     model = readUrdfFile(entity.resolvedPath, urdfOptionsOf(entity, false));
     const pugi::xml_node kauthamName = node.child("KauthamName");
     entity.name = kauthamName ? document_.requiredAttribute(kauthamName, "name") : model->name();
-    if (!names_.insert(entity.name).second) {
-      throw InputError(document_.where(node), "two robots or obstacles are named \"" + entity.name +
-                                                  "\"; give one a distinct <KauthamName>");
+    if (names_.count(entity.name)) {
+      // Kautham keeps the first of two entities with one name and drops the other; we keep both.
+      std::string unique;
+      for (int n = 2; unique.empty() || names_.count(unique); ++n) unique = entity.name + "_" + std::to_string(n);
+      logWarning(document_.where(node).toString() + ": a robot or obstacle is already named \"" + entity.name + "\"; this one is named \"" +
+                 unique + "\" (give it a distinct <KauthamName>)");
+      entity.name = unique;
     }
+    names_.insert(entity.name);
     entity.home = readHome(node);
     entity.limits = readLimits(node);
     entity.inverseKinematics = node.child("InvKinematic").attribute("name").value();

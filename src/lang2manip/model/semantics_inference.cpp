@@ -9,6 +9,9 @@
 namespace lang2manip {
 namespace {
 
+/// The most movable joints one finger of a hand has (four for the common anthropomorphic hands).
+constexpr int kFingerJoints = 4;
+
 bool isMovable(const Joint& joint) {
   return (joint.type == JointType::kRevolute || joint.type == JointType::kContinuous ||
           joint.type == JointType::kPrismatic) &&
@@ -29,16 +32,19 @@ class TreeWalker {
     }
   }
 
-  // A finger starts at a prismatic joint, or at one of several movable joints on the same link
-  // whose subtree holds at most one more movable joint (arms hold more). Every movable joint at
-  // or below a finger's start belongs to the gripper.
-  // Siblings are counted on the rigid body the joint hangs from (links joined by fixed joints:
-  // fingers are often mounted on links of their own), mimics included (a mimic finger is a
-  // finger all the same).
+  // A finger starts at a prismatic joint with at most one movable joint below it (a prismatic
+  // joint with an arm below it is a torso or a linear axis: part of the arm), or at one of
+  // several movable joints on one rigid body that an arm carries (a movable joint above it),
+  // with fewer than kFingerJoints movable joints from it down (arms hold more; arms side by side
+  // on a fixed body are not carried). Every movable joint at or below a finger's start belongs
+  // to the gripper. Siblings are counted on the rigid body the joint hangs from (links joined
+  // by fixed joints: fingers are often mounted on links of their own), mimics included (a mimic
+  // finger is a finger all the same).
   bool startsFinger(const Joint& joint) const {
     if (!isMovable(joint)) return false;
-    if (joint.type == JointType::kPrismatic) return true;
-    return actuatedOnBody(rigidRoot(joint.parentLink)) > 1 && movableDepthBelow(joint.childLink) <= 1;
+    if (joint.type == JointType::kPrismatic) return movableDepthBelow(joint.childLink) <= 1;
+    const std::string body = rigidRoot(joint.parentLink);
+    return actuatedOnBody(body) > 1 && movableDepthBelow(joint.childLink) < kFingerJoints && parentJoint_.count(body) > 0;
   }
 
   bool isGripperJoint(const Joint& joint) const {
@@ -116,6 +122,31 @@ class TreeWalker {
     for (const Joint* joint : children->second) collectBelow(joint->childLink, links);
   }
 
+  /// The links from `link` up to the root, `link` first.
+  std::vector<std::string> ancestry(std::string link) const {
+    std::vector<std::string> links{link};
+    for (auto parent = parentJoint_.find(link); parent != parentJoint_.end(); parent = parentJoint_.find(link)) {
+      link = parent->second->parentLink;
+      links.push_back(link);
+    }
+    return links;
+  }
+
+  /// The deepest link every finger joint hangs from (the palm of a hand with fingers on mounts).
+  std::string commonAncestorOfFingers(const std::vector<std::string>& fingers) const {
+    std::vector<std::string> common;
+    for (const Joint& joint : robot_.joints) {
+      if (std::find(fingers.begin(), fingers.end(), joint.name) == fingers.end()) continue;
+      const std::vector<std::string> mine = ancestry(joint.parentLink);
+      if (common.empty()) {
+        common = mine;
+        continue;
+      }
+      std::erase_if(common, [&](const std::string& link) { return std::find(mine.begin(), mine.end(), link) == mine.end(); });
+    }
+    return common.front();
+  }
+
   // Prefer a link named like a tool centre point; else the link the fingers hang from; else the
   // end of the fixed chain below the last arm joint.
   std::string toolFrameBelow(const std::string& link, const std::vector<std::string>& fingers) const {
@@ -128,11 +159,7 @@ class TreeWalker {
         if (candidate.find(hint) != std::string::npos) return candidate;
       }
     }
-    if (!fingers.empty()) {
-      for (const Joint& joint : robot_.joints) {
-        if (joint.name == fingers.front()) return joint.parentLink;
-      }
-    }
+    if (!fingers.empty()) return commonAncestorOfFingers(fingers);
     std::string end = link;
     while (childJoints_.count(end) && childJoints_.at(end).size() == 1) {
       end = childJoints_.at(end).front()->childLink;

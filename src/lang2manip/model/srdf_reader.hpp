@@ -18,10 +18,13 @@ RobotSemantics readSrdfFile(const std::filesystem::path& path, const RobotModelD
 RobotSemantics readSrdfString(const std::string& xml, const std::string& sourceName,
                               const RobotModelData& robot);
 
-/// Infers manipulators from the tree when there is no SRDF: each serial chain of movable joints
-/// from the root to a branching point or leaf becomes an arm; its last link (or a fixed child
-/// named like tcp/tool/grasp/ee) is the tool frame; prismatic or mimic-driven joints after the arm
-/// are the gripper (open = upper limit, closed = lower).
+/// Infers manipulators from the tree when there is no SRDF: the fingers are the short chains of
+/// movable joints that share a rigid body with another finger (mimics included), and sliding
+/// joints at the end of the tree; each chain of the other movable joints from the root to their
+/// end is an arm (a prismatic torso or linear axis included); its last link (or a fixed child
+/// named like tcp/tool/grasp/ee, or the link the fingers hang from) is the tool frame; the
+/// fingers' joints below it are its gripper (open = upper limit, closed = lower; describeGripper
+/// measures which end really opens).
 RobotSemantics inferSemantics(const RobotModelData& robot);
 
 /// Resolves the groups and end effectors of `semantics` into manipulators (done by the readers).

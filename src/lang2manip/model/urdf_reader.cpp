@@ -9,6 +9,7 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include "lang2manip/core/file_checks.hpp"
+#include "lang2manip/core/log.hpp"
 #include "lang2manip/core/rotation.hpp"
 #include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/model/mesh_loader.hpp"
@@ -301,6 +302,15 @@ std::filesystem::path resolveMeshReference(const std::string& reference,
     candidates.emplace_back(reference.substr(filePrefix.size()));
   } else if (std::filesystem::path(reference).is_absolute()) {
     candidates.emplace_back(reference);
+    // Kautham resolves "/meshes/x.stl" against the URDF's directory when no such absolute file
+    // exists; so do we, with a warning.
+    const std::filesystem::path besideUrdf = urdfDirectory / std::filesystem::path(reference).relative_path();
+    std::error_code missing;
+    if (!std::filesystem::is_regular_file(reference, missing) && std::filesystem::is_regular_file(besideUrdf, missing)) {
+      logWarning(where.toString() + ": mesh \"" + reference + "\" is absolute but does not exist; read " +
+                 besideUrdf.lexically_normal().string() + " beside the URDF, as Kautham does");
+      candidates.push_back(besideUrdf);
+    }
   } else {
     candidates.push_back(urdfDirectory / reference);
   }

@@ -1,9 +1,15 @@
 #include "lang2manip/planning/benchmark_log.hpp"
 
+#include <algorithm>
+#include <ctime>
 #include <set>
+
+#include <unistd.h>
 
 #include <ompl/base/PlannerStatus.h>
 #include <ompl/config.h>
+
+#include "lang2manip/planning/motion_planner.hpp"
 
 namespace lang2manip {
 
@@ -64,6 +70,35 @@ void writeOmplBenchmarkLog(const BenchmarkExperiment& experiment, std::ostream& 
   out << '\n';
   out << experiment.planners.size() << " planners\n";
   for (const BenchmarkPlannerRuns& planner : experiment.planners) writePlanner(planner, out);
+}
+
+BenchmarkExperiment startBenchmarkExperiment(std::string name) {
+  BenchmarkExperiment experiment;
+  experiment.name = std::move(name);
+  char host[256] = "UNKNOWN";
+  gethostname(host, sizeof host - 1);
+  experiment.host = host;
+  const std::time_t now = std::time(nullptr);
+  char text[64];
+  std::strftime(text, sizeof text, "%Y-%b-%d %H:%M:%S", std::localtime(&now));
+  experiment.startTime = text;
+  return experiment;
+}
+
+BenchmarkRun benchmarkRunOf(const MotionPlan& plan) {
+  const auto& names = omplStatusNames();
+  const std::string status = plan.solved() ? "Exact solution" : "Timeout";
+  const auto index = std::find(names.begin(), names.end(), status) - names.begin();
+  return {{"time REAL", std::to_string(plan.statistics.planningSeconds)},
+          {"solved BOOLEAN", plan.solved() ? "1" : "0"},
+          {"status ENUM", std::to_string(index)},
+          {"simplification time REAL", std::to_string(plan.statistics.simplifySeconds)},
+          {"solution length REAL", std::to_string(plan.statistics.lengthBeforeSimplification)},
+          {"simplified solution length REAL", std::to_string(plan.statistics.lengthAfterSimplification)},
+          {"graph states INTEGER", std::to_string(plan.statistics.vertices)},
+          {"graph motions INTEGER", std::to_string(plan.statistics.edges)},
+          {"state checks INTEGER", std::to_string(plan.statistics.stateChecks)},
+          {"motion checks INTEGER", std::to_string(plan.statistics.motionChecks)}};
 }
 
 }  // namespace lang2manip

@@ -9,6 +9,8 @@
 
 namespace lang2manip {
 
+struct MotionPlan;
+
 /// One planning run: property values by OMPL property name ("time REAL", "solved BOOLEAN", ...).
 using BenchmarkRun = std::map<std::string, std::string>;
 
@@ -37,6 +39,13 @@ struct BenchmarkExperiment {
 
 /// Writes `experiment` as OMPL 1.5's Benchmark::saveResultsToStream does.
 void writeOmplBenchmarkLog(const BenchmarkExperiment& experiment, std::ostream& out);
+
+/// An experiment named `name` on this host, starting now (OMPL's time format).
+BenchmarkExperiment startBenchmarkExperiment(std::string name);
+
+/// The properties OMPL logs for one run (time, solved, status, lengths, graph size, checks) of
+/// `plan`.
+BenchmarkRun benchmarkRunOf(const MotionPlan& plan);
 
 /// OMPL's name for a planner status in logs ("Exact solution", "Timeout", ...): the `status ENUM`
 /// value is its index in this list.
