@@ -164,6 +164,19 @@ TEST(RunCli, APickSucceedsOnKauthamsGripperScenesAsTheyAre) {
   }
 }
 
+// Kautham's TX90 without its gripper: nothing is movable unless the user says so, and a pick is
+// refused with the reason, as a failed step (exit 2), not a crash.
+TEST(RunCli, APickByARobotWithoutGripperIsRefusedSayingSo) {
+  const auto shared = sharedDataDirectory();
+  if (!shared) GTEST_SKIP() << "../shared/data is absent";
+  const TempDirectory directory;
+  const RunResult result = run("run " + (*shared / "kautham/OMPL_geo_demos/TX90_IOC/OMPL_RRTConnect_TX90_TwoCan.xml").string() +
+                               " --movable can --task \"pick up the can\" --rounds 1" + kBudgets + " --out " + directory.path().string());
+  EXPECT_EQ(result.exitCode, 2) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("pick can: robot TX90 has no gripper"));
+  EXPECT_THAT(result.output, HasSubstr("it can move and push"));
+}
+
 TEST(RunCli, AFailedTaskWritesItsPartialResultsAndExitsWithTwo) {
   const TempDirectory directory;
   const RunResult result =
