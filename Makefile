@@ -32,8 +32,10 @@ test: build
 # tests/lsan.supp lists the leaks of Debian's libraries that LeakSanitizer is told to ignore.
 test-sanitize: export LSAN_OPTIONS = suppressions=$(CURDIR)/tests/lsan.supp
 test-sanitize: export UBSAN_OPTIONS = print_stacktrace=1:halt_on_error=1
+# The micro-benchmarks are left out: the optimized build compiles them and they time nothing here.
 test-sanitize:
-	$(MAKE) test BUILD_DIR=build-sanitize BUILD_TYPE=Debug CMAKE_FLAGS=-DLANG2MANIP_SANITIZE=ON
+	$(MAKE) test BUILD_DIR=build-sanitize BUILD_TYPE=Debug \
+	  CMAKE_FLAGS="-DLANG2MANIP_SANITIZE=ON -DLANG2MANIP_BUILD_BENCHMARKS=OFF"
 
 # The libFuzzer harnesses of fuzz/ (clang, ASan + UBSan), each run for FUZZ_SECONDS; fails on any
 # crash, leak, UB, timeout or OOM (inputs in $(FUZZ_BUILD_DIR)/fuzz-findings/). See README.md.
