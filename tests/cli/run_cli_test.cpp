@@ -114,10 +114,10 @@ TEST(RunCli, AnLlmPlanThatCannotBeGroundedIsRepaired) {
 
 /// The paper's desk scene with a robot of ../shared/data/kautham at (x, 0) behind the desk, the
 /// robot's URDF and the desk objects referred to by absolute paths.
-fs::path writeKauthamRobotAtDesk(const fs::path& directory, const fs::path& robot, double x) {
+fs::path writeKauthamRobotAtDesk(const fs::path& directory, const fs::path& robot, double x, const std::string& robotExtra = "") {
   const fs::path desk = fs::path(LANG2MANIP_TEST_DATA_DIR) / ".." / ".." / "data" / "models" / "obstacles" / "desk";
-  std::string problem = "<Problem name=\"" + robot.stem().string() + "_desk\">\n  <Robot robot=\"" + robot.string() + "\"><Home X=\"" +
-                        std::to_string(x) + "\" Y=\"0\" Z=\"0.752\" WX=\"0\" WY=\"0\" WZ=\"1\" TH=\"0\"/></Robot>\n";
+  std::string problem = "<Problem name=\"" + robot.stem().string() + "_desk\">\n  <Robot robot=\"" + robot.string() + "\">" + robotExtra +
+                        "<Home X=\"" + std::to_string(x) + "\" Y=\"0\" Z=\"0.752\" WX=\"0\" WY=\"0\" WZ=\"1\" TH=\"0\"/></Robot>\n";
   for (const auto& [name, file, ox, oy] : {std::tuple{"desk", "desk.urdf", 0.0, 0.0}, std::tuple{"marker", "marker.urdf", 0.02, -0.18},
                                            std::tuple{"eraser", "eraser.urdf", -0.02, 0.17}, std::tuple{"holder", "pen_holder.urdf", 0.12, 0.02}}) {
     problem += "  <Obstacle obstacle=\"" + (desk / file).string() + "\"><Home X=\"" + std::to_string(ox) + "\" Y=\"" + std::to_string(oy) +
@@ -147,6 +147,21 @@ TEST(RunCli, ThePaperTaskSucceedsWithKauthamsGripperRobots) {
     ASSERT_TRUE(report.is_object());
     EXPECT_TRUE(report["success"].get<bool>());
   }
+}
+
+// Franka's official Panda with its hand, expanded from its xacro. Its "_sc" links are the real
+// robot's self-collision envelope (capsules 3 cm larger than the arm); Franka's description drops
+// their geometry with gazebo:=true, which is what a scene with a desk needs.
+TEST(RunCli, ThePaperTaskSucceedsWithTheOfficialPandaFromItsXacro) {
+  const auto shared = sharedDataDirectory();
+  if (!shared) GTEST_SKIP() << "../shared/data is absent";
+  const TempDirectory directory;
+  const fs::path problem = writeKauthamRobotAtDesk(directory.path(), *shared / "robots/franka_description/robots/panda/panda.urdf.xacro",
+                                                   -0.4, "<XacroArg name=\"hand\" value=\"true\"/><XacroArg name=\"gazebo\" value=\"true\"/>");
+  const RunResult result = run("run " + problem.string() + " --task \"put the marker in the holder\"" + kBudgets + " --out " +
+                               (directory.path() / "out").string());
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("SUCCESS"));
 }
 
 // Kautham's own gripper scenes, as they are: which obstacles move is inferred.
