@@ -114,10 +114,12 @@ TEST(RunCli, AnLlmPlanThatCannotBeGroundedIsRepaired) {
 
 /// The paper's desk scene with a robot of ../shared/data/kautham at (x, 0) behind the desk, the
 /// robot's URDF and the desk objects referred to by absolute paths.
-fs::path writeKauthamRobotAtDesk(const fs::path& directory, const fs::path& robot, double x, const std::string& robotExtra = "") {
+fs::path writeKauthamRobotAtDesk(const fs::path& directory, const fs::path& robot, double x, const std::string& robotExtra = "",
+                                 double z = 0.752) {
   const fs::path desk = fs::path(LANG2MANIP_TEST_DATA_DIR) / ".." / ".." / "data" / "models" / "obstacles" / "desk";
   std::string problem = "<Problem name=\"" + robot.stem().string() + "_desk\">\n  <Robot robot=\"" + robot.string() + "\">" + robotExtra +
-                        "<Home X=\"" + std::to_string(x) + "\" Y=\"0\" Z=\"0.752\" WX=\"0\" WY=\"0\" WZ=\"1\" TH=\"0\"/></Robot>\n";
+                        "<Home X=\"" + std::to_string(x) + "\" Y=\"0\" Z=\"" + std::to_string(z) +
+                        "\" WX=\"0\" WY=\"0\" WZ=\"1\" TH=\"0\"/></Robot>\n";
   for (const auto& [name, file, ox, oy] : {std::tuple{"desk", "desk.urdf", 0.0, 0.0}, std::tuple{"marker", "marker.urdf", 0.02, -0.18},
                                            std::tuple{"eraser", "eraser.urdf", -0.02, 0.17}, std::tuple{"holder", "pen_holder.urdf", 0.12, 0.02}}) {
     problem += "  <Obstacle obstacle=\"" + (desk / file).string() + "\"><Home X=\"" + std::to_string(ox) + "\" Y=\"" + std::to_string(oy) +
@@ -160,6 +162,22 @@ TEST(RunCli, ThePaperTaskSucceedsWithTheOfficialPandaFromItsXacro) {
                                                    -0.4, "<XacroArg name=\"hand\" value=\"true\"/><XacroArg name=\"gazebo\" value=\"true\"/>");
   const RunResult result = run("run " + problem.string() + " --task \"put the marker in the holder\"" + kBudgets + " --out " +
                                (directory.path() / "out").string());
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("SUCCESS"));
+}
+
+// Universal Robots' official UR5e from its xacro, with a gripper of our own attached by a xacro
+// (tests/data/robots/ur5e_with_gripper.urdf.xacro), on a 20 cm mount: its zero configuration
+// (the arm level) would reach into the desk otherwise.
+TEST(RunCli, ThePaperTaskSucceedsWithTheOfficialUr5eAndAGripperOfOurOwn) {
+  const auto shared = sharedDataDirectory();
+  if (!shared) GTEST_SKIP() << "../shared/data is absent";
+  const TempDirectory directory;
+  const fs::path problem = writeKauthamRobotAtDesk(
+      directory.path(), fs::path(LANG2MANIP_TEST_DATA_DIR) / "robots" / "ur5e_with_gripper.urdf.xacro", -0.35, "", 0.95);
+  const RunResult result = run("run " + problem.string() + " --task \"put the marker in the holder\"" + kBudgets + " --out " +
+                                   (directory.path() / "out").string(),
+                               true, "LANG2MANIP_PACKAGE_PATH=" + (*shared / "robots").string());
   EXPECT_EQ(result.exitCode, 0) << result.output;
   EXPECT_THAT(result.output, HasSubstr("SUCCESS"));
 }
