@@ -61,7 +61,7 @@ Vector3 snapped(const Vector3& direction) {
 Vector3 across(const Vector3& v, const Vector3& approach) { return v - v.dot(approach) * approach; }
 
 Vector3 approachOf(const FingerSet& fingers) {
-  const std::vector<Pose> open = fingers.linkPoses(1.0);
+  const std::vector<Pose>& open = fingers.openPoses();
   Vector3 rootMean = Vector3::Zero();
   for (const Vector3& root : fingers.rootsOpen()) rootMean += root;
   rootMean /= static_cast<double>(fingers.rootsOpen().size());
@@ -74,7 +74,7 @@ Vector3 approachOf(const FingerSet& fingers) {
 
 /// The index of the link in `members` reaching farthest along `approach` when open.
 std::size_t farthestReaching(const FingerSet& fingers, const std::vector<std::size_t>& members, const Vector3& approach) {
-  const std::vector<Pose> open = fingers.linkPoses(1.0);
+  const std::vector<Pose>& open = fingers.openPoses();
   std::size_t best = members.front();
   double reach = -std::numeric_limits<double>::infinity();
   for (std::size_t i : members) {
@@ -90,7 +90,7 @@ std::size_t farthestReaching(const FingerSet& fingers, const std::vector<std::si
 
 void layoutTwoSides(const FingerSet& fingers, const std::vector<Vector3>& motion, PadLayout& layout) {
   std::vector<std::size_t> plus, minus;
-  const std::vector<Pose> open = fingers.linkPoses(1.0);
+  const std::vector<Pose>& open = fingers.openPoses();
   Vector3 centre = Vector3::Zero();
   for (std::size_t i = 0; i < fingers.links().size(); ++i) centre += fingers.centroid(i, open);
   centre /= static_cast<double>(fingers.links().size());
@@ -124,7 +124,7 @@ void layoutRadial(const FingerSet& fingers, const std::vector<Vector3>& motion, 
     }
     groups[g].push_back(i);
   }
-  const std::vector<Pose> open = fingers.linkPoses(1.0);
+  const std::vector<Pose>& open = fingers.openPoses();
   for (const std::vector<std::size_t>& group : groups) layout.pads.push_back(farthestReaching(fingers, group, layout.approach));
   layout.axisPoint = Vector3::Zero();
   for (std::size_t pad : layout.pads) layout.axisPoint += fingers.centroid(pad, open);
@@ -180,9 +180,9 @@ FingerSet::FingerSet(const RobotModel& model, const std::string& toolFrame, cons
     }
   }
   moved_.assign(moved.begin(), moved.end());
-  const std::vector<Pose> poses = linkPoses(1.0);
+  openPoses_ = linkPoses(1.0);
   for (int joint : driven) {
-    if (!moved.count(model.parentLinkOf(joint))) rootsOpen_.push_back(poses[static_cast<std::size_t>(model.childLinkOf(joint))].translation());
+    if (!moved.count(model.parentLinkOf(joint))) rootsOpen_.push_back(openPoses_[static_cast<std::size_t>(model.childLinkOf(joint))].translation());
   }
   for (int link : moved_) {
     std::vector<Vector3> points = collisionPoints(model.links()[static_cast<std::size_t>(link)]);
@@ -238,7 +238,7 @@ Vector3 FingerSet::centroid(std::size_t i, const std::vector<Pose>& poses) const
 PadLayout layoutPads(const FingerSet& fingers, const std::string& where) {
   PadLayout layout;
   layout.approach = approachOf(fingers);
-  const std::vector<Pose> open = fingers.linkPoses(1.0);
+  const std::vector<Pose>& open = fingers.openPoses();
   const std::vector<Pose> closed = fingers.linkPoses(0.0);
   std::vector<Vector3> motion;
   std::size_t main = 0;

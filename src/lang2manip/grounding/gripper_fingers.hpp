@@ -31,6 +31,8 @@ class FingerSet {
   [[nodiscard]] const std::vector<Vector3>& rootsOpen() const noexcept { return rootsOpen_; }
   /// Poses in the tool frame of every link with the gripper at `fraction` (0 closed, 1 open).
   [[nodiscard]] std::vector<Pose> linkPoses(double fraction) const;
+  /// linkPoses(1.0), computed once.
+  [[nodiscard]] const std::vector<Pose>& openPoses() const noexcept { return openPoses_; }
   /// The points of finger link `i` in the tool frame for link poses `poses`.
   [[nodiscard]] std::vector<Vector3> pointsInTool(std::size_t i, const std::vector<Pose>& poses) const;
   /// Centroid of the points of finger link `i` in the tool frame.
@@ -50,6 +52,7 @@ class FingerSet {
   std::vector<int> moved_;
   std::vector<FingerLink> links_;
   std::vector<Vector3> rootsOpen_;
+  std::vector<Pose> openPoses_;
 };
 
 /// How the pad gap is measured: two opposed sides (parallel grippers) or radial fingers.

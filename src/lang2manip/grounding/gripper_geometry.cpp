@@ -42,7 +42,7 @@ std::vector<double> openingCurve(const FingerSet& fingers, const PadLayout& layo
 
 /// Bounds of the pads' points along `axis` when open.
 std::pair<double, double> padRange(const FingerSet& fingers, const PadLayout& layout, const Vector3& axis) {
-  const std::vector<Pose> open = fingers.linkPoses(1.0);
+  const std::vector<Pose>& open = fingers.openPoses();
   double low = std::numeric_limits<double>::infinity();
   double high = -low;
   for (std::size_t pad : layout.pads) {
@@ -62,7 +62,7 @@ Pose graspFrameOf(const FingerSet& fingers, const PadLayout& layout) {
   const Vector3 t = a.cross(c);
   const auto [aLow, aHigh] = padRange(fingers, layout, a);
   const auto [tLow, tHigh] = padRange(fingers, layout, t);
-  const std::vector<Pose> open = fingers.linkPoses(1.0);
+  const std::vector<Pose>& open = fingers.openPoses();
   const double gap = gripper_detail::padGap(fingers, layout, open);
   const double middle = gripper_detail::gapMiddle(fingers, layout, open);
   const bool between = aLow - kTcpTolerance <= 0.0 && 0.0 <= aHigh + kTcpTolerance && tLow - kTcpTolerance <= 0.0 &&
@@ -81,7 +81,7 @@ void describeFingers(const RobotModel& model, const FingerSet& fingers, const Pa
   g.fingerCount = layout.radial ? static_cast<int>(layout.pads.size()) : 2;
   const auto [aLow, aHigh] = padRange(fingers, layout, layout.approach);
   g.padDepth = aHigh - aLow;
-  const std::vector<Pose> open = fingers.linkPoses(1.0);
+  const std::vector<Pose>& open = fingers.openPoses();
   double rootLow = aLow;
   for (std::size_t i = 0; i < fingers.links().size(); ++i) {
     for (const Vector3& p : fingers.pointsInTool(i, open)) rootLow = std::min(rootLow, p.dot(layout.approach));
