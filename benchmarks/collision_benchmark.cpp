@@ -1,7 +1,9 @@
 // Microseconds per state check of the exact (FCL) checker: self-collision only, the paper's desk
 // scene (panda_desk) and a mesh scene from ../shared/data/kautham (TX90 + gripper, TwoCan), each
 // with and without the bounding-box pre-check (the in-process baseline), over seeded random
-// configurations and over valid ones only (every pair reaches the end of the list).
+// configurations and over valid ones only (every pair reaches the end of the list). Random
+// states also with a strict contact tolerance of 0 (the baseline of the resting-contact probes,
+// which only run on overlapping pairs).
 // Per edge: isMotionValid() at a fixed resolution (kEdgeResolution rad per sample) on short
 // edges from a valid state to a random neighbour (each joint moved up to kEdgeReach rad), like a
 // planner's edges, for the same scenes and the same two variants.
@@ -73,16 +75,30 @@ void addEdges(const RobotModel& model, Random& random, Fixture& entry) {
   }
 }
 
-Fixture& fixture(const std::string& scene, bool precheck) {
-  static std::map<std::pair<std::string, bool>, Fixture> fixtures;
-  Fixture& entry = fixtures[{scene, precheck}];
+/// What a fixture's checker does differently from the default one.
+enum class Variant { kDefault, kNoPrecheck, kStrictContacts };
+
+std::string variantName(Variant variant) {
+  switch (variant) {
+    case Variant::kDefault: return "/aabb_precheck";
+    case Variant::kNoPrecheck: return "/no_precheck";
+    case Variant::kStrictContacts: return "/aabb_precheck/strict_contacts";
+  }
+  return "";
+}
+
+Fixture& fixture(const std::string& scene, Variant variant) {
+  static std::map<std::pair<std::string, Variant>, Fixture> fixtures;
+  Fixture& entry = fixtures[{scene, variant}];
   if (entry.checker) return entry;
   FclCheckerSettings settings;
-  settings.boundingBoxPrecheck = precheck;
-  if (precheck == false) {
-    settings.precomputedMatrices = {fixture(scene, true).checker->sharedAllowedCollisions(0)};
+  settings.boundingBoxPrecheck = variant != Variant::kNoPrecheck;
+  if (variant != Variant::kDefault) {
+    settings.precomputedMatrices = {fixture(scene, Variant::kDefault).checker->sharedAllowedCollisions(0)};
   }
-  entry.checker = std::make_unique<FclCollisionChecker>(sceneNamed(scene), settings);
+  Scene world = sceneNamed(scene);
+  if (variant == Variant::kStrictContacts) world.setContactTolerance(0.0);
+  entry.checker = std::make_unique<FclCollisionChecker>(std::move(world), settings);
   const RobotModel& model = *entry.checker->scene().robots()[0].model;
   Random random(kSeed);
   const auto context = entry.checker->makeContext();
@@ -96,12 +112,12 @@ Fixture& fixture(const std::string& scene, bool precheck) {
   return entry;
 }
 
-void checkStates(benchmark::State& state, const std::string& scene, bool precheck, bool validOnly) {
+void checkStates(benchmark::State& state, const std::string& scene, Variant variant, bool validOnly) {
   if (scene == "tx90" && !std::filesystem::exists(tx90Problem())) {
     state.SkipWithError(("../shared is absent: " + tx90Problem().string() + " not found").c_str());
     return;
   }
-  Fixture& f = fixture(scene, precheck);
+  Fixture& f = fixture(scene, variant);
   const std::vector<VectorX>& configurations = validOnly ? f.valid : f.random;
   const auto context = f.checker->makeContext();
   std::vector<double> times;
@@ -126,12 +142,12 @@ void checkStates(benchmark::State& state, const std::string& scene, bool prechec
   state.counters["pairs"] = static_cast<double>(f.checker->pairCount(0));
 }
 
-void checkEdges(benchmark::State& state, const std::string& scene, bool precheck) {
+void checkEdges(benchmark::State& state, const std::string& scene, Variant variant) {
   if (scene == "tx90" && !std::filesystem::exists(tx90Problem())) {
     state.SkipWithError(("../shared is absent: " + tx90Problem().string() + " not found").c_str());
     return;
   }
-  Fixture& f = fixture(scene, precheck);
+  Fixture& f = fixture(scene, variant);
   const auto context = f.checker->makeContext();
   std::vector<double> times;
   times.reserve(1 << 20);
@@ -163,19 +179,19 @@ void checkEdges(benchmark::State& state, const std::string& scene, bool precheck
 void registerAll() {
   for (const std::string scene : {"self", "desk", "tx90"}) {
     for (const bool validOnly : {false, true}) {
-      for (const bool precheck : {true, false}) {
+      for (const Variant variant : {Variant::kDefault, Variant::kNoPrecheck, Variant::kStrictContacts}) {
+        if (validOnly && variant == Variant::kStrictContacts) continue;
         const std::string name = "StateCheck/" + scene + (validOnly ? "/valid_states" : "/random_states") +
-                                 (precheck ? "/aabb_precheck" : "/no_precheck");
+                                 variantName(variant);
         benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& state) {
-          checkStates(state, scene, precheck, validOnly);
+          checkStates(state, scene, variant, validOnly);
         })->Unit(benchmark::kMicrosecond);
       }
     }
-    for (const bool precheck : {true, false}) {
-      const std::string name = "EdgeCheck/" + scene + "/resolution_0.01" +
-                               (precheck ? "/aabb_precheck" : "/no_precheck");
+    for (const Variant variant : {Variant::kDefault, Variant::kNoPrecheck}) {
+      const std::string name = "EdgeCheck/" + scene + "/resolution_0.01" + variantName(variant);
       benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& state) {
-        checkEdges(state, scene, precheck);
+        checkEdges(state, scene, variant);
       })->Unit(benchmark::kMicrosecond);
     }
   }

@@ -58,6 +58,41 @@ TEST(CheckCli, SaysWhenNothingWasChecked) {
   EXPECT_THAT(result.output, HasSubstr("nothing was checked: problem noquery has no query; give a configuration with --config"));
 }
 
+/// panda_desk with the robot's base `z` (link0 reaches 0.5 mm below it; the desk top is at 0.75).
+std::string pandaDeskWithBaseAt(const std::string& z) {
+  const std::filesystem::path data = (testDataDirectory() / ".." / ".." / "data").lexically_normal();
+  std::string text = readFileText(data / "problems" / "desk" / "panda_desk.xml");
+  const auto replace = [&text](const std::string& from, const std::string& to) {
+    for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
+      text.replace(at, from.size(), to);
+    }
+  };
+  replace("\"robots/", "\"" + (data / "models" / "robots").string() + "/");
+  replace("\"obstacles/", "\"" + (data / "models" / "obstacles").string() + "/");
+  replace("\"controls/", "\"" + (data / "problems" / "desk" / "controls").string() + "/");
+  replace("Z=\"0.7515\"", "Z=\"" + z + "\"");
+  return text;
+}
+
+TEST(CheckCli, ARobotBaseRestingOnTheDeskIsInContactNotInCollision) {
+  const TempDirectory directory;
+  const auto problem = directory.path() / "resting.xml";
+  writeFile(problem, pandaDeskWithBaseAt("0.7502"));  // 0.3 mm into the desk
+  RunResult result = run("check " + problem.string());
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  result = run("check " + problem.string() + " --contact-tolerance 0");
+  EXPECT_EQ(result.exitCode, 2) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("panda/panda_link0 - desk: penetration 0.0003 m"));
+  writeFile(problem, pandaDeskWithBaseAt("0.7480"));  // 2.5 mm into the desk
+  result = run("check " + problem.string());
+  EXPECT_EQ(result.exitCode, 2) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("panda/panda_link0 - desk: penetration 0.0025 m"));
+  EXPECT_EQ(run("check " + problem.string() + " --contact-tolerance 0.003").exitCode, 0);
+  result = run("check " + problem.string() + " --contact-tolerance 0.05");
+  EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("contact tolerance 0.05 m is not in [0, 0.01] m"));
+}
+
 TEST(CliPaths, ADirectoryOrADeviceGivenAsAFileSaysWhatItIs) {
   const TempDirectory directory;
   RunResult result = run("show " + directory.path().string());

@@ -89,6 +89,7 @@ LoadedProblem loadProblemFile(const std::string& nameOrPath, const std::string& 
 
 LoadedProblem loadProblem(const std::string& nameOrPath, const std::string& robot, const SceneOptions& options) {
   LoadedProblem loaded = loadProblemFile(nameOrPath, robot, options.xacroArguments);
+  loaded.problem.scene.setContactTolerance(options.contactTolerance);
   loaded.objectSemantics = inferObjectSemantics(loaded.problem.scene, {options.movable, options.fixed});
   return loaded;
 }
@@ -100,6 +101,9 @@ void addSceneOptions(CLI::App& command, SceneOptions& options) {
       ->delimiter(',');
   command.add_option("--fixed", options.fixed, "Objects to treat as fixed (comma-separated; over the model and inference)")
       ->delimiter(',');
+  command.add_option("--contact-tolerance", options.contactTolerance,
+                     "Penetration (m) up to which a robot base or a held object rests on a fixed object "
+                     "instead of colliding with it (0 to 0.01; default 0.0005)");
 }
 
 }  // namespace lang2manip

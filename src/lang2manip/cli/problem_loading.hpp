@@ -34,6 +34,8 @@ struct SceneOptions {
   /// Objects to treat as movable / fixed whatever their models say or inference finds.
   std::vector<std::string> movable;
   std::vector<std::string> fixed;
+  /// Penetration (m) up to which a robot or what it holds rests on a fixed object.
+  double contactTolerance = Scene::kDefaultContactTolerance;
 };
 
 /// Loads `nameOrPath` (empty: the default built-in problem): a built-in name, a Kautham problem
@@ -41,12 +43,12 @@ struct SceneOptions {
 /// robot, at the middle of its joint ranges, with no query). `robot` names the robot of MoveIt
 /// scenes: a built-in robot or a .urdf/.xacro file. Objects whose models do not say what they are
 /// for are inferred (inferObjectSemantics), then `options.movable` / `options.fixed` apply.
-/// Throws InputError on any problem with the input, an unknown object name in the overrides, or
-/// an object named both movable and fixed.
+/// Throws InputError on any problem with the input, an unknown object name in the overrides, an
+/// object named both movable and fixed, or a contact tolerance out of range.
 LoadedProblem loadProblem(const std::string& nameOrPath, const std::string& robot, const SceneOptions& options = {});
 
-/// Adds `--xacro-arg NAME:=VALUE` (repeatable), `--movable A,B` and `--fixed C` to a command that
-/// loads problems.
+/// Adds `--xacro-arg NAME:=VALUE` (repeatable), `--movable A,B`, `--fixed C` and
+/// `--contact-tolerance M` to a command that loads problems.
 void addSceneOptions(CLI::App& command, SceneOptions& options);
 
 }  // namespace lang2manip

@@ -73,7 +73,8 @@ struct WorldState {
 /// A checker is built for one Scene: the robots, the objects and the attachments are fixed at
 /// construction (build a new checker when the world changes). Single-robot calls move one robot;
 /// every other robot stays at its scene configuration. Only collisions are checked (not joint
-/// limits). Object–object pairs are never checked (the world is static); objects whose
+/// limits). A robot link or held object that penetrates a fixed object by no more than
+/// scene().contactTolerance() rests on it: contact, not collision. Object–object pairs are never checked (the world is static); objects whose
 /// collisionEnabled is false are ignored.
 ///
 /// Thread-safety: a checker is immutable after construction; all its methods are const and may be

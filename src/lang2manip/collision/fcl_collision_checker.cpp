@@ -9,17 +9,11 @@
 #include <map>
 
 #include "lang2manip/collision/fcl_collision_world.hpp"
+#include "lang2manip/collision/fcl_penetration.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/kinematics/forward_kinematics.hpp"
 
 namespace lang2manip {
-namespace {
-
-/// Contacts asked of FCL per pair in reports (box-box returns several with different depths).
-constexpr std::size_t kReportContacts = 16;
-
-}  // namespace
-
 /// Poses and world boxes of every geometry, FK workspaces and FCL results of one thread.
 class FclCollisionChecker::Context final : public CollisionContext {
  public:
@@ -32,6 +26,7 @@ class FclCollisionChecker::Context final : public CollisionContext {
     centers.resize(poses.size());
     halfExtents.resize(poses.size());
     for (std::size_t g = 0; g < poses.size(); ++g) updateBox(owner.tables_->geometries[g].shape, g);
+    restingRequest.enable_contact = owner.scene().contactTolerance() > 0.0;
   }
 
   void updateBox(const FclShape& shape, std::size_t g) noexcept {
@@ -45,6 +40,8 @@ class FclCollisionChecker::Context final : public CollisionContext {
   std::vector<Vector3> centers;
   std::vector<Vector3> halfExtents;
   fcl::CollisionRequestd request;
+  /// For pairs that may rest on each other: the first contact tells how to probe.
+  fcl::CollisionRequestd restingRequest;
   fcl::CollisionResultd result;
 };
 
@@ -112,15 +109,19 @@ bool FclCollisionChecker::boxesOverlap(const Context& context, std::size_t a, st
             context.halfExtents[b]).maxCoeff<Eigen::PropagateNaN>() > 0.0);
 }
 
-bool FclCollisionChecker::pairCollides(int first, int second, Context& context) const noexcept {
-  const std::size_t a = static_cast<std::size_t>(first);
-  const std::size_t b = static_cast<std::size_t>(second);
+bool FclCollisionChecker::pairCollides(const FclGeometryPair& pair, Context& context) const noexcept {
+  const std::size_t a = static_cast<std::size_t>(pair.first);
+  const std::size_t b = static_cast<std::size_t>(pair.second);
   if (settings_.boundingBoxPrecheck && !boxesOverlap(context, a, b)) return false;
   context.result.clear();
-  fcl::collide(tables_->geometries[a].shape.geometry.get(), context.poses[a],
-               tables_->geometries[b].shape.geometry.get(), context.poses[b], context.request,
-               context.result);
-  return context.result.isCollision();
+  const FclShape& shapeA = tables_->geometries[a].shape;
+  const FclShape& shapeB = tables_->geometries[b].shape;
+  fcl::collide(shapeA.geometry.get(), context.poses[a], shapeB.geometry.get(), context.poses[b],
+               pair.mayRest ? context.restingRequest : context.request, context.result);
+  if (!context.result.isCollision()) return false;
+  if (!pair.mayRest || context.result.numContacts() == 0) return true;
+  return !separableWithin({&shapeA, &context.poses[a]}, {&shapeB, &context.poses[b]},
+                          context.result.getContact(0), scene().contactTolerance());
 }
 
 bool FclCollisionChecker::DoIsStateValid(int robot, const VectorX& q,
@@ -128,7 +129,7 @@ bool FclCollisionChecker::DoIsStateValid(int robot, const VectorX& q,
   auto& ctx = static_cast<Context&>(context);
   placeRobot(robot, q, scene().robots()[static_cast<std::size_t>(robot)].basePose, ctx);
   for (const FclGeometryPair& pair : tables_->robotPairs[static_cast<std::size_t>(robot)]) {
-    if (pairCollides(pair.first, pair.second, ctx)) return false;
+    if (pairCollides(pair, ctx)) return false;
   }
   return true;
 }
@@ -157,20 +158,13 @@ void FclCollisionChecker::DoCheckStates(int robot, const std::vector<VectorX>& c
 }
 
 std::map<std::pair<int, int>, double> FclCollisionChecker::touchingBodies(Context& context) const {
-  const fcl::CollisionRequestd request(kReportContacts, true);
   std::map<std::pair<int, int>, double> touching;
   for (const FclGeometryPair& pair : tables_->worldPairs) {
     const std::size_t a = static_cast<std::size_t>(pair.first);
     const std::size_t b = static_cast<std::size_t>(pair.second);
-    if (!boxesOverlap(context, a, b)) continue;
-    fcl::CollisionResultd result;
-    fcl::collide(tables_->geometries[a].shape.geometry.get(), context.poses[a],
-                 tables_->geometries[b].shape.geometry.get(), context.poses[b], request, result);
-    if (!result.isCollision()) continue;
-    double depth = 0.0;
-    for (std::size_t c = 0; c < result.numContacts(); ++c) {
-      depth = std::max(depth, result.getContact(c).penetration_depth);
-    }
+    if (!pairCollides(pair, context)) continue;
+    const double depth = penetrationDepth({&tables_->geometries[a].shape, &context.poses[a]},
+                                          {&tables_->geometries[b].shape, &context.poses[b]});
     const auto key = std::minmax(tables_->geometries[a].body, tables_->geometries[b].body);
     touching[key] = std::max(touching[key], depth);
   }
@@ -186,6 +180,16 @@ void FclCollisionChecker::closestPair(Context& context, CollisionReport& report)
     const double d = fcl::distance(a.shape.geometry.get(), context.poses[static_cast<std::size_t>(pair.first)],
                                    b.shape.geometry.get(), context.poses[static_cast<std::size_t>(pair.second)],
                                    request, result);
+    const PlacedFclShape first{&a.shape, &context.poses[static_cast<std::size_t>(pair.first)]};
+    const PlacedFclShape second{&b.shape, &context.poses[static_cast<std::size_t>(pair.second)]};
+    if (!(d > 0.0) && pair.mayRest && separableWithin(first, second, scene().contactTolerance())) {
+      if (report.minimumDistance > 0.0) {
+        report.minimumDistance = 0.0;
+        report.closestFirst = bodyName(a.body);
+        report.closestSecond = bodyName(b.body);
+      }
+      continue;
+    }
     if (!(d > 0.0)) {
       // FCL answers -1 (or NaN) when it finds the pair overlapping although collide() did not:
       // the state is never reported free on an inconclusive answer.

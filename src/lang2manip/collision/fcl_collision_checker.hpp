@@ -14,6 +14,7 @@
 namespace lang2manip {
 
 struct FclWorldTables;
+struct FclGeometryPair;
 
 /// Settings of FclCollisionChecker.
 struct FclCheckerSettings {
@@ -72,7 +73,7 @@ class FclCollisionChecker final : public CollisionChecker {
  private:
   class Context;
   void placeRobot(int robot, const VectorX& q, const Pose& X_WB, Context& context) const noexcept;
-  [[nodiscard]] bool pairCollides(int first, int second, Context& context) const noexcept;
+  [[nodiscard]] bool pairCollides(const FclGeometryPair& pair, Context& context) const noexcept;
   [[nodiscard]] static bool boxesOverlap(const Context& context, std::size_t a, std::size_t b) noexcept;
   /// Colliding body pairs of the world pairs (with contacts) -> largest penetration depth.
   [[nodiscard]] std::map<std::pair<int, int>, double> touchingBodies(Context& context) const;

@@ -211,8 +211,8 @@ class WorldBuilder {
       for (std::size_t h = 0; h < tables_.geometries.size(); ++h) {
         const int other = robotOf(static_cast<int>(h));
         if (other == r) continue;
-        pairs.push_back({g, static_cast<int>(h)});
-        if (other < 0) tables_.worldPairs.push_back({g, static_cast<int>(h)});
+        pairs.push_back({g, static_cast<int>(h), other < 0});
+        if (other < 0) tables_.worldPairs.push_back({g, static_cast<int>(h), true});
       }
     }
   }

@@ -34,6 +34,9 @@ struct FclGeometryEntry {
 struct FclGeometryPair {
   int first = -1;
   int second = -1;
+  /// `second` is a fixed object: the pair may rest on each other (the scene's contact
+  /// tolerance applies). Self and robot–robot pairs are strict: the ACM handles what touches.
+  bool mayRest = false;
 };
 
 struct FclWorldTables {

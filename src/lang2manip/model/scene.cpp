@@ -1,6 +1,9 @@
 #include "lang2manip/model/scene.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
 
 #include "lang2manip/core/error.hpp"
 
@@ -172,6 +175,15 @@ const Attachment* Scene::findAttachment(const std::string& objectName) const {
   const auto found = std::find_if(attachments_.begin(), attachments_.end(),
                                   [&](const Attachment& a) { return a.object == objectName; });
   return found == attachments_.end() ? nullptr : &*found;
+}
+
+void Scene::setContactTolerance(double metres) {
+  if (!std::isfinite(metres) || metres < 0.0 || metres > kMaximumContactTolerance) {
+    std::ostringstream message;
+    message << "contact tolerance " << metres << " m is not in [0, " << kMaximumContactTolerance << "] m";
+    throw InputError(message.str());
+  }
+  contactTolerance_ = metres;
 }
 
 }  // namespace lang2manip
