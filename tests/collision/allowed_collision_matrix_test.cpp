@@ -51,7 +51,7 @@ TEST(AllowedCollisionMatrix, SampledPairsWithAFakeTest) {
   int calls = 0;
   AllowedCollisionSettings settings;
   settings.samples = 300;
-  const auto test = [&](const VectorX& q, std::vector<char>& hits) {
+  const auto test = [&](const VectorX& q, const std::vector<char>&, std::vector<char>& hits) {
     ++calls;
     fakeTest(links, q, hits);
   };
@@ -63,7 +63,7 @@ TEST(AllowedCollisionMatrix, SampledPairsWithAFakeTest) {
   EXPECT_EQ(matrix.reason(0, 5), AllowedReason::kNever);
 
   settings.disableNever = false;
-  const auto far = [&](const VectorX& q, std::vector<char>& hits) {
+  const auto far = [&](const VectorX& q, const std::vector<char>&, std::vector<char>& hits) {
     hits[static_cast<std::size_t>(0 * links + 5)] = hits[static_cast<std::size_t>(5 * links + 0)] = 1;
     if (q[0] > 0.0) hits[static_cast<std::size_t>(1 * links + 6)] = hits[static_cast<std::size_t>(6 * links + 1)] = 1;
   };
@@ -74,6 +74,82 @@ TEST(AllowedCollisionMatrix, SampledPairsWithAFakeTest) {
   settings.samples = 0;
   EXPECT_THAT([&] { (void)computeAllowedCollisionMatrix(*panda, far, settings); },
               ThrowsMessage<InputError>(HasSubstr("samples must be at least 1")));
+}
+
+/// Index (a * links + b) of the pairs neither adjacent nor disabled by the SRDF of `model`.
+std::vector<std::size_t> pairsLeftToSample(const RobotModel& model) {
+  AllowedCollisionSettings none;
+  none.disableNever = none.disableAlways = false;
+  const AllowedCollisionMatrix fixed =
+      computeAllowedCollisionMatrix(model, [](const VectorX&, const std::vector<char>&, std::vector<char>&) {}, none);
+  std::vector<std::size_t> pairs;
+  const int links = fixed.linkCount();
+  for (int a = 0; a < links; ++a) {
+    for (int b = a + 1; b < links; ++b) {
+      if (!fixed.isAllowed(a, b)) pairs.push_back(static_cast<std::size_t>(a * links + b));
+    }
+  }
+  return pairs;
+}
+
+TEST(AllowedCollisionMatrix, PairsSeenCollidingAndFreeAreNotTestedAgain) {
+  const RobotModelPtr panda = builtinRobot("panda");
+  const std::size_t links = panda->links().size();
+  const std::vector<std::size_t> pairs = pairsLeftToSample(*panda);
+  ASSERT_GE(pairs.size(), 3U);
+  const std::size_t sometimes = pairs[0];
+  const std::size_t always = pairs[1];
+  const std::size_t never = pairs[2];
+  const auto mirror = [links](std::size_t i) { return (i % links) * links + i / links; };
+  AllowedCollisionSettings settings;
+  settings.samples = 200;
+  std::vector<int> asked(links * links, 0);
+  const auto test = [&](const VectorX& q, const std::vector<char>& pairsToTest, std::vector<char>& hits) {
+    for (std::size_t i = 0; i < asked.size(); ++i) asked[i] += pairsToTest[i] != 0 ? 1 : 0;
+    if (q[0] > 0.0) hits[sometimes] = hits[mirror(sometimes)] = 1;
+    hits[always] = hits[mirror(always)] = 1;
+  };
+  const AllowedCollisionMatrix matrix = computeAllowedCollisionMatrix(*panda, test, settings);
+  const auto reason = [&](std::size_t i) {
+    return matrix.reason(static_cast<int>(i / links), static_cast<int>(i % links));
+  };
+  EXPECT_EQ(reason(sometimes), AllowedReason::kNone);
+  EXPECT_EQ(reason(always), AllowedReason::kAlways);
+  EXPECT_EQ(reason(never), AllowedReason::kNever);
+  EXPECT_LT(asked[sometimes], 20);  // until q[0] has had both signs
+  EXPECT_EQ(asked[always], 200);
+  EXPECT_EQ(asked[never], 200);
+  EXPECT_EQ(asked[0 * links + 1], 0);  // adjacent: allowed before sampling
+}
+
+TEST(AllowedCollisionMatrix, SkippingDecidedPairsChangesNothing) {
+  const RobotModelPtr panda = builtinRobot("panda");
+  const RobotModel& model = *panda;
+  const std::size_t links = model.links().size();
+  AllowedCollisionSettings settings;
+  settings.samples = 300;
+  // Link origins closer than 12 cm "collide": some pairs always, some never, some sometimes.
+  const auto collides = [&](const VectorX& q, std::vector<char>& hits) {
+    const std::vector<Pose> X_RL = model.linkPoses(q);
+    for (std::size_t a = 0; a < links; ++a) {
+      for (std::size_t b = a + 1; b < links; ++b) {
+        const double gap = (X_RL[a].translation() - X_RL[b].translation()).norm();
+        if (gap < 0.12) hits[a * links + b] = hits[b * links + a] = 1;
+      }
+    }
+  };
+  const auto pruned = [&](const VectorX& q, const std::vector<char>& pairsToTest, std::vector<char>& hits) {
+    std::vector<char> all(links * links, 0);
+    collides(q, all);
+    for (std::size_t i = 0; i < all.size(); ++i) hits[i] = pairsToTest[i] != 0 ? all[i] : 0;
+  };
+  const auto full = [&](const VectorX& q, const std::vector<char>&, std::vector<char>& hits) { collides(q, hits); };
+  const AllowedCollisionMatrix a = computeAllowedCollisionMatrix(model, pruned, settings);
+  const AllowedCollisionMatrix b = computeAllowedCollisionMatrix(model, full, settings);
+  for (int i = 0; i < static_cast<int>(links); ++i) {
+    for (int j = 0; j < static_cast<int>(links); ++j) EXPECT_EQ(a.reason(i, j), b.reason(i, j)) << i << " " << j;
+  }
+  EXPECT_GT(a.count(AllowedReason::kNever) + a.count(AllowedReason::kAlways), 0);
 }
 
 TEST(AllowedCollisionMatrix, ComputedForThePandaWithFcl) {

@@ -6,6 +6,7 @@
 
 #include "collision_test_support.hpp"
 #include "lang2manip/collision/fcl_geometry.hpp"
+#include "lang2manip/collision/fcl_mesh_cache.hpp"
 
 namespace lang2manip::test {
 namespace {
@@ -127,6 +128,49 @@ TEST(BuiltinRobotCollision, MeshesAreBuiltOncePerMeshAndScale) {
   EXPECT_EQ(builder.meshCount(), 2U);
   EXPECT_EQ(first[0].geometry->getNodeType(), fcl::BV_OBBRSS);
   EXPECT_NEAR(second[0].localHalfExtent.x(), 1.0, 1e-9);
+}
+
+TEST(BuiltinRobotCollision, MeshBvhsAreSharedAcrossBuildersWhileTheMeshLives) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  mesh->vertices = {Vector3(0, 0, 0), Vector3(1, 0, 0), Vector3(0, 1, 0), Vector3(0, 0, 1)};
+  mesh->triangles = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+  Shape shape;
+  shape.geometry = MeshGeometry{mesh, Vector3::Constant(0.5), "m"};
+  const std::size_t buildsBefore = meshBvhCacheStatistics().builds;
+  const auto first = FclGeometryBuilder().build({shape});
+  const auto second = FclGeometryBuilder().build({shape});
+  EXPECT_EQ(first[0].geometry, second[0].geometry);
+  EXPECT_EQ(meshBvhCacheStatistics().builds, buildsBefore + 1);
+  const std::size_t liveWithMesh = meshBvhCacheStatistics().liveEntries;
+  shape.geometry = Box{Vector3::Ones()};
+  mesh.reset();
+  EXPECT_EQ(meshBvhCacheStatistics().liveEntries, liveWithMesh - 1);
+  // The BVH stays valid for the geometries that hold it.
+  EXPECT_EQ(first[0].geometry->getNodeType(), fcl::BV_OBBRSS);
+}
+
+TEST(BuiltinRobotCollision, ParallelPrebuildingGivesTheSameBvhsAsBuildingOneByOne) {
+  std::vector<std::shared_ptr<TriangleMesh>> meshes;
+  std::vector<MeshGeometry> geometries;
+  for (int m = 0; m < 6; ++m) {
+    auto mesh = std::make_shared<TriangleMesh>();
+    mesh->vertices = {Vector3(0, 0, 0), Vector3(1 + m, 0, 0), Vector3(0, 1, 0), Vector3(0, 0, 1)};
+    mesh->triangles = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+    meshes.push_back(mesh);
+    geometries.push_back(MeshGeometry{mesh, Vector3::Ones(), "m"});
+  }
+  std::vector<const MeshGeometry*> pointers;
+  for (const MeshGeometry& geometry : geometries) pointers.push_back(&geometry);
+  pointers.push_back(&geometries.front());
+  const std::size_t buildsBefore = meshBvhCacheStatistics().builds;
+  prebuildMeshBvhs(pointers, 3);
+  EXPECT_EQ(meshBvhCacheStatistics().builds, buildsBefore + 6);
+  for (std::size_t m = 0; m < geometries.size(); ++m) {
+    const auto bvh = sharedMeshBvh(geometries[m]);
+    ASSERT_NE(bvh, nullptr);
+    EXPECT_NEAR(bvh->aabb_local.max_.x(), 1.0 + static_cast<double>(m), 1e-12);
+  }
+  EXPECT_EQ(meshBvhCacheStatistics().builds, buildsBefore + 6);
 }
 
 }  // namespace

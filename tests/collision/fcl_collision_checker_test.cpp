@@ -193,6 +193,36 @@ TEST(CollisionChecker, ReportGivesDistancesAndPenetrations) {
   EXPECT_TRUE(checker.isStateValid(0, pandaHome(), *context));
 }
 
+/// The smallest distance of robot 0 at `q` in `scene`, or +infinity when it collides.
+double clearanceIn(const Scene& scene, const VectorX& q) {
+  const FclCollisionChecker checker(scene);
+  const CollisionReport report = checker.checkState(0, q, {true}, *checker.makeContext());
+  return report.valid ? report.minimumDistance : std::numeric_limits<double>::infinity();
+}
+
+TEST(CollisionChecker, TheNearestPairSearchAgreesWithOneObjectAtATime) {
+  // The search skips pairs whose boxes are farther apart than the best distance so far: its
+  // answer must be the smallest of the scenes holding the robot with one object each.
+  const Scene full = problemScene("panda_desk");
+  const auto configurations = randomConfigurations(*full.robots()[0].model, 24);
+  int compared = 0;
+  for (const VectorX& q : configurations) {
+    const double distance = clearanceIn(full, q);
+    if (!std::isfinite(distance)) continue;
+    ++compared;
+    Scene robotOnly = full;
+    for (const SceneObject& object : full.objects()) robotOnly.removeObject(object.name);
+    double smallest = clearanceIn(robotOnly, q);
+    for (const SceneObject& object : full.objects()) {
+      Scene single = robotOnly;
+      single.addObject(object);
+      smallest = std::min(smallest, clearanceIn(single, q));
+    }
+    EXPECT_DOUBLE_EQ(distance, smallest);
+  }
+  EXPECT_GE(compared, 8);
+}
+
 TEST(CollisionChecker, SharedMatricesGiveTheSameResults) {
   const FclCollisionChecker first(problemScene("panda_desk"));
   FclCheckerSettings settings;

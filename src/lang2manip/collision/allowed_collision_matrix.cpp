@@ -48,12 +48,26 @@ void allowSampled(const RobotModel& model, const LinkCollisionTest& test,
   const std::size_t links = static_cast<std::size_t>(matrix.linkCount());
   std::vector<int> hits(links * links, 0);
   std::vector<char> inCollision(links * links, 0);
+  // A pair already allowed, or seen both colliding and free, cannot become never or always:
+  // it is not tested again (most of the cost on mesh robots is in such pairs).
+  std::vector<char> undecided(links * links, 0);
+  for (std::size_t a = 0; a < links; ++a) {
+    for (std::size_t b = 0; b < links; ++b) {
+      undecided[a * links + b] = matrix.isAllowed(static_cast<int>(a), static_cast<int>(b)) ? 0 : 1;
+    }
+  }
   Random random(settings.seed);
   for (int s = 0; s < settings.samples; ++s) {
     const VectorX q = random.uniformVector(model.lowerLimits(), model.upperLimits());
     std::fill(inCollision.begin(), inCollision.end(), 0);
-    test(q, inCollision);
-    for (std::size_t i = 0; i < hits.size(); ++i) hits[i] += inCollision[i] != 0 ? 1 : 0;
+    test(q, undecided, inCollision);
+    for (std::size_t i = 0; i < hits.size(); ++i) {
+      if (undecided[i] == 0) continue;
+      hits[i] += inCollision[i] != 0 ? 1 : 0;
+      const bool mayBeNever = settings.disableNever && hits[i] == 0;
+      const bool mayBeAlways = settings.disableAlways && hits[i] == s + 1;
+      undecided[i] = mayBeNever || mayBeAlways ? 1 : 0;
+    }
   }
   for (std::size_t a = 0; a < links; ++a) {
     for (std::size_t b = a + 1; b < links; ++b) {

@@ -58,9 +58,11 @@ struct AllowedCollisionSettings {
 };
 
 /// Tells, for configuration `q`, which link pairs collide: sets inCollision[a * linkCount + b]
-/// (and [b * linkCount + a]) to 1 for each colliding pair of distinct links. The vector has
-/// linkCount^2 entries, all 0 on entry.
-using LinkCollisionTest = std::function<void(const VectorX& q, std::vector<char>& inCollision)>;
+/// (and [b * linkCount + a]) to 1 for each colliding pair of distinct links among those with
+/// pairsToTest[a * linkCount + b] != 0 (the others are decided; their entries are ignored). Both
+/// vectors have linkCount^2 entries; inCollision is all 0 on entry.
+using LinkCollisionTest =
+    std::function<void(const VectorX& q, const std::vector<char>& pairsToTest, std::vector<char>& inCollision)>;
 
 /// Links rigidly connected to each other (through fixed joints) share a group id; indexed like
 /// RobotModel::links().

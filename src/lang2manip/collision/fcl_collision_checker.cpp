@@ -172,8 +172,23 @@ std::map<std::pair<int, int>, double> FclCollisionChecker::touchingBodies(Contex
 }
 
 void FclCollisionChecker::closestPair(Context& context, CollisionReport& report) const {
-  const fcl::DistanceRequestd request;
+  // Pairs nearest by their world boxes first: the gap between two boxes bounds the distance of
+  // what they hold from below, so the search stops at the first box gap beyond the best distance.
+  std::vector<std::pair<double, const FclGeometryPair*>> byGap;
+  byGap.reserve(tables_->worldPairs.size());
   for (const FclGeometryPair& pair : tables_->worldPairs) {
+    const std::size_t a = static_cast<std::size_t>(pair.first);
+    const std::size_t b = static_cast<std::size_t>(pair.second);
+    const double gap = ((context.centers[a] - context.centers[b]).cwiseAbs() - context.halfExtents[a] -
+                        context.halfExtents[b]).cwiseMax(0.0).norm();
+    byGap.emplace_back(std::isfinite(gap) ? gap : 0.0, &pair);
+  }
+  std::stable_sort(byGap.begin(), byGap.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  const fcl::DistanceRequestd request;
+  for (const auto& [gap, pairPointer] : byGap) {
+    if (gap > 0.0 && gap >= report.minimumDistance) break;
+    const FclGeometryPair& pair = *pairPointer;
     const FclGeometryEntry& a = tables_->geometries[static_cast<std::size_t>(pair.first)];
     const FclGeometryEntry& b = tables_->geometries[static_cast<std::size_t>(pair.second)];
     fcl::DistanceResultd result;

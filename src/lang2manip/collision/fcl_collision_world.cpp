@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <map>
+#include <thread>
 
 #include "lang2manip/collision/allowed_collision_cache.hpp"
 #include "lang2manip/collision/allowed_collision_disk_cache.hpp"
 #include "lang2manip/collision/fcl_collision_checker.hpp"
+#include "lang2manip/collision/fcl_mesh_cache.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/kinematics/forward_kinematics.hpp"
 
@@ -40,11 +42,12 @@ bool shapesCollide(const FclShape& a, const Pose& X_WA, const FclShape& b, const
 
 /// The sampled link-pair test of the ACM: every pair of distinct links with geometry.
 LinkCollisionTest linkTest(const RobotModel& model, const LinkShapes& shapes) {
-  return [&model, &shapes](const VectorX& q, std::vector<char>& inCollision) {
+  return [&model, &shapes](const VectorX& q, const std::vector<char>& pairsToTest, std::vector<char>& inCollision) {
     const std::size_t links = shapes.size();
     const std::vector<Pose> X_RL = model.linkPoses(q);
     for (std::size_t a = 0; a < links; ++a) {
       for (std::size_t b = a + 1; b < links; ++b) {
+        if (pairsToTest[a * links + b] == 0) continue;
         bool hit = false;
         for (const FclShape& sa : shapes[a]) {
           for (const FclShape& sb : shapes[b]) {
@@ -87,6 +90,23 @@ std::vector<char> holdingLinks(const RobotModel& model, int link) {
   return excluded;
 }
 
+/// Every collision mesh of the scene's robots and enabled objects.
+std::vector<const MeshGeometry*> sceneMeshes(const Scene& scene) {
+  std::vector<const MeshGeometry*> meshes;
+  const auto add = [&meshes](const std::vector<Shape>& shapes) {
+    for (const Shape& shape : shapes) {
+      if (const auto* mesh = std::get_if<MeshGeometry>(&shape.geometry)) meshes.push_back(mesh);
+    }
+  };
+  for (const SceneRobot& robot : scene.robots()) {
+    for (const Link& link : robot.model->links()) add(link.collisions);
+  }
+  for (const SceneObject& object : scene.objects()) {
+    if (object.collisionEnabled) add(object.collisions);
+  }
+  return meshes;
+}
+
 class WorldBuilder {
  public:
   WorldBuilder(const Scene& scene, const FclCheckerSettings& settings)
@@ -100,6 +120,7 @@ class WorldBuilder {
   }
 
   FclWorldTables build() {
+    prebuildMeshBvhs(sceneMeshes(scene_), std::thread::hardware_concurrency());
     tables_.robotGeometries.resize(scene_.robots().size());
     for (std::size_t r = 0; r < scene_.robots().size(); ++r) addRobot(static_cast<int>(r));
     for (const SceneObject& object : scene_.objects()) addObject(object);

@@ -1,16 +1,16 @@
 #include "lang2manip/collision/fcl_geometry.hpp"
 
-#include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
-#include <fcl/math/bv/OBBRSS.h>
 
 #include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
+
+#include "lang2manip/collision/fcl_mesh_cache.hpp"
 
 namespace lang2manip {
 namespace {
@@ -108,24 +108,8 @@ std::shared_ptr<const fcl::CollisionGeometryd> FclGeometryBuilder::primitive(con
 }
 
 std::shared_ptr<const fcl::CollisionGeometryd> FclGeometryBuilder::mesh(const MeshGeometry& geometry) {
-  if (!geometry.mesh || geometry.mesh->triangles.empty()) return nullptr;
-  const MeshKey key{geometry.mesh.get(), geometry.scale.x(), geometry.scale.y(), geometry.scale.z()};
-  if (const auto found = meshes_.find(key); found != meshes_.end()) return found->second;
-  std::vector<fcl::Vector3d> vertices;
-  vertices.reserve(geometry.mesh->vertices.size());
-  for (const Vector3& v : geometry.mesh->vertices) vertices.emplace_back(v.cwiseProduct(geometry.scale));
-  std::vector<fcl::Triangle> triangles;
-  triangles.reserve(geometry.mesh->triangles.size());
-  for (const auto& t : geometry.mesh->triangles) {
-    triangles.emplace_back(static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]),
-                           static_cast<std::size_t>(t[2]));
-  }
-  auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
-  model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(vertices.size()));
-  model->addSubModel(vertices, triangles);
-  model->endModel();
-  model->computeLocalAABB();
-  meshes_.emplace(key, model);
+  auto model = sharedMeshBvh(geometry);
+  if (model) meshes_.emplace(MeshKey{geometry.mesh.get(), geometry.scale.x(), geometry.scale.y(), geometry.scale.z()}, model);
   return model;
 }
 

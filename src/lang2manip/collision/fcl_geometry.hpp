@@ -1,6 +1,6 @@
 #pragma once
 /// @file Model shapes to FCL collision geometry: primitives as FCL primitives, meshes as
-/// BVHModel<OBBRSS> built once per (mesh, scale), and the built-in robots' capsule triples
+/// BVHModel<OBBRSS> shared per (mesh, scale) process-wide (fcl_mesh_cache.hpp), and the built-in robots' capsule triples
 /// ("capsuleN_cylinder", "capsuleN_a", "capsuleN_b") merged back into one fcl::Capsule.
 
 #include <fcl/geometry/collision_geometry.h>
@@ -25,8 +25,9 @@ struct FclShape {
   Vector3 localHalfExtent = Vector3::Zero();
 };
 
-/// Converts shapes, sharing one BVH per (TriangleMesh, scale). Not thread-safe (used while a
-/// checker is built); the geometries it returns are immutable and shareable.
+/// Converts shapes, sharing one BVH per (TriangleMesh, scale) with every other builder of the
+/// process. Not thread-safe (used while a checker is built); the geometries it returns are
+/// immutable and shareable.
 class FclGeometryBuilder {
  public:
   /// The FCL geometries of `shapes` (in the same frame). Capsule triples whose cylinder and
@@ -37,7 +38,7 @@ class FclGeometryBuilder {
 
   /// Shapes left out so far (see build()).
   [[nodiscard]] int skipped() const noexcept { return skipped_; }
-  /// Distinct mesh BVHs built so far.
+  /// Distinct mesh BVHs used so far.
   [[nodiscard]] std::size_t meshCount() const noexcept { return meshes_.size(); }
 
  private:
