@@ -80,6 +80,36 @@ TEST(DescribeCli, ARobotWithoutGripperSaysItCannotPick) {
   const RunResult result = run("describe " + urdf.string(), false);
   EXPECT_EQ(result.exitCode, 0) << result.output;
   EXPECT_THAT(result.output, HasSubstr("gripper: none (moves and pushes; cannot pick)"));
+  EXPECT_THAT(result.output, HasSubstr("approach axis (0, 0, 1) in the tool frame (the tool frame's +z)"));
+}
+
+TEST(DescribeCli, TheApproachAxisIsSetOnTheCommandLineAndKeptInTheSrdf) {
+  const TempDirectory directory;
+  std::string robot = kHingedGripperRobot;
+  robot.erase(robot.find("  <joint name=\"left_hinge\""), robot.find("</robot>") - robot.find("  <joint name=\"left_hinge\""));
+  robot.erase(robot.find("  <link name=\"left\">"), robot.find("  <joint name=\"shoulder\"") - robot.find("  <link name=\"left\">"));
+  const fs::path urdf = directory.path() / "bare.urdf";
+  std::ofstream(urdf) << robot;
+  const fs::path srdf = directory.path() / "written.srdf";
+  const RunResult given = run("describe " + urdf.string() + " --approach-axis=-x --write-srdf " + srdf.string(), false);
+  ASSERT_EQ(given.exitCode, 0) << given.output;
+  EXPECT_THAT(given.output, HasSubstr("approach axis (-1, 0, 0) in the tool frame (given)"));
+  EXPECT_THAT(readFileText(srdf), HasSubstr("<lang2manip_approach group=\"arm\" xyz=\"-1 0 0\"/>"));
+  fs::copy_file(srdf, directory.path() / "bare.srdf");
+  const RunResult reread = run("describe " + urdf.string(), false);
+  EXPECT_THAT(reread.output, HasSubstr("approach axis (-1, 0, 0) in the tool frame (given)")) << reread.output;
+  const RunResult slanted = run("describe " + urdf.string() + " --approach-axis arm=1,0,1", false);
+  EXPECT_THAT(slanted.output, HasSubstr("approach axis (0.7071, 0, 0.7071)")) << slanted.output;
+  // Bad values name the option and what is wrong.
+  RunResult bad = run("describe " + urdf.string() + " --approach-axis 0,0,0");
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_THAT(bad.output, HasSubstr("--approach-axis \"0,0,0\": approach axis \"0 0 0\" has no direction"));
+  bad = run("describe " + urdf.string() + " --approach-axis sideways");
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_THAT(bad.output, HasSubstr("expected [MANIPULATOR=]AXIS with AXIS one of +x, -x, +y, -y, +z, -z or X,Y,Z"));
+  bad = run("describe " + urdf.string() + " --approach-axis left_arm=+z");
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_THAT(bad.output, HasSubstr("approach axis for manipulator \"left_arm\": robot \"hinged\" has the manipulators arm"));
 }
 
 TEST(DescribeCli, KauthamsRg6IsMeasured) {

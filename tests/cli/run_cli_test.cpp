@@ -182,6 +182,27 @@ TEST(RunCli, ThePaperTaskSucceedsWithTheOfficialUr5eAndAGripperOfOurOwn) {
   EXPECT_THAT(result.output, HasSubstr("SUCCESS"));
 }
 
+// Universal Robots' official UR5e with nothing on its flange: it cannot pick, but it pushes.
+TEST(RunCli, ARobotWithoutGripperPushes) {
+  const auto shared = sharedDataDirectory();
+  if (!shared) GTEST_SKIP() << "../shared/data is absent";
+  const TempDirectory directory;
+  const fs::path problem = writeKauthamRobotAtDesk(directory.path(), *shared / "robots/ur_description/urdf/ur5e.xacro", -0.35, "", 0.95);
+  const std::string environment = "LANG2MANIP_PACKAGE_PATH=" + (*shared / "robots").string();
+  RunResult result = run("run " + problem.string() + " --movable eraser --task \"push the eraser 5 cm to the left\"" + kBudgets +
+                             " --out " + (directory.path() / "out").string(),
+                         true, environment);
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("SUCCESS"));
+  const json report = readJson(directory.path() / "out" / "report.json");
+  EXPECT_TRUE(report["success"].get<bool>()) << report.dump(2);
+  result = run("run " + problem.string() + " --movable eraser --rounds 1 --task \"pick up the eraser\"" + kBudgets + " --out " +
+                   (directory.path() / "pick").string(),
+               true, environment);
+  EXPECT_EQ(result.exitCode, 2) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("robot ur5e_robot has no gripper"));
+}
+
 // Kautham's own gripper scenes, as they are: which obstacles move is inferred.
 TEST(RunCli, APickSucceedsOnKauthamsGripperScenesAsTheyAre) {
   const auto shared = sharedDataDirectory();

@@ -18,6 +18,7 @@ namespace lang2manip::test {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::ThrowsMessage;
 
 /// A two-joint arm ending in a palm box whose +z points away from the arm, then `tool`.
 std::string armWith(const std::string& tool) {
@@ -177,6 +178,39 @@ TEST(GripperGeometry, AToolWithoutGripperIsDescribedAndCannotPick) {
   EXPECT_THAT(reason, HasSubstr("pick marker: robot probe has no gripper"));
   EXPECT_THAT(reason, HasSubstr("it can move and push"));
   EXPECT_TRUE(noGripperReason(*probe(rotatingFingers()), describeGripper(*probe(rotatingFingers())), "pick").empty());
+}
+
+TEST(GripperGeometry, TheApproachAxisCanBeGiven) {
+  const std::string flange = R"(<link name="tool0"/>
+  <joint name="flange" type="fixed"><parent link="palm"/><child link="tool0"/><origin xyz="0 0 0.04"/></joint>
+)";
+  // A tool without gripper approaches along its +z unless told otherwise.
+  UrdfReadOptions sideways;
+  sideways.approachAxes[""] = Vector3(-2, 0, 0);
+  const RobotModelPtr bare = probe(flange);
+  const RobotModelPtr turned = probe(flange, sideways);
+  EXPECT_TRUE(describeGripper(*bare).graspFrame.linear().isIdentity(1e-12));
+  const GripperGeometry tool = describeGripper(*turned);
+  const Matrix3 R_TH = tool.graspFrame.linear();
+  EXPECT_TRUE((R_TH * tool.approachAxis).isApprox(-Vector3::UnitX(), 1e-12));
+  EXPECT_NEAR(R_TH.determinant(), 1.0, 1e-12);
+  // The palm reaches 4 cm behind the flange along the old +z: now across the approach axis.
+  EXPECT_NEAR(describeGripper(*bare).fingerReachBehind(), 0.04, 1e-9);
+  EXPECT_NEAR(tool.fingerReachBehind(), 0.03, 1e-9);
+  // A gripper's measured approach (+z here) can be overridden by a direction the fingers close across.
+  UrdfReadOptions wrongName;
+  wrongName.approachAxes["left_arm"] = Vector3(1, 0, 0);
+  EXPECT_THAT([&] { (void)probe(rotatingFingers(), wrongName); },
+              ThrowsMessage<InputError>(HasSubstr("approach axis for manipulator \"left_arm\": robot \"probe\" has the manipulators")));
+  const RobotModelPtr given = probe(rotatingFingers(), sideways);
+  const GripperGeometry fingers = describeGripper(*given);
+  EXPECT_TRUE((fingers.graspFrame.linear() * fingers.approachAxis).isApprox(-Vector3::UnitX(), 1e-12));
+  UrdfReadOptions acrossTheFingers;
+  acrossTheFingers.approachAxes[""] = Vector3(0, 1, 0);
+  EXPECT_THAT([&] { (void)describeGripper(*probe(rotatingFingers(), acrossTheFingers)); },
+              ThrowsMessage<InputError>(HasSubstr("it does not open")));
+  EXPECT_THAT([&] { (void)describeGripper(*probe(rotatingFingers(), acrossTheFingers)); },
+              ThrowsMessage<InputError>(HasSubstr("or the approach axis given)")));
 }
 
 TEST(GripperGeometryBadInput, FingersThatDoNotOpenOrHaveNoGeometryAreRefusedWithTheReason) {

@@ -134,6 +134,16 @@ TEST(SrdfReader, TheFingersOfAHandAreOneGripper) {
   EXPECT_EQ(semantics.manipulators[0].toolFrame, "palm");
 }
 
+TEST(SrdfReader, AnApproachAxisIsReadNormalized) {
+  std::string xml = kSrdf;
+  xml.insert(xml.find("</robot>"), "  <lang2manip_approach group=\"arm\" xyz=\"0 0 -2\"/>\n");
+  const RobotSemantics semantics = readSrdfString(xml, "g.srdf", gripperArm());
+  ASSERT_EQ(semantics.manipulators.size(), 1U);
+  ASSERT_TRUE(semantics.manipulators[0].approachAxis.has_value());
+  EXPECT_TRUE(semantics.manipulators[0].approachAxis->isApprox(-Vector3::UnitZ(), 1e-15));
+  EXPECT_FALSE(readSrdfString(kSrdf, "g.srdf", gripperArm()).manipulators[0].approachAxis.has_value());
+}
+
 struct BadSrdf {
   const char* name;
   const char* xml;
@@ -163,6 +173,16 @@ INSTANTIATE_TEST_SUITE_P(
         BadSrdf{"NanValue", "<robot name=\"g\"><group name=\"a\"><joint name=\"j1\"/></group>\n"
                             "<group_state name=\"h\" group=\"a\"><joint name=\"j1\" value=\"nan\"/></group_state></robot>",
                 "must be a finite number"},
+        BadSrdf{"ApproachWithoutDirection",
+                "<robot name=\"g\"><group name=\"arm\"><chain base_link=\"base\" tip_link=\"tcp\"/></group>\n"
+                "<lang2manip_approach group=\"arm\" xyz=\"0 0 0\"/></robot>",
+                "bad.srdf:2: approach axis \"0 0 0\" has no direction"},
+        BadSrdf{"ApproachOfNoArm",
+                "<robot name=\"g\">\n<lang2manip_approach group=\"legs\" xyz=\"1 0 0\"/></robot>",
+                "bad.srdf:2: <lang2manip_approach> names group \"legs\", which is not an arm with a tool frame (arms: arm)"},
+        BadSrdf{"ApproachNotThreeNumbers",
+                "<robot name=\"g\">\n<lang2manip_approach group=\"arm\" xyz=\"1 0\"/></robot>",
+                "bad.srdf:2: approach axis"},
         BadSrdf{"MissingAttribute", "<robot name=\"g\">\n<disable_collisions link1=\"base\"/></robot>",
                 "bad.srdf:2: <disable_collisions> needs attribute \"link2\""}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });

@@ -40,17 +40,20 @@ json gripperJson(const RobotModel& model, const Manipulator& arm) {
   for (std::size_t i = 0; i < gripper.gripperJoints.size(); ++i) {
     report["joints"].push_back({{"name", gripper.gripperJoints[i]}, {"open", gripper.openValues[i]}, {"closed", gripper.closedValues[i]}});
   }
+  const Matrix3 R = gripper.graspFrame.linear();
+  report["approach_axis_in_tool_frame"] = vector3(R * gripper.approachAxis);
+  report["approach_axis_source"] = arm.approachAxis ? "given"
+                                   : gripper.hasGripper() ? "measured from the fingers"
+                                                          : "the tool frame's +z";
   if (!gripper.hasGripper()) {
     report["kind"] = "none (moves and pushes; cannot pick)";
     return report;
   }
-  const Matrix3 R = gripper.graspFrame.linear();
   report["kind"] = gripper.fingerCount == 2 ? "parallel" : std::to_string(gripper.fingerCount) + " fingers";
   report["opening"] = {{"max", gripper.maxOpening}, {"min", gripper.minOpening}};
   report["pads"] = gripper.padLinks;
   report["pad_depth"] = gripper.padDepth;
   report["finger_length"] = gripper.fingerLength;
-  report["approach_axis_in_tool_frame"] = vector3(R * gripper.approachAxis);
   report["closing_axis_in_tool_frame"] = vector3(R * gripper.closingAxis);
   report["grasp_frame_in_tool_frame"] = vector3(gripper.graspFrame.translation());
   report["finger_bounds_in_grasp_frame"] = {{"min", vector3(gripper.fingerBounds.min())}, {"max", vector3(gripper.fingerBounds.max())}};
@@ -89,12 +92,16 @@ std::string gripperText(const json& gripper) {
   for (const json& joint : gripper["joints"]) {
     text += "      joint " + joint["name"].get<std::string>() + ": open " + number(joint["open"]) + ", closed " + number(joint["closed"]) + "\n";
   }
-  if (!gripper.contains("opening")) return text;
+  if (!gripper.contains("opening")) {
+    return text + "      approach axis " + triple(gripper["approach_axis_in_tool_frame"]) + " in the tool frame (" +
+           gripper["approach_axis_source"].get<std::string>() + ")\n";
+  }
   std::string pads;
   for (const json& pad : gripper["pads"]) pads += (pads.empty() ? "" : ", ") + pad.get<std::string>();
   return text + "      opening " + number(gripper["opening"]["min"]) + " .. " + number(gripper["opening"]["max"]) + " m between pads " + pads +
          " (pad depth " + number(gripper["pad_depth"]) + " m, finger length " + number(gripper["finger_length"]) + " m)\n" +
-         "      approach axis " + triple(gripper["approach_axis_in_tool_frame"]) + ", closing axis " +
+         "      approach axis " + triple(gripper["approach_axis_in_tool_frame"]) + " (" +
+         gripper["approach_axis_source"].get<std::string>() + "), closing axis " +
          triple(gripper["closing_axis_in_tool_frame"]) + " in the tool frame; grasp frame at " +
          triple(gripper["grasp_frame_in_tool_frame"]) + "\n";
 }
@@ -143,6 +150,7 @@ void describe(const DescribeOptions& options, std::ostream& out) {
         const GripperGeometry gripper = describeGripper(model, arm.name);
         arm.gripperOpen = gripper.openValues;
         arm.gripperClosed = gripper.closedValues;
+        arm.approachAxis = gripper.graspFrame.linear() * gripper.approachAxis;
       } catch (const InputError&) {
         // Written as inferred; the printed description says why the gripper cannot grasp.
       }

@@ -1,29 +1,69 @@
 #include "lang2manip/cli/problem_loading.hpp"
 
+#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/model/moveit_scene_reader.hpp"
+#include "lang2manip/model/srdf_reader.hpp"
 #include "lang2manip/model/urdf_reader.hpp"
 #include "lang2manip/model/xacro.hpp"
 
+#include <algorithm>
 #include <map>
+#include <utility>
 
 namespace lang2manip {
 namespace {
 
-using XacroArguments = std::map<std::string, std::string>;
+/// How the robots of a problem are read: xacro arguments and approach axes from the command line.
+struct RobotReading {
+  std::map<std::string, std::string> xacroArguments;
+  std::map<std::string, Vector3> approachAxes;
+};
+
+/// "[MANIPULATOR=]AXIS" with AXIS one of +x -x +y -y +z -z (x for +x) or "X,Y,Z".
+std::pair<std::string, Vector3> parseApproachAxisOption(const std::string& option) {
+  const std::size_t equals = option.find('=');
+  const std::string name = equals == std::string::npos ? "" : option.substr(0, equals);
+  std::string axis = equals == std::string::npos ? option : option.substr(equals + 1);
+  const SourceLocation where{"--approach-axis \"" + option + "\"", 0};
+  static const std::map<std::string, Vector3> named{
+      {"+x", Vector3::UnitX()}, {"x", Vector3::UnitX()}, {"-x", -Vector3::UnitX()},
+      {"+y", Vector3::UnitY()}, {"y", Vector3::UnitY()}, {"-y", -Vector3::UnitY()},
+      {"+z", Vector3::UnitZ()}, {"z", Vector3::UnitZ()}, {"-z", -Vector3::UnitZ()}};
+  if (const auto found = named.find(lowercase(axis)); found != named.end()) return {name, found->second};
+  if (axis.find(',') == std::string::npos) {
+    throw InputError(where, "expected [MANIPULATOR=]AXIS with AXIS one of +x, -x, +y, -y, +z, -z or X,Y,Z");
+  }
+  std::replace(axis.begin(), axis.end(), ',', ' ');
+  return {name, approachAxisFromText(axis, where)};
+}
+
+RobotReading robotReading(const SceneOptions& options) {
+  RobotReading reading;
+  for (const std::string& argument : options.xacroArguments) {
+    const auto [name, value] = parseXacroArgument(argument);
+    reading.xacroArguments[name] = value;
+  }
+  for (const std::string& option : options.approachAxes) {
+    const auto [name, axis] = parseApproachAxisOption(option);
+    reading.approachAxes[name] = axis;
+  }
+  return reading;
+}
 
 bool isRobotDescription(const std::filesystem::path& file) {
   return file.extension() == ".urdf" || isXacroFile(file);
 }
 
-RobotModelPtr loadRobot(const std::string& robot, const XacroArguments& arguments) {
+RobotModelPtr loadRobot(const std::string& robot, const RobotReading& reading) {
   UrdfReadOptions options;
-  options.xacroArguments = arguments;
+  options.xacroArguments = reading.xacroArguments;
+  options.approachAxes = reading.approachAxes;
   return readUrdfFile(isRobotDescription(robot) ? std::filesystem::path(robot) : builtinRobotUrdf(robot), options);
 }
 
-LoadedProblem loadRobotOnly(const std::filesystem::path& file, const XacroArguments& arguments) {
-  const RobotModelPtr model = loadRobot(file.string(), arguments);
+LoadedProblem loadRobotOnly(const std::filesystem::path& file, const RobotReading& reading) {
+  const RobotModelPtr model = loadRobot(file.string(), reading);
   Scene scene;
   scene.addRobot(SceneRobot{model->name(), model, Pose::Identity(), model->middleConfiguration(), {}});
   LoadedProblem loaded;
@@ -34,8 +74,8 @@ LoadedProblem loadRobotOnly(const std::filesystem::path& file, const XacroArgume
   return loaded;
 }
 
-LoadedProblem loadMoveIt(const std::filesystem::path& sceneFile, const std::string& robot, const XacroArguments& arguments) {
-  const RobotModelPtr model = loadRobot(robot, arguments);
+LoadedProblem loadMoveIt(const std::filesystem::path& sceneFile, const std::string& robot, const RobotReading& reading) {
+  const RobotModelPtr model = loadRobot(robot, reading);
   const MoveItProblem moveit = readMoveItProblem(sceneFile, requestFileForScene(sceneFile), model);
   LoadedProblem loaded;
   loaded.name = sceneFile.parent_path().filename().string() + "/" + sceneFile.stem().string();
@@ -48,10 +88,11 @@ LoadedProblem loadMoveIt(const std::filesystem::path& sceneFile, const std::stri
   return loaded;
 }
 
-LoadedProblem loadKautham(const std::filesystem::path& file, const XacroArguments& arguments) {
+LoadedProblem loadKautham(const std::filesystem::path& file, const RobotReading& reading) {
   LoadedProblem loaded;
   KauthamReadOptions options;
-  options.xacroArguments = arguments;
+  options.xacroArguments = reading.xacroArguments;
+  options.approachAxes = reading.approachAxes;
   loaded.problem = readKauthamProblem(file, options);
   loaded.name = loaded.problem.name;
   loaded.file = file.string();
@@ -66,29 +107,23 @@ LoadedProblem loadKautham(const std::filesystem::path& file, const XacroArgument
   return loaded;
 }
 
-LoadedProblem loadProblemFile(const std::string& nameOrPath, const std::string& robot,
-                              const std::vector<std::string>& xacroArguments) {
-  XacroArguments arguments;
-  for (const std::string& argument : xacroArguments) {
-    const auto [name, value] = parseXacroArgument(argument);
-    arguments[name] = value;
-  }
-  if (isRobotDescription(nameOrPath)) return loadRobotOnly(nameOrPath, arguments);
+LoadedProblem loadProblemFile(const std::string& nameOrPath, const std::string& robot, const RobotReading& reading) {
+  if (isRobotDescription(nameOrPath)) return loadRobotOnly(nameOrPath, reading);
   const std::filesystem::path file = resolveProblem(nameOrPath.empty() ? defaultProblemName() : nameOrPath);
   const std::string extension = file.extension().string();
-  if (extension == ".yaml" || extension == ".yml") return loadMoveIt(file, robot, arguments);
+  if (extension == ".yaml" || extension == ".yml") return loadMoveIt(file, robot, reading);
   if (extension != ".xml") {
     throw InputError(SourceLocation{file.string(), 0},
                      "not a problem file: expected a Kautham problem (.xml), a MoveIt planning scene "
                      "(.yaml) or a robot description (.urdf, .xacro)");
   }
-  return loadKautham(file, arguments);
+  return loadKautham(file, reading);
 }
 
 }  // namespace
 
 LoadedProblem loadProblem(const std::string& nameOrPath, const std::string& robot, const SceneOptions& options) {
-  LoadedProblem loaded = loadProblemFile(nameOrPath, robot, options.xacroArguments);
+  LoadedProblem loaded = loadProblemFile(nameOrPath, robot, robotReading(options));
   loaded.problem.scene.setContactTolerance(options.contactTolerance);
   loaded.objectSemantics = inferObjectSemantics(loaded.problem.scene, {options.movable, options.fixed});
   return loaded;
@@ -101,6 +136,9 @@ void addSceneOptions(CLI::App& command, SceneOptions& options) {
       ->delimiter(',');
   command.add_option("--fixed", options.fixed, "Objects to treat as fixed (comma-separated; over the model and inference)")
       ->delimiter(',');
+  command.add_option("--approach-axis", options.approachAxes,
+                     "[MANIPULATOR=]AXIS: the direction the tool moves into an object, in its tool frame (+x, -x, +y, "
+                     "-y, +z, -z or X,Y,Z; repeatable; over the SRDF and what is measured from the fingers)");
   command.add_option("--contact-tolerance", options.contactTolerance,
                      "Penetration (m) up to which a robot base or a held object rests on a fixed object "
                      "instead of colliding with it (0 to 0.01; default 0.0005)");

@@ -34,6 +34,8 @@ struct SceneOptions {
   /// Objects to treat as movable / fixed whatever their models say or inference finds.
   std::vector<std::string> movable;
   std::vector<std::string> fixed;
+  /// "[MANIPULATOR=]AXIS" approach axes for every robot read (see UrdfReadOptions::approachAxes).
+  std::vector<std::string> approachAxes;
   /// Penetration (m) up to which a robot or what it holds rests on a fixed object.
   double contactTolerance = Scene::kDefaultContactTolerance;
 };
@@ -47,8 +49,9 @@ struct SceneOptions {
 /// object named both movable and fixed, or a contact tolerance out of range.
 LoadedProblem loadProblem(const std::string& nameOrPath, const std::string& robot, const SceneOptions& options = {});
 
-/// Adds `--xacro-arg NAME:=VALUE` (repeatable), `--movable A,B`, `--fixed C` and
-/// `--contact-tolerance M` to a command that loads problems.
+/// Adds `--xacro-arg NAME:=VALUE` (repeatable), `--movable A,B`, `--fixed C`,
+/// `--approach-axis [MANIPULATOR=]AXIS` (repeatable) and `--contact-tolerance M` to a command that
+/// loads problems.
 void addSceneOptions(CLI::App& command, SceneOptions& options);
 
 }  // namespace lang2manip

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <map>
 #include <mutex>
+#include <set>
 #include <thread>
 #include <tuple>
 
@@ -14,6 +15,10 @@ namespace lang2manip {
 namespace {
 
 using Key = std::tuple<const TriangleMesh*, double, double, double>;
+
+Key keyOf(const MeshGeometry& geometry) {
+  return {geometry.mesh.get(), geometry.scale.x(), geometry.scale.y(), geometry.scale.z()};
+}
 
 struct Entry {
   std::weak_ptr<const TriangleMesh> mesh;
@@ -58,10 +63,6 @@ class MeshBvhCache {
   }
 
  private:
-  static Key keyOf(const MeshGeometry& geometry) {
-    return {geometry.mesh.get(), geometry.scale.x(), geometry.scale.y(), geometry.scale.z()};
-  }
-
   mutable std::mutex mutex_;
   std::map<Key, Entry> entries_;
   std::size_t builds_ = 0;
@@ -101,8 +102,10 @@ std::shared_ptr<const fcl::CollisionGeometryd> sharedMeshBvh(const MeshGeometry&
 
 void prebuildMeshBvhs(const std::vector<const MeshGeometry*>& geometries, unsigned threads) {
   std::vector<const MeshGeometry*> missing;
+  std::set<Key> seen;
   for (const MeshGeometry* geometry : geometries) {
-    if (buildable(geometry) && !MeshBvhCache::instance().find(*geometry)) missing.push_back(geometry);
+    if (!buildable(geometry) || !seen.insert(keyOf(*geometry)).second) continue;
+    if (!MeshBvhCache::instance().find(*geometry)) missing.push_back(geometry);
   }
   std::sort(missing.begin(), missing.end(), [](const MeshGeometry* a, const MeshGeometry* b) {
     return a->mesh->triangles.size() > b->mesh->triangles.size();

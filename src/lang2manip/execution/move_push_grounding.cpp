@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/execution/action_grounding.hpp"
@@ -22,16 +23,15 @@ std::optional<GroundingAttempt> finish(GroundingAttempt attempt, ActionExecution
   return refuse(record, attempt.stage, attempt.reason);
 }
 
-/// R_WG with the tool's approach axis pointing down and its closing axis across `direction`.
-Matrix3 pushOrientation(const GripperGeometry& gripper, const Vector3& direction) {
+/// R_WG with the tool's approach axis along world `approach` and its closing axis along world
+/// `closing` (both unit, perpendicular).
+Matrix3 toolOrientation(const GripperGeometry& gripper, const Vector3& approach, const Vector3& closing) {
   const Vector3 a = gripper.approachAxis.normalized();
   const Vector3 c = (gripper.closingAxis - gripper.closingAxis.dot(a) * a).normalized();
   Matrix3 inGripper;
   inGripper << a, c, a.cross(c);
-  const Vector3 down = -Vector3::UnitZ();
-  const Vector3 across = Vector3::UnitZ().cross(direction).normalized();
   Matrix3 inWorld;
-  inWorld << down, across, down.cross(across);
+  inWorld << approach, closing, approach.cross(closing);
   return inWorld * inGripper.transpose();
 }
 
@@ -44,27 +44,40 @@ double fingerReachAlong(const GripperGeometry& gripper, const Matrix3& R_WG, con
   return reach;
 }
 
-struct PushGeometry {
-  Vector3 direction;
-  Pose contact = Pose::Identity();
-};
-
-PushGeometry pushGeometry(const ArmContext& arm, const Scene& world, const SceneObject& object, const Vector3& direction) {
-  PushGeometry push;
-  push.direction = direction;
+/// The tool pose behind `object` that pushes it along `direction` (horizontal, unit): first with
+/// the approach axis pointing down and the fingertips just above the support, then with the
+/// approach axis along the push (the tool's face pushes, for arms that cannot reach over the
+/// object pointing down), closing axis across and then vertical; each also turned half a turn
+/// about the approach axis (a tool is symmetric enough to push alike).
+std::vector<Pose> pushContacts(const ArmContext& arm, const Scene& world, const SceneObject& object, const Vector3& direction) {
   const SceneObject* support = currentSupport(world, object, kSupportTolerance);
   const AlignedBox3 bounds = object.worldBounds();
   const double supportTop = support != nullptr ? support->worldBounds().max().z() : bounds.min().z();
   const double height = bounds.max().z() - supportTop;
-  const Matrix3 R_WG = pushOrientation(arm.gripper(), direction);
-  const double tipHeight = supportTop + std::min(kFingertipClearance, kFingertipHeightFraction * height);
-  const double behind = halfExtentAlong(object, object.pose, direction) + fingerReachAlong(arm.gripper(), R_WG, direction) +
-                        arm.settings().pushStandoff;
-  Vector3 position = objectCentre(object, object.pose) - direction * behind;
-  position.z() = tipHeight + arm.gripper().fingertipOffset();
-  push.contact.linear() = R_WG;
-  push.contact.translation() = position;
-  return push;
+  const Vector3 down = -Vector3::UnitZ();
+  const Vector3 across = Vector3::UnitZ().cross(direction).normalized();
+  const double halfExtent = halfExtentAlong(object, object.pose, direction);
+  const Vector3 centre = objectCentre(object, object.pose);
+  std::vector<Pose> contacts;
+  const auto add = [&](const Matrix3& R_WG, double z) {
+    Pose contact = Pose::Identity();
+    contact.linear() = R_WG;
+    contact.translation() = centre - direction * (halfExtent + fingerReachAlong(arm.gripper(), R_WG, direction) + arm.settings().pushStandoff);
+    contact.translation().z() = z;
+    Pose turned = contact;
+    turned.linear() = R_WG * Eigen::AngleAxisd(M_PI, arm.gripper().approachAxis).toRotationMatrix();
+    contacts.insert(contacts.end(), {contact, turned});
+  };
+  const Matrix3 topDown = toolOrientation(arm.gripper(), down, across);
+  add(topDown, supportTop + std::min(kFingertipClearance, kFingertipHeightFraction * height) + arm.gripper().fingertipOffset());
+  for (const Vector3& closing : {across, Vector3(Vector3::UnitZ())}) {
+    const Matrix3 R_WG = toolOrientation(arm.gripper(), direction, closing);
+    const double below = fingerReachAlong(arm.gripper(), R_WG, down);
+    const double z = std::max(centre.z(), supportTop + kFingertipClearance + below);
+    // The face must meet the object below its top, not pass over it.
+    if (z - below <= bounds.max().z() - kFingertipHeightFraction * height) add(R_WG, z);
+  }
+  return contacts;
 }
 
 Pose raised(const Pose& pose, double height) {
@@ -208,20 +221,15 @@ std::optional<GroundingAttempt> groundPush(const GroundingContext& c, const Scen
   if (direction.norm() < 1e-6) return refuse(record, "precondition", "push of " + object.name + ": the direction is vertical");
   direction.normalize();
   const double distance = *action.params.distance;
-  const PushGeometry push = pushGeometry(arm, world, object, direction);
-  // The fingers are symmetric: the tool turned half a turn about its approach axis pushes alike
-  // and may be reachable where the first is not.
-  Pose turned = push.contact;
-  turned.linear() = push.contact.linear() * Eigen::AngleAxisd(M_PI, arm.gripper().approachAxis).toRotationMatrix();
   std::string failures, stage;
-  for (const Pose& contact : {push.contact, turned}) {
+  for (const Pose& contact : pushContacts(arm, world, object, direction)) {
     GroundingAttempt a = tryPush(c, world, object, direction, distance, contact, action, record);
     if (a.stage.empty()) {
       record.choice = "contact behind " + object.name + ", " + metresText(distance);
       return a;
     }
-    stage = a.stage;
-    failures += (failures.empty() ? "" : "; ") + a.reason;
+    if (stage.empty() || stage == "ik") stage = a.stage;
+    if (failures.find(a.reason) == std::string::npos) failures += (failures.empty() ? "" : "; ") + a.reason;
   }
   return refuse(record, stage, "push of " + object.name + ": " + failures);
 }

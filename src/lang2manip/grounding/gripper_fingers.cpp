@@ -235,9 +235,9 @@ Vector3 FingerSet::centroid(std::size_t i, const std::vector<Pose>& poses) const
   return poses[static_cast<std::size_t>(links_[i].link)] * (sum / static_cast<double>(links_[i].points.size()));
 }
 
-PadLayout layoutPads(const FingerSet& fingers, const std::string& where) {
+PadLayout layoutPads(const FingerSet& fingers, const std::string& where, const std::optional<Vector3>& approach) {
   PadLayout layout;
-  layout.approach = approachOf(fingers);
+  layout.approach = approach ? *approach : approachOf(fingers);
   const std::vector<Pose>& open = fingers.openPoses();
   const std::vector<Pose> closed = fingers.linkPoses(0.0);
   std::vector<Vector3> motion;
@@ -249,7 +249,7 @@ PadLayout layoutPads(const FingerSet& fingers, const std::string& where) {
   const double largest = motion[main].norm();
   if (largest < 1e-6) {
     throw InputError(where + ": the fingers do not move across the approach axis between closed and open "
-                     "(check the gripper joints' limits, or the SRDF's open and closed states)");
+                     "(check the gripper joints' limits, the SRDF's open and closed states, or the approach axis given)");
   }
   const Vector3 u = motion[main] / largest;
   const bool parallel = std::all_of(motion.begin(), motion.end(), [&](const Vector3& m) {

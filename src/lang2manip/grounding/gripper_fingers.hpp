@@ -2,6 +2,7 @@
 /// @file Internal to gripper_geometry.cpp: the fingers of a gripper found from its joints, the
 /// points of their collision geometry, and the pad gap at any position of the travel.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -70,9 +71,11 @@ struct PadLayout {
   Vector3 axisPoint = Vector3::Zero();
 };
 
-/// Finds the approach axis, the closing axis and the pads from the fingers' motion between
-/// closed and open. Throws InputError when the fingers do not move across the approach axis.
-PadLayout layoutPads(const FingerSet& fingers, const std::string& where);
+/// Finds the approach axis (unless `approach` gives it: unit, tool frame), the closing axis and
+/// the pads from the fingers' motion between closed and open. Throws InputError when the
+/// fingers do not move across the approach axis.
+PadLayout layoutPads(const FingerSet& fingers, const std::string& where,
+                     const std::optional<Vector3>& approach = std::nullopt);
 
 /// The gap between the pads (m) for link poses `poses` (negative when they overlap).
 double padGap(const FingerSet& fingers, const PadLayout& layout, const std::vector<Pose>& poses);

@@ -139,6 +139,20 @@ AlignedBox3 toolBounds(const RobotModel& model, const Manipulator& manipulator) 
   return bounds;
 }
 
+/// R_TH for a tool without gripper: T itself when `approach` is T's +z, else H's +z along
+/// `approach` and H's +y along the tool axis most across it.
+Matrix3 toolRotation(const Vector3& approach) {
+  if (approach.isApprox(Vector3::UnitZ(), 1e-9)) return Matrix3::Identity();
+  int across = 0;
+  for (int axis = 1; axis < 3; ++axis) {
+    if (std::abs(approach[axis]) < std::abs(approach[across])) across = axis;
+  }
+  const Vector3 y = (Vector3::Unit(across) - approach.dot(Vector3::Unit(across)) * approach).normalized();
+  Matrix3 R;
+  R << y.cross(approach), y, approach;
+  return R;
+}
+
 void describeGripperJoints(const RobotModel& model, const Manipulator& manipulator, GripperGeometry& g, bool mayReverse = true) {
   const std::string context = where(model, manipulator);
   const FingerSet fingers(model, g.toolFrame, g.gripperJoints, g.closedValues, g.openValues);
@@ -148,7 +162,7 @@ void describeGripperJoints(const RobotModel& model, const Manipulator& manipulat
     describeGripperJoints(model, manipulator, g, false);
     return;
   }
-  const PadLayout layout = gripper_detail::layoutPads(fingers, context);
+  const PadLayout layout = gripper_detail::layoutPads(fingers, context, manipulator.approachAxis);
   g.openingCurve = openingCurve(fingers, layout);
   if (mayReverse && g.openingCurve.front() > g.openingCurve.back()) {
     // The limits' "open" end is where the pads meet: the travel runs the other way.
@@ -164,7 +178,8 @@ void describeGripperJoints(const RobotModel& model, const Manipulator& manipulat
   if (g.maxOpening - g.minOpening < kMinimumTravel) {
     throw InputError(context + ": it does not open: the gap between its pads (" + g.padLinks.front() + " and " + g.padLinks.back() +
                      ") stays between " + millimetres(g.minOpening) + " and " + millimetres(g.maxOpening) +
-                     " over the travel of its joints (check their limits, or the SRDF's open and closed states)");
+                     " over the travel of its joints (check their limits, or the SRDF's open and closed states" +
+                     (manipulator.approachAxis ? std::string(", or the approach axis given") : std::string()) + ")");
   }
 }
 
@@ -193,7 +208,9 @@ GripperGeometry describeGripper(const RobotModel& model, const std::string& mani
   if (gripper.hasGripper()) {
     describeGripperJoints(model, manipulator, gripper);
   } else {
-    gripper.fingerBounds = toolBounds(model, manipulator);
+    gripper.graspFrame.linear() = toolRotation(manipulator.approachAxis.value_or(Vector3::UnitZ()));
+    const AlignedBox3 bounds = toolBounds(model, manipulator);
+    if (!bounds.isEmpty()) gripper.fingerBounds = transformedBox(bounds, gripper.graspFrame.inverse());
   }
   if (gripper.fingerBounds.isEmpty()) gripper.fingerBounds = AlignedBox3(Vector3::Zero(), Vector3::Zero());
   return gripper;

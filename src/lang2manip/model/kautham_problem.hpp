@@ -69,6 +69,8 @@ struct KauthamReadOptions {
   std::vector<std::filesystem::path> packagePaths;
   /// <xacro:arg> values for every .xacro robot, over the problem's own <XacroArg>s.
   std::map<std::string, std::string> xacroArguments;
+  /// Approach axes for every robot's manipulators (UrdfReadOptions::approachAxes).
+  std::map<std::string, Vector3> approachAxes;
 };
 
 /// Reads a Kautham problem XML. Throws InputError naming the file, the line where known and what

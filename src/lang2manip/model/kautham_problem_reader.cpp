@@ -118,6 +118,7 @@ class ProblemReader {
     urdfOptions.scale = entity.scale;
     urdfOptions.ignoreMimic = ignoreMimic;
     urdfOptions.xacroArguments = entity.xacroArguments;
+    if (entity.isRobot) urdfOptions.approachAxes = options_.approachAxes;
     return urdfOptions;
   }
 

@@ -3,9 +3,12 @@
 /// collision pairs (SRDF), and the resolved manipulators (arm joints, tool frame, gripper).
 
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "lang2manip/core/types.hpp"
 
 namespace lang2manip {
 
@@ -53,6 +56,10 @@ struct Manipulator {
   /// Gripper joint values when open and when closed (same order as gripperJoints).
   std::vector<double> gripperOpen;
   std::vector<double> gripperClosed;
+  /// The direction (unit, in the tool frame) a grasp or push moves the tool into the object,
+  /// when given (SRDF <lang2manip_approach>, --approach-axis); otherwise it is measured from
+  /// the fingers (from their roots towards the pads) or, without a gripper, the tool frame's +z.
+  std::optional<Vector3> approachAxis;
 };
 
 /// Everything semantic about a robot. `inferred` is true when no SRDF was read.

@@ -89,6 +89,27 @@ class SrdfParser {
     return semantics;
   }
 
+  /// Applies the <lang2manip_approach group="ARM" xyz="X Y Z"/> elements (our extension; other
+  /// SRDF readers ignore it) to the resolved manipulators.
+  void applyApproaches(RobotSemantics& semantics) const {
+    for (const pugi::xml_node& node : document_.root().children("lang2manip_approach")) {
+      const std::string group = document_.requiredAttribute(node, "group");
+      const Vector3 axis = approachAxisFromText(document_.requiredAttribute(node, "xyz"), document_.where(node));
+      std::string names;
+      Manipulator* target = nullptr;
+      for (Manipulator& manipulator : semantics.manipulators) {
+        if (manipulator.name == group) target = &manipulator;
+        names += (names.empty() ? "" : ", ") + manipulator.name;
+      }
+      if (target == nullptr) {
+        throw InputError(document_.where(node), "<lang2manip_approach> names group \"" + group +
+                                                    "\", which is not an arm with a tool frame (arms: " +
+                                                    (names.empty() ? "none" : names) + ")");
+      }
+      target->approachAxis = axis;
+    }
+  }
+
  private:
   std::string linkAttribute(const pugi::xml_node& node, const char* attribute) const {
     const std::string name = document_.requiredAttribute(node, attribute);
@@ -241,19 +262,31 @@ void resolveManipulators(RobotSemantics& semantics, const RobotModelData& robot)
   }
 }
 
-RobotSemantics readSrdfFile(const std::filesystem::path& path, const RobotModelData& robot) {
-  const XmlDocument document = XmlDocument::loadFile(path, "SRDF file");
-  RobotSemantics semantics = SrdfParser(document, robot).parse();
+namespace {
+
+RobotSemantics readSrdf(const XmlDocument& document, const RobotModelData& robot) {
+  SrdfParser parser(document, robot);
+  RobotSemantics semantics = parser.parse();
   resolveManipulators(semantics, robot);
+  parser.applyApproaches(semantics);
   return semantics;
+}
+
+}  // namespace
+
+Vector3 approachAxisFromText(std::string_view text, const SourceLocation& where) {
+  const Vector3 axis = parseVector3(text, "approach axis", where);
+  if (!(axis.norm() > 1e-9)) throw InputError(where, "approach axis \"" + std::string(text) + "\" has no direction");
+  return axis.normalized();
+}
+
+RobotSemantics readSrdfFile(const std::filesystem::path& path, const RobotModelData& robot) {
+  return readSrdf(XmlDocument::loadFile(path, "SRDF file"), robot);
 }
 
 RobotSemantics readSrdfString(const std::string& xml, const std::string& sourceName,
                               const RobotModelData& robot) {
-  const XmlDocument document = XmlDocument::loadString(xml, sourceName, "SRDF");
-  RobotSemantics semantics = SrdfParser(document, robot).parse();
-  resolveManipulators(semantics, robot);
-  return semantics;
+  return readSrdf(XmlDocument::loadString(xml, sourceName, "SRDF"), robot);
 }
 
 }  // namespace lang2manip

@@ -4,14 +4,17 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include "lang2manip/model/robot_model.hpp"
 
 namespace lang2manip {
 
-/// Reads an SRDF file for a robot given as RobotModelData (names are checked against it).
-/// Throws InputError naming the file and line for malformed XML, unknown link/joint/group names
-/// and non-finite values.
+/// Reads an SRDF file for a robot given as RobotModelData (names are checked against it), with
+/// our extension <lang2manip_approach group="ARM" xyz="X Y Z"/> setting an arm's approach axis
+/// in its tool frame (other SRDF readers ignore it). Throws InputError naming the file and line
+/// for malformed XML, unknown link/joint/group names, non-finite values and an approach axis
+/// without direction or naming a group that is no arm.
 RobotSemantics readSrdfFile(const std::filesystem::path& path, const RobotModelData& robot);
 
 /// Reads SRDF text (see readSrdfFile()).
@@ -26,6 +29,10 @@ RobotSemantics readSrdfString(const std::string& xml, const std::string& sourceN
 /// fingers' joints below it are its gripper (open = upper limit, closed = lower; describeGripper
 /// measures which end really opens).
 RobotSemantics inferSemantics(const RobotModelData& robot);
+
+/// An approach axis written "X Y Z" (any length but zero), normalized. Throws InputError at
+/// `where` for anything else.
+Vector3 approachAxisFromText(std::string_view text, const SourceLocation& where);
 
 /// Resolves the groups and end effectors of `semantics` into manipulators (done by the readers).
 void resolveManipulators(RobotSemantics& semantics, const RobotModelData& robot);

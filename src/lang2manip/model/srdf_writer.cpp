@@ -20,6 +20,11 @@ std::string manipulatorXml(const Manipulator& arm, bool single) {
   const std::string gripperGroup = single ? "gripper" : arm.name + "_gripper";
   std::string xml = "  <group" + attribute("name", arm.name) + ">\n    <chain" + attribute("base_link", arm.baseLink) +
                     attribute("tip_link", arm.toolFrame) + "/>\n  </group>\n";
+  if (arm.approachAxis) {
+    const Vector3& a = *arm.approachAxis;
+    xml += "  <lang2manip_approach" + attribute("group", arm.name) +
+           attribute("xyz", exactNumber(a.x()) + " " + exactNumber(a.y()) + " " + exactNumber(a.z())) + "/>\n";
+  }
   if (arm.gripperJoints.empty()) return xml;
   xml += "  <group" + attribute("name", gripperGroup) + ">\n";
   for (const std::string& joint : arm.gripperJoints) xml += "    <joint" + attribute("name", joint) + "/>\n";

@@ -244,6 +244,26 @@ const typename Map::mapped_type::element_type& urdfdomElement(const Map& element
   return *found->second;
 }
 
+void applyApproachAxes(const std::map<std::string, Vector3>& axes, RobotModelData& data) {
+  for (const auto& [name, axis] : axes) {
+    if (!(axis.allFinite() && axis.norm() > 1e-9)) {
+      throw InputError(SourceLocation{data.source, 0}, "approach axis of manipulator \"" + name + "\" has no direction");
+    }
+    std::string names;
+    bool found = false;
+    for (Manipulator& manipulator : data.semantics.manipulators) {
+      names += (names.empty() ? "" : ", ") + manipulator.name;
+      if (!name.empty() && manipulator.name != name) continue;
+      manipulator.approachAxis = axis.normalized();
+      found = true;
+    }
+    if (!found) {
+      throw InputError(SourceLocation{data.source, 0}, "approach axis for manipulator \"" + name + "\": robot \"" + data.name +
+                                                           "\" has " + (names.empty() ? "no manipulator" : "the manipulators " + names));
+    }
+  }
+}
+
 RobotModelPtr readUrdf(const XmlDocument& document, const std::filesystem::path& urdfPath,
                        const std::filesystem::path& directory, const UrdfReadOptions& options) {
   requireFinite(options.scale, "URDF scale", SourceLocation{document.sourceName(), 0});
@@ -269,6 +289,7 @@ RobotModelPtr readUrdf(const XmlDocument& document, const std::filesystem::path&
                            "joint \"" + data.joints.back().name + "\" origin", document.where(node));
   }
   data.semantics = semanticsFor(data, urdfPath, options);
+  applyApproachAxes(options.approachAxes, data);
   if (options.ignoreMimic) decoupleMimics(data);
   return std::make_shared<const RobotModel>(std::move(data));
 }

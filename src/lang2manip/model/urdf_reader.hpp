@@ -29,6 +29,9 @@ struct UrdfReadOptions {
   bool loadMeshes = true;
   /// The <xacro:arg> values of a .xacro robot (see xacro.hpp).
   std::map<std::string, std::string> xacroArguments;
+  /// Approach axes (tool frame; normalized when applied) by manipulator name, "" for every
+  /// manipulator; over the SRDF's and the inferred ones. An unknown name is an InputError.
+  std::map<std::string, Vector3> approachAxes;
 };
 
 /// Reads a URDF file, or a xacro file (name ending in .xacro) expanded first with
