@@ -10,6 +10,7 @@
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/core/log.hpp"
 #include "lang2manip/model/xacro.hpp"
+#include "lang2manip/model/xacro_document.hpp"
 #include "lang2manip/model/xacro_expression.hpp"
 #include "lang2manip/model/xacro_support.hpp"
 #include "lang2manip/model/xml_document.hpp"
@@ -19,37 +20,19 @@ namespace {
 
 namespace fs = std::filesystem;
 using xacro::ExpressionError;
+using xacro::findMacro;
+using xacro::Macro;
 using xacro::MacroParameter;
+using xacro::Property;
+using xacro::Scope;
+using xacro::scopeOwning;
 using xacro::TextPart;
 using xacro::Value;
 using xacro::ValueList;
 
-/// The attribute that carries each element's file and line through copies ("file index:line").
-constexpr const char* kOrigin = "lang2manip-xacro-origin";
+constexpr const char* kOrigin = xacro::kOriginAttribute;
 
 bool hasPrefix(const std::string& text, const std::string& prefix) { return text.rfind(prefix, 0) == 0; }
-
-/// A property: a value, text still to evaluate (lazy), or a block of elements.
-struct Property {
-  Value value;
-  std::optional<std::string> text;
-  pugi::xml_node block;
-  bool contentOnly = false;
-};
-
-struct Macro {
-  pugi::xml_node definition;
-  std::vector<MacroParameter> parameters;
-};
-
-/// One level of names: the file's top level, a macro call or an include namespace. A macro
-/// call's scope sees its caller's (xacro scopes dynamically).
-struct Scope {
-  Scope* parent = nullptr;
-  std::map<std::string, Property> properties;
-  std::map<std::string, Macro> macros;
-  std::map<std::string, std::unique_ptr<Scope>> namespaces;
-};
 
 class XacroProcessor {
  public:
@@ -64,7 +47,7 @@ class XacroProcessor {
       if (hasPrefix(attribute.name(), "xmlns:xacro") || std::string(attribute.name()) == kOrigin) root.remove_attribute(attribute);
       attribute = next;
     }
-    removeOrigins(root);
+    xacro::removeOrigins(root);
     std::ostringstream stream;
     output_.save(stream, "  ", pugi::format_indent);
     return stream.str();
@@ -76,41 +59,14 @@ class XacroProcessor {
   /// Parses `path` and marks every element with its origin.
   XmlDocument load(const fs::path& path) {
     XmlDocument document = XmlDocument::loadFile(path, "xacro file");
-    const int index = static_cast<int>(files_.size());
+    xacro::markOrigins(document, static_cast<int>(files_.size()));
     files_.push_back(path);
-    struct Marker final : pugi::xml_tree_walker {
-      const XmlDocument* document = nullptr;
-      int file = 0;
-      bool for_each(pugi::xml_node& node) override {
-        if (node.type() == pugi::node_element) {
-          node.append_attribute(kOrigin) = (std::to_string(file) + ":" + std::to_string(document->lineOf(node))).c_str();
-        }
-        return true;
-      }
-    } marker;
-    marker.document = &document;
-    marker.file = index;
-    pugi::xml_node root = document.root();
-    root.append_attribute(kOrigin) = (std::to_string(index) + ":" + std::to_string(document.lineOf(root))).c_str();
-    root.traverse(marker);
     return document;
   }
 
-  static void removeOrigins(pugi::xml_node node) {
-    node.remove_attribute(kOrigin);
-    for (pugi::xml_node child : node.children()) {
-      if (child.type() == pugi::node_element) removeOrigins(child);
-    }
-  }
-
   SourceLocation where(const pugi::xml_node& node) const {
-    for (pugi::xml_node at = node; at; at = at.parent()) {
-      const std::string origin = at.attribute(kOrigin).value();
-      const std::size_t colon = origin.find(':');
-      if (colon == std::string::npos) continue;
-      const auto file = static_cast<std::size_t>(std::atoi(origin.c_str()));
-      if (file < files_.size()) return {files_[file].string(), std::atoi(origin.c_str() + colon + 1)};
-    }
+    const auto origin = xacro::originOf(node);
+    if (origin && origin->first < files_.size()) return {files_[origin->first].string(), origin->second};
     return {files_.empty() ? "" : files_.front().string(), 0};
   }
 
@@ -133,13 +89,6 @@ class XacroProcessor {
   }
 
   // ---------------------------------------------------------------------------------- names
-
-  static Scope* scopeOwning(Scope& scope, const std::string& name) {
-    for (Scope* s = &scope; s != nullptr; s = s->parent) {
-      if (s->properties.count(name) != 0) return s;
-    }
-    return nullptr;
-  }
 
   std::optional<Value> lookup(const std::string& name, Scope& scope, const pugi::xml_node& at) {
     Scope* owner = scopeOwning(scope, name);
@@ -172,19 +121,6 @@ class XacroProcessor {
       if (!property.block) items.emplace_back(name, *lookup(name, space, at));
     }
     return items;
-  }
-
-  const Macro* findMacro(const std::string& name, Scope& scope) const {
-    const std::size_t dot = name.find('.');
-    for (const Scope* s = &scope; s != nullptr; s = s->parent) {
-      if (dot != std::string::npos) {
-        const auto space = s->namespaces.find(name.substr(0, dot));
-        if (space != s->namespaces.end()) return findMacro(name.substr(dot + 1), *space->second);
-      } else if (const auto found = s->macros.find(name); found != s->macros.end()) {
-        return &found->second;
-      }
-    }
-    return nullptr;
   }
 
   // -------------------------------------------------------------------------------- text
