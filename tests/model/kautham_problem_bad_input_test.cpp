@@ -76,6 +76,12 @@ TEST_F(KauthamBadInputTest, ModelReferenceThatResolvesNowhereListsThePathsTried)
                                  HasSubstr((root() / "models" / "robots" / "none.urdf").string())));
 }
 
+TEST_F(KauthamBadInputTest, SrdfThatResolvesNowhere) {
+  const std::string text = writeProblem("  <Robot robot=\"robots/arm.urdf\">\n    <Srdf file=\"robots/missing.srdf\"/>\n  </Robot>\n");
+  EXPECT_THAT(readError(), AllOf(HasSubstr(fileLine(problemFile(), lineOf(text, "missing.srdf"))),
+                                 HasSubstr("SRDF file \"robots/missing.srdf\" resolves to no readable file")));
+}
+
 TEST_F(KauthamBadInputTest, ControlFileThatIsNotCntr) {
   writeControls("arm.xml", twoArmControls());
   writeProblem(std::string(kArmRobotElement) + "  <Controls robot=\"controls/arm.xml\"/>\n");

@@ -183,6 +183,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadSrdf{"ApproachNotThreeNumbers",
                 "<robot name=\"g\">\n<lang2manip_approach group=\"arm\" xyz=\"1 0\"/></robot>",
                 "bad.srdf:2: approach axis"},
+        BadSrdf{"DefaultOffForAnUnknownLink", "<robot name=\"g\">\n<disable_default_collisions link=\"envelope\"/></robot>",
+                "bad.srdf:2: <disable_default_collisions> names link \"envelope\", which the robot \"g\" does not have"},
+        BadSrdf{"EnabledPairWithoutSecondLink", "<robot name=\"g\">\n<enable_collisions link1=\"base\"/></robot>",
+                "bad.srdf:2: <enable_collisions> needs attribute \"link2\""},
         BadSrdf{"MissingAttribute", "<robot name=\"g\">\n<disable_collisions link1=\"base\"/></robot>",
                 "bad.srdf:2: <disable_collisions> needs attribute \"link2\""}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });

@@ -177,6 +177,13 @@ std::string allowedCollisionKey(const RobotModel& model, const AllowedCollisionS
     digest.add(pair.link1);
     digest.add(pair.link2);
   }
+  digest.add(static_cast<int>(model.semantics().defaultCollisionsDisabled.size()));
+  for (const std::string& link : model.semantics().defaultCollisionsDisabled) digest.add(link);
+  digest.add(static_cast<int>(model.semantics().enabledCollisions.size()));
+  for (const auto& [first, second] : model.semantics().enabledCollisions) {
+    digest.add(first);
+    digest.add(second);
+  }
   return digest.hex();
 }
 

@@ -26,6 +26,20 @@ void allowAdjacent(const RobotModel& model, AllowedCollisionMatrix& matrix) {
   }
 }
 
+/// enabled[a * links + b] (both orders) for the SRDF's <enable_collisions> pairs.
+std::vector<char> enabledLinkPairs(const RobotModel& model) {
+  const std::size_t links = model.links().size();
+  std::vector<char> enabled(links * links, 0);
+  for (const auto& [first, second] : model.semantics().enabledCollisions) {
+    const std::optional<int> a = model.findLink(first);
+    const std::optional<int> b = model.findLink(second);
+    if (!a || !b) continue;
+    enabled[static_cast<std::size_t>(*a) * links + static_cast<std::size_t>(*b)] = 1;
+    enabled[static_cast<std::size_t>(*b) * links + static_cast<std::size_t>(*a)] = 1;
+  }
+  return enabled;
+}
+
 void allowSrdf(const RobotModel& model, AllowedCollisionMatrix& matrix) {
   for (const DisabledCollision& pair : model.semantics().disabledCollisions) {
     const std::optional<int> a = model.findLink(pair.link1);
@@ -36,6 +50,15 @@ void allowSrdf(const RobotModel& model, AllowedCollisionMatrix& matrix) {
                            "' of robot '" + model.name() + "'");
     }
     if (*a != *b) matrix.allow(*a, *b, AllowedReason::kSrdf);
+  }
+  const std::vector<char> quiet = linksWithDefaultCollisionsOff(model);
+  const std::vector<char> enabled = enabledLinkPairs(model);
+  const int links = matrix.linkCount();
+  for (int a = 0; a < links; ++a) {
+    for (int b = a + 1; b < links; ++b) {
+      const bool off = quiet[static_cast<std::size_t>(a)] != 0 || quiet[static_cast<std::size_t>(b)] != 0;
+      if (off && enabled[static_cast<std::size_t>(a * links + b)] == 0) matrix.allow(a, b, AllowedReason::kSrdf);
+    }
   }
 }
 
@@ -113,6 +136,14 @@ int AllowedCollisionMatrix::count(AllowedReason reason) const noexcept {
     for (int b = a + 1; b < count_; ++b) total += reasons_[index(a, b)] == reason ? 1 : 0;
   }
   return total;
+}
+
+std::vector<char> linksWithDefaultCollisionsOff(const RobotModel& model) {
+  std::vector<char> off(model.links().size(), 0);
+  for (const std::string& name : model.semantics().defaultCollisionsDisabled) {
+    if (const std::optional<int> link = model.findLink(name)) off[static_cast<std::size_t>(*link)] = 1;
+  }
+  return off;
 }
 
 std::vector<int> rigidLinkGroups(const RobotModel& model) {

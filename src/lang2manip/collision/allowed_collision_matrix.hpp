@@ -64,6 +64,11 @@ struct AllowedCollisionSettings {
 using LinkCollisionTest =
     std::function<void(const VectorX& q, const std::vector<char>& pairsToTest, std::vector<char>& inCollision)>;
 
+/// 1 for each link (indexed like RobotModel::links()) whose collisions are off by default (SRDF
+/// <disable_default_collisions>): checked against no object nor other robot, and against its
+/// own robot's links only where an <enable_collisions> pair says so.
+std::vector<char> linksWithDefaultCollisionsOff(const RobotModel& model);
+
 /// Links rigidly connected to each other (through fixed joints) share a group id; indexed like
 /// RobotModel::links().
 std::vector<int> rigidLinkGroups(const RobotModel& model);
@@ -72,8 +77,9 @@ std::vector<int> rigidLinkGroups(const RobotModel& model);
 /// through fixed joints on either side.
 bool linksAdjacent(const RobotModel& model, const std::vector<int>& rigidGroups, int a, int b);
 
-/// The matrix for `model`: adjacent pairs, the SRDF's disabled pairs (unknown link names in the
-/// SRDF throw InputError naming them), then, when enabled, the never/always pairs found by
+/// The matrix for `model`: adjacent pairs, the SRDF's disabled pairs and the pairs of links whose
+/// default is off and that no <enable_collisions> names (unknown link names in the SRDF throw
+/// InputError naming them), then, when enabled, the never/always pairs found by
 /// `test` over `settings.samples` seeded random configurations (deterministic).
 /// @throws InputError for samples < 1 when never/always detection is on.
 AllowedCollisionMatrix computeAllowedCollisionMatrix(const RobotModel& model,

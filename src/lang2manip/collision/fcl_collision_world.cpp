@@ -140,6 +140,7 @@ class WorldBuilder {
     }
     tables_.allowedCollisions.push_back(acms_[model] ? acms_[model] : precomputed(r, *model));
     holding_.emplace_back();
+    quietLinks_.push_back(linksWithDefaultCollisionsOff(*model));
     const LinkShapes& shapes = shapes_[model];
     for (std::size_t l = 0; l < shapes.size(); ++l) {
       if (shapes[l].empty()) continue;
@@ -213,7 +214,15 @@ class WorldBuilder {
     }
     const int object = first.attached ? a : b;
     const int link = first.attached ? second.link : first.link;
-    return holding_[static_cast<std::size_t>(r)].at(object)[static_cast<std::size_t>(link)] != 0;
+    return holding_[static_cast<std::size_t>(r)].at(object)[static_cast<std::size_t>(link)] != 0 ||
+           quietLinks_[static_cast<std::size_t>(r)][static_cast<std::size_t>(link)] != 0;
+  }
+
+  /// True for the geometry of a robot link whose collisions are off by default (SRDF).
+  bool quiet(int geometry) const {
+    const FclBody& body = tables_.bodies[static_cast<std::size_t>(bodyOf(geometry))];
+    return !body.attached && body.robot >= 0 &&
+           quietLinks_[static_cast<std::size_t>(body.robot)][static_cast<std::size_t>(body.link)] != 0;
   }
 
   int bodyOf(int geometry) const { return tables_.geometries[static_cast<std::size_t>(geometry)].body; }
@@ -229,9 +238,10 @@ class WorldBuilder {
     }
     tables_.worldPairs.insert(tables_.worldPairs.end(), pairs.begin(), pairs.end());
     for (const int g : own) {
+      if (quiet(g)) continue;
       for (std::size_t h = 0; h < tables_.geometries.size(); ++h) {
         const int other = robotOf(static_cast<int>(h));
-        if (other == r) continue;
+        if (other == r || quiet(static_cast<int>(h))) continue;
         pairs.push_back({g, static_cast<int>(h), other < 0});
         if (other < 0) tables_.worldPairs.push_back({g, static_cast<int>(h), true});
       }
@@ -243,7 +253,9 @@ class WorldBuilder {
     for (std::size_t r = 0; r < robots; ++r) {
       for (std::size_t s = r + 1; s < robots; ++s) {
         for (const int g : tables_.robotGeometries[r]) {
-          for (const int h : tables_.robotGeometries[s]) tables_.worldPairs.push_back({g, h});
+          for (const int h : tables_.robotGeometries[s]) {
+            if (!quiet(g) && !quiet(h)) tables_.worldPairs.push_back({g, h});
+          }
         }
       }
     }
@@ -257,6 +269,8 @@ class WorldBuilder {
   std::map<const RobotModel*, std::shared_ptr<const AllowedCollisionMatrix>> acms_;
   /// Per robot: attached body -> links it may touch.
   std::vector<std::map<int, std::vector<char>>> holding_;
+  /// Per robot: its links whose collisions are off by default (linksWithDefaultCollisionsOff).
+  std::vector<std::vector<char>> quietLinks_;
 };
 
 }  // namespace

@@ -43,6 +43,9 @@ struct KauthamEntity {
   /// <XacroArg name="..." value="..."/> children of a robot whose model is a .xacro file (our
   /// extension; Kautham ignores unknown elements).
   std::map<std::string, std::string> xacroArguments;
+  /// <Srdf file="..."/> child of a robot (our extension): its semantics, over a sibling SRDF
+  /// and inference; resolved like the model. Empty when none.
+  std::filesystem::path srdf;
 };
 
 /// A loaded problem. `scene` holds the robots at the first query's init (middle of the ranges

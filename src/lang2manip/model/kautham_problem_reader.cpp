@@ -118,6 +118,7 @@ class ProblemReader {
     urdfOptions.scale = entity.scale;
     urdfOptions.ignoreMimic = ignoreMimic;
     urdfOptions.xacroArguments = entity.xacroArguments;
+    urdfOptions.srdf = entity.srdf;
     if (entity.isRobot) urdfOptions.approachAxes = options_.approachAxes;
     return urdfOptions;
   }
@@ -134,6 +135,9 @@ class ProblemReader {
       entity.xacroArguments[document_.requiredAttribute(argument, "name")] = document_.requiredAttribute(argument, "value");
     }
     for (const auto& [name, value] : options_.xacroArguments) entity.xacroArguments[name] = value;
+    if (const pugi::xml_node srdf = node.child("Srdf"); srdf && isRobot) {
+      entity.srdf = resolve(document_.requiredAttribute(srdf, "file"), srdf, "SRDF file");
+    }
     model = readUrdfFile(entity.resolvedPath, urdfOptionsOf(entity, false));
     const pugi::xml_node kauthamName = node.child("KauthamName");
     entity.name = kauthamName ? document_.requiredAttribute(kauthamName, "name") : model->name();

@@ -68,6 +68,11 @@ struct RobotSemantics {
   std::vector<EndEffector> endEffectors;
   std::vector<NamedState> namedStates;
   std::vector<DisabledCollision> disabledCollisions;
+  /// SRDF <disable_default_collisions>: links checked against nothing (no other link, object or
+  /// robot) except the pairs of enabledCollisions; e.g. a self-collision envelope.
+  std::vector<std::string> defaultCollisionsDisabled;
+  /// SRDF <enable_collisions> pairs (link1, link2): checked although a link's default is off.
+  std::vector<std::pair<std::string, std::string>> enabledCollisions;
   std::vector<Manipulator> manipulators;
   bool inferred = true;
   /// The SRDF file read, empty when inferred.

@@ -86,6 +86,12 @@ class SrdfParser {
           {linkAttribute(node, "link1"), linkAttribute(node, "link2"),
            node.attribute("reason").value()});
     }
+    for (const pugi::xml_node& node : root.children("disable_default_collisions")) {
+      semantics.defaultCollisionsDisabled.push_back(linkAttribute(node, "link"));
+    }
+    for (const pugi::xml_node& node : root.children("enable_collisions")) {
+      semantics.enabledCollisions.emplace_back(linkAttribute(node, "link1"), linkAttribute(node, "link2"));
+    }
     return semantics;
   }
 

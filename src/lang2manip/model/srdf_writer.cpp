@@ -52,6 +52,16 @@ std::string srdfString(const RobotModel& model, const RobotSemantics& semantics)
     }
     xml += groupState(state.name, state.group, joints, values);
   }
+  for (const DisabledCollision& pair : semantics.disabledCollisions) {
+    xml += "  <disable_collisions" + attribute("link1", pair.link1) + attribute("link2", pair.link2) +
+           (pair.reason.empty() ? std::string() : attribute("reason", pair.reason)) + "/>\n";
+  }
+  for (const std::string& link : semantics.defaultCollisionsDisabled) {
+    xml += "  <disable_default_collisions" + attribute("link", link) + "/>\n";
+  }
+  for (const auto& [first, second] : semantics.enabledCollisions) {
+    xml += "  <enable_collisions" + attribute("link1", first) + attribute("link2", second) + "/>\n";
+  }
   return xml + "</robot>\n";
 }
 

@@ -1,0 +1,93 @@
+// SRDF <disable_default_collisions> and <enable_collisions>: a link whose collisions are off by
+// default (a self-collision envelope) is checked against nothing but the pairs enabled for it.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "collision_test_support.hpp"
+#include "lang2manip/model/srdf_writer.hpp"
+#include "test_paths.hpp"
+
+namespace lang2manip::test {
+namespace {
+
+using ::testing::HasSubstr;
+
+/// base -turn-> arm -tilt-> tip, the tip's joint just above an envelope box fixed to the base
+/// around the arm.
+const char* const kEnvelopeRobot = R"(<robot name="enveloped">
+  <link name="base"><collision><origin xyz="0 0 0.05"/><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <link name="arm"><collision><origin xyz="0 0 0.3"/><geometry><box size="0.05 0.05 0.4"/></geometry></collision></link>
+  <link name="envelope"><collision><origin xyz="0 0 0.3"/><geometry><box size="0.25 0.25 0.6"/></geometry></collision></link>
+  <link name="tip"><collision><origin xyz="0 0 0.1"/><geometry><box size="0.04 0.04 0.2"/></geometry></collision></link>
+  <joint name="turn" type="revolute"><parent link="base"/><child link="arm"/><origin xyz="0 0 0.1"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="wrap" type="fixed"><parent link="base"/><child link="envelope"/></joint>
+  <joint name="tilt" type="revolute"><parent link="arm"/><child link="tip"/><origin xyz="0 0 0.65"/><axis xyz="0 1 0"/>
+    <limit lower="-2.5" upper="2.5" effort="1" velocity="1"/></joint>
+</robot>
+)";
+
+const char* const kEnvelopeSemantics = R"(<robot name="enveloped">
+  <group name="arm"><chain base_link="base" tip_link="tip"/></group>
+  <disable_default_collisions link="envelope"/>
+  <enable_collisions link1="envelope" link2="tip"/>
+</robot>
+)";
+
+/// The robot with a box 5 cm beside its arm, inside the envelope; with the SRDF when `semantics`.
+Scene envelopedScene(const TempDirectory& directory, bool semantics) {
+  const auto srdf = directory.path() / "enveloped.srdf";
+  std::ofstream(srdf) << kEnvelopeSemantics;
+  UrdfReadOptions options;
+  if (semantics) options.srdf = srdf;
+  Scene scene;
+  SceneRobot robot;
+  robot.name = "enveloped";
+  robot.model = readUrdfString(kEnvelopeRobot, "enveloped.urdf", directory.path(), options);
+  robot.configuration = VectorX::Zero(2);
+  scene.addRobot(robot);
+  SceneObject post;
+  post.name = "post";
+  post.kind = "post";
+  post.pose.translation() = Vector3(0.1, 0.0, 0.4);
+  post.collisions.push_back(Shape{Box{Vector3(0.04, 0.04, 0.2)}, Pose::Identity(), std::nullopt, "post"});
+  scene.addObject(post);
+  return scene;
+}
+
+TEST(DefaultCollisions, ALinkWhoseDefaultIsOffTouchesTheWorldFreely) {
+  const TempDirectory directory;
+  const Scene plain = envelopedScene(directory, false);
+  const FclCollisionChecker strict(plain);
+  const CollisionReport hit = strict.checkState(0, VectorX::Zero(2), {}, *strict.makeContext());
+  EXPECT_FALSE(hit.valid);
+  EXPECT_THAT(contactList(hit), HasSubstr("enveloped/envelope - post"));
+  const Scene quiet = envelopedScene(directory, true);
+  const FclCollisionChecker checker(quiet);
+  const auto context = checker.makeContext();
+  EXPECT_TRUE(checker.isStateValid(0, VectorX::Zero(2), *context)) << contactList(checker.checkState(0, VectorX::Zero(2), {}, *context));
+  // The tip is still checked against the world and, enabled, against the envelope.
+  const AllowedCollisionMatrix& matrix = checker.allowedCollisions(0);
+  const RobotModel& model = *quiet.robots()[0].model;
+  EXPECT_EQ(matrix.reason(model.linkIndex("envelope"), model.linkIndex("arm")), AllowedReason::kAdjacent);
+  EXPECT_EQ(matrix.reason(model.linkIndex("envelope"), model.linkIndex("tip")), AllowedReason::kNone);
+  VectorX folded(2);
+  folded << 0.0, 2.5;  // the tip folds down beside the arm, into the envelope
+  const CollisionReport self = checker.checkState(0, folded, {}, *context);
+  EXPECT_THAT(contactList(self), HasSubstr("enveloped/envelope - enveloped/tip"));
+}
+
+TEST(DefaultCollisions, AreWrittenBackByTheSrdfWriter) {
+  const TempDirectory directory;
+  const Scene quiet = envelopedScene(directory, true);
+  const RobotModel& model = *quiet.robots()[0].model;
+  const std::string written = srdfString(model, model.semantics());
+  EXPECT_THAT(written, HasSubstr("<disable_default_collisions link=\"envelope\"/>"));
+  EXPECT_THAT(written, HasSubstr("<enable_collisions link1=\"envelope\" link2=\"tip\"/>"));
+}
+
+}  // namespace
+}  // namespace lang2manip::test
