@@ -93,6 +93,23 @@ TEST(CheckCli, ARobotBaseRestingOnTheDeskIsInContactNotInCollision) {
   EXPECT_THAT(result.output, HasSubstr("contact tolerance 0.05 m is not in [0, 0.01] m"));
 }
 
+TEST(GltfCli, WritesTheSceneAsGlbAndSaysWhenItCannot) {
+  const TempDirectory directory;
+  const auto glb = directory.path() / "desk.glb";
+  RunResult result = run("gltf panda_desk --goal -o " + glb.string());
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("wrote " + glb.string() + ": "));
+  const std::string bytes = readFileText(glb);
+  ASSERT_GE(bytes.size(), 12U);
+  EXPECT_EQ(bytes.substr(0, 4), "glTF");
+  result = run("gltf panda_desk -o " + (directory.path() / "missing" / "desk.glb").string());
+  EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("gltf: cannot write"));
+  result = run("gltf panda_desk");
+  EXPECT_NE(result.exitCode, 0);
+  EXPECT_THAT(result.output, HasSubstr("--out is required"));
+}
+
 TEST(CliPaths, ADirectoryOrADeviceGivenAsAFileSaysWhatItIs) {
   const TempDirectory directory;
   RunResult result = run("show " + directory.path().string());

@@ -23,7 +23,6 @@ using test::simpleControl;
 using ::testing::ElementsAre;
 using ::testing::ElementsAreArray;
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kProblemTolerance = 1e-9;
 
 std::string robotXml(const std::string& inner = "", const std::string& reference = "robots/arm.urdf",
@@ -167,9 +166,9 @@ TEST_F(KauthamProblemTest, ContinuousJointsMapOverPlusMinusTwoPi) {
                plannerWithQueries(oldQuery("0.9", "0.1")));
   const KauthamProblem problem = read();
   // q = -2 pi + 0.9 * 4 pi = 1.6 pi (beyond the model's own +-pi range).
-  EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.9}), "spin"), 1.6 * kPi, kProblemTolerance);
+  EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.9}), "spin"), 1.6 * std::numbers::pi, kProblemTolerance);
   // q = -2 pi + 0.1 * 4 pi = -1.6 pi
-  EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.1}), "spin"), -1.6 * kPi, kProblemTolerance);
+  EXPECT_NEAR(jointValue(problem, configurationFor(problem, {0.1}), "spin"), -1.6 * std::numbers::pi, kProblemTolerance);
 }
 
 TEST(KauthamJointRange, LimitsOrPlusMinusTwoPiForContinuousJoints) {
@@ -177,7 +176,7 @@ TEST(KauthamJointRange, LimitsOrPlusMinusTwoPiForContinuousJoints) {
   const auto range = [&](const char* joint) { return kauthamJointRange(*arm, arm->variableIndex(joint)); };
   EXPECT_EQ(range("elbow"), std::make_pair(-2.0, 3.0));
   EXPECT_EQ(range("slide"), std::make_pair(0.0, 0.4));
-  EXPECT_EQ(range("spin"), std::make_pair(-2.0 * kPi, 2.0 * kPi));
+  EXPECT_EQ(range("spin"), std::make_pair(-2.0 * std::numbers::pi, 2.0 * std::numbers::pi));
 }
 
 TEST_F(KauthamProblemTest, SafetyControllerSoftLimitsReplaceTheUrdfLimits) {

@@ -20,7 +20,6 @@ namespace {
 using ::testing::IsSupersetOf;
 
 constexpr double kSharedDataTolerance = 1e-9;
-constexpr double kPi = std::numbers::pi;
 
 /// The problems checked by hand below (relative to the shared kautham directory).
 const std::vector<std::string>& kHandChecked = test::handCheckedKauthamProblems();
@@ -305,7 +304,7 @@ TEST(KauthamSharedData, TableRoomsUsesNamedControlsOffsetsAndObstacleControls) {
   // Init: x = -125 + 0.6*250 = 25, y = -115 + 0.1*230 = -92 -> (25, -92, 50 + 50).
   const Pose init = statesFor(problem, query.init).basePoses[0];
   expectTranslation(init, Vector3(25, -92, 100));
-  expectYaw(init, kPi / 2);
+  expectYaw(init, std::numbers::pi / 2);
   // Goal: x = -125 + 0.85*250 = 87.5, y = -115 + 0.85*230 = 80.5.
   expectTranslation(statesFor(problem, query.goal).basePoses[0], Vector3(87.5, 80.5, 100));
   // Obstacles (same limits, X3 offset 0.5: a yaw of pi):
@@ -313,10 +312,10 @@ TEST(KauthamSharedData, TableRoomsUsesNamedControlsOffsetsAndObstacleControls) {
   //   smallbox: Home z 35; x = -125 + 0.8*250 = 75, y = -115 + 0.8*230 = 69 -> (75, 69, 85)
   const Pose& bigbox = problem.scene.object("bigbox").pose;
   expectTranslation(bigbox, Vector3(0, 46, 90));
-  expectYaw(bigbox, kPi);
+  expectYaw(bigbox, std::numbers::pi);
   const Pose& smallbox = problem.scene.object("smallbox").pose;
   expectTranslation(smallbox, Vector3(75, 69, 85));
-  expectYaw(smallbox, kPi);
+  expectYaw(smallbox, std::numbers::pi);
   expectTranslation(problem.scene.object("rooms2").pose, Vector3(0, 0, 25));
 }
 

@@ -22,6 +22,7 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   addBenchCommand(app, out);
   addXacroCommand(app, out);
   addDescribeCommand(app, out);
+  addGltfCommand(app, out);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

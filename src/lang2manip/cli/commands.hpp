@@ -46,6 +46,10 @@ void addRunCommand(CLI::App& app, std::ostream& out);
 /// expands to.
 void addXacroCommand(CLI::App& app, std::ostream& out);
 
+/// `lang2manip gltf [PROBLEM] -o FILE [--collision] [--goal]`: the scene, robots at the first
+/// query's start (or goal), as a glTF binary file.
+void addGltfCommand(CLI::App& app, std::ostream& out);
+
 /// `lang2manip describe [PROBLEM] [--write-srdf FILE] [--json]`: the arms, tool frames, grippers
 /// (measured by forward kinematics), named states and object semantics lang2manip understood.
 void addDescribeCommand(CLI::App& app, std::ostream& out);
