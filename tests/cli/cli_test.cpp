@@ -28,6 +28,31 @@ TEST(Cli, ProblemsListsTheBuiltInProblemsWithTheDefaultFirst) {
   EXPECT_TRUE(list[0]["default"].get<bool>());
 }
 
+TEST(Cli, UsageErrorsExitOneAndHelpExitsZero) {
+  RunResult result = run("run --rounds x");
+  EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("Could not convert: --rounds = x"));
+  result = run("frobnicate");
+  EXPECT_EQ(result.exitCode, 1) << result.output;
+  result = run("gltf panda_desk");
+  EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_EQ(run("--help").exitCode, 0);
+  EXPECT_EQ(run("run --help").exitCode, 0);
+  EXPECT_EQ(run("--version").exitCode, 0);
+}
+
+TEST(Cli, ADashTaskIsReadFromStandardInput) {
+  RunResult result = run("plan --task -", true, "printf '  put the marker in the holder\\n' |");
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("plan for \"put the marker in the holder\" by offline"));
+  result = run("plan --task -", true, "true |");
+  EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("must not be empty"));
+  result = run("plan --task -", true, "head -c 70000 /dev/zero | tr '\\0' x |");
+  EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("longer than 64 KiB"));
+}
+
 TEST(Cli, ShowDefaultsToThePaperScene) {
   const RunResult result = run("show");
   EXPECT_EQ(result.exitCode, 0) << result.output;

@@ -26,7 +26,9 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
-    return app.exit(error, out, err);
+    // CLI11 prints help and usage errors; its own codes (105 and up) are not ours: a command line
+    // that cannot be used is bad input like any other (exit 1), help and --version are success.
+    return app.exit(error, out, err) == 0 ? 0 : 1;
   } catch (const TaskFailedError& error) {
     err << "lang2manip: " << error.what() << '\n';
     return 2;

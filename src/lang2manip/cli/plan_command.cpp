@@ -106,7 +106,7 @@ void addPlanCommand(CLI::App& app, std::ostream& out) {
                           defaultProblemName() + ")");
   command->add_option("--robot", options->robot, "Built-in robot for MoveIt scenes")->capture_default_str();
   addSceneOptions(*command, options->scene);
-  command->add_option("--task", options->task, "The instruction, e.g. \"put the marker and eraser in the holder\"");
+  addTaskOption(*command, options->task, "The instruction, e.g. \"put the marker and eraser in the holder\"");
   addTaskPlannerOptions(*command, options->planner);
   command->add_option("--rounds", options->rounds, "Planner rounds at most (repairs included)")->capture_default_str();
   command->add_flag("--json", options->json, "Print the plan as JSON ({\"actions\":[...]}), as later stages read it");

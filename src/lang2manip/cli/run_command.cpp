@@ -158,7 +158,7 @@ void addRunCommand(CLI::App& app, std::ostream& out) {
              "verify it, and write the plan, trajectories and a report");
   command->add_option("PROBLEM", options->problem,
                       "Built-in problem name, Kautham problem .xml, or MoveIt scene .yaml (default: " + defaultProblemName() + ")");
-  command->add_option("--task", options->task, "The instruction")->capture_default_str();
+  addTaskOption(*command, options->task, "The instruction")->capture_default_str();
   addTaskPlannerOptions(*command, options->planner);
   command->add_option("--planner", options->motionPlanner,
                       "Motion planner of the actions that name none (OMPL or Kautham name; default RRTConnect)");

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <optional>
 #include <sstream>
 #include <utility>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/language/offline_task_planner.hpp"
 #include "lang2manip/llm/http_transport.hpp"
 #include "lang2manip/llm/llm_client_factory.hpp"
@@ -87,6 +89,22 @@ std::string llmLabel(const TaskPlannerChoice& choice) {
 }
 
 }  // namespace
+
+std::string taskFromStandardInput() {
+  constexpr std::size_t kMaxTaskBytes = 64 * 1024;
+  std::string text;
+  char buffer[4096];
+  while (std::cin.read(buffer, sizeof buffer) || std::cin.gcount() > 0) {
+    text.append(buffer, static_cast<std::size_t>(std::cin.gcount()));
+    if (text.size() > kMaxTaskBytes) throw CLI::ValidationError("--task -", "the instruction on standard input is longer than 64 KiB");
+  }
+  return std::string(trimmed(text));
+}
+
+CLI::Option* addTaskOption(CLI::App& command, std::string& task, const std::string& description) {
+  return command.add_option("--task", task, description + " (\"-\": read it from standard input)")
+      ->transform([](std::string value) { return value == "-" ? taskFromStandardInput() : value; }, "", "stdin");
+}
 
 void addTaskPlannerOptions(CLI::App& command, TaskPlannerChoice& choice) {
   command.add_option("--llm", choice.llm, "Task planner: " + validChoices())->capture_default_str();

@@ -40,6 +40,10 @@ struct TaskPlannerChoice {
 /// writing into `choice` (which must outlive the command).
 void addTaskPlannerOptions(CLI::App& command, TaskPlannerChoice& choice);
 
+/// Adds `--task TEXT` writing into `task`; "-" reads the instruction from standard input (at
+/// most 64 KiB; surrounding whitespace dropped).
+CLI::Option* addTaskOption(CLI::App& command, std::string& task, const std::string& description);
+
 /// A ready task planner with the LLM client it uses (none for the offline planner).
 class SelectedTaskPlanner {
  public:
