@@ -53,6 +53,18 @@ TEST(Cli, ADashTaskIsReadFromStandardInput) {
   EXPECT_THAT(result.output, HasSubstr("longer than 64 KiB"));
 }
 
+TEST(Cli, RunJsonPrintsTheReport) {
+  const test::TempDirectory directory;
+  RunResult result = run("run --json --task \"pick up the marker\" --out " + directory.path().string(), false);
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  const nlohmann::json report = nlohmann::json::parse(result.output);
+  EXPECT_TRUE(report["success"].get<bool>());
+  EXPECT_EQ(report, nlohmann::json::parse(test::readFileText(directory.path() / "report.json")));
+  result = run("run --json --rounds 1 --task \"put the holder in the marker\" --out " + directory.path().string(), false);
+  EXPECT_EQ(result.exitCode, 2);
+  EXPECT_FALSE(nlohmann::json::parse(result.output)["success"].get<bool>());
+}
+
 TEST(Cli, ShowDefaultsToThePaperScene) {
   const RunResult result = run("show");
   EXPECT_EQ(result.exitCode, 0) << result.output;

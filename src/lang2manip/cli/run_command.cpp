@@ -43,6 +43,7 @@ struct RunOptions {
   double timeLimit = ExecutionSettings{}.planningTimeSeconds;
   double ikTimeout = ExecutionSettings{}.reach.ikTimeoutSeconds;
   std::string out = "lang2manip-run";
+  bool json = false;
 };
 
 void checkOptions(const RunOptions& options) {
@@ -145,7 +146,11 @@ void runTask(const RunOptions& options, std::ostream& out) {
   if (!executor.executions().empty()) outcome.execution = &executor.lastExecution();
   outcome.totalSeconds = secondsSince(began);
   writeOutputs(directory, outcome);
-  out << runSummary(outcome) << "  wrote " << directory.string() << "/ (plan.json, trajectory.json, trajectory.csv, report.json)\n";
+  if (options.json) {
+    out << runReportJson(outcome).dump(2) << '\n';
+  } else {
+    out << runSummary(outcome) << "  wrote " << directory.string() << "/ (plan.json, trajectory.json, trajectory.csv, report.json)\n";
+  }
   if (!outcome.success()) throw TaskFailedError("run: the task did not succeed; see " + (directory / "report.json").string());
 }
 
@@ -171,6 +176,7 @@ void addRunCommand(CLI::App& app, std::ostream& out) {
   command->add_option("--time-limit", options->timeLimit, "Seconds one motion query may take")->capture_default_str();
   command->add_option("--ik-timeout", options->ikTimeout, "Seconds of IK search per pose")->capture_default_str();
   command->add_option("--out", options->out, "Output directory")->capture_default_str();
+  command->add_flag("--json", options->json, "Print the report (report.json) to standard output instead of the summary");
   command->callback([options, &out] { runTask(*options, out); });
 }
 
