@@ -7,8 +7,11 @@
 // Per edge: isMotionValid() at a fixed resolution (kEdgeResolution rad per sample) on short
 // edges from a valid state to a random neighbour (each joint moved up to kEdgeReach rad), like a
 // planner's edges, for the same scenes and the same two variants.
+// MeshTrees: milliseconds to get the FCL trees of the TX90 + gripper's meshes, rebuilt (the
+// baseline: what each checker did before the process-wide cache), rebuilt on every core, cached.
 // Counters: median_us and p95_us per check or edge (each timed alone), valid = fraction valid,
-// states_per_edge = states an edge holds at the resolution.
+// states_per_edge = states an edge holds at the resolution, median_over_default = a variant's
+// median state check over the default checker's.
 //
 //   build/benchmarks/collision_benchmark [--benchmark_filter=Desk]
 
@@ -22,8 +25,11 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <thread>
+#include <variant>
 
 #include "lang2manip/collision/fcl_collision_checker.hpp"
+#include "lang2manip/collision/fcl_mesh_cache.hpp"
 #include "lang2manip/core/random.hpp"
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/model/kautham_problem.hpp"
@@ -112,6 +118,19 @@ Fixture& fixture(const std::string& scene, Variant variant) {
   return entry;
 }
 
+/// Stores the median of the default variant of `key`; for another variant, prints its median
+/// over the default's as "median_over_default" (the default runs first, in the same process).
+void reportRatioToDefault(benchmark::State& state, const std::string& key, Variant variant) {
+  static std::map<std::string, double> defaultMedians;
+  if (state.counters.count("median_us") == 0) return;
+  const double median = state.counters["median_us"];
+  if (variant == Variant::kDefault) {
+    defaultMedians[key] = median;
+  } else if (const auto found = defaultMedians.find(key); found != defaultMedians.end() && found->second > 0.0) {
+    state.counters["median_over_default"] = median / found->second;
+  }
+}
+
 void checkStates(benchmark::State& state, const std::string& scene, Variant variant, bool validOnly) {
   if (scene == "tx90" && !std::filesystem::exists(tx90Problem())) {
     state.SkipWithError(("../shared is absent: " + tx90Problem().string() + " not found").c_str());
@@ -140,6 +159,7 @@ void checkStates(benchmark::State& state, const std::string& scene, Variant vari
   }
   state.counters["valid"] = static_cast<double>(valid) / static_cast<double>(std::max<std::int64_t>(state.iterations(), 1));
   state.counters["pairs"] = static_cast<double>(f.checker->pairCount(0));
+  reportRatioToDefault(state, scene + (validOnly ? "/valid" : "/random"), variant);
 }
 
 void checkEdges(benchmark::State& state, const std::string& scene, Variant variant) {
@@ -176,7 +196,58 @@ void checkEdges(benchmark::State& state, const std::string& scene, Variant varia
   state.counters["states_per_edge"] = states / edges;
 }
 
+/// How a checker gets the FCL trees of a robot's meshes.
+enum class TreeSource { kBuiltPerChecker, kBuiltPerCheckerOnAllCores, kSharedCache };
+
+/// Milliseconds to get the trees of every collision mesh of the TX90 + gripper scene: built
+/// anew on one thread (what every checker did before the process-wide cache, the baseline run
+/// first), built anew on every core, or found in the cache. Counter median_over_rebuilt.
+void meshTrees(benchmark::State& state, TreeSource source) {
+  if (!std::filesystem::exists(tx90Problem())) {
+    state.SkipWithError(("../shared is absent: " + tx90Problem().string() + " not found").c_str());
+    return;
+  }
+  static double rebuiltMedian = 0.0;
+  const Scene scene = sceneNamed("tx90");
+  std::vector<MeshGeometry> meshes;
+  for (const Link& link : scene.robots().front().model->links()) {
+    for (const Shape& shape : link.collisions) {
+      if (const auto* mesh = std::get_if<MeshGeometry>(&shape.geometry)) meshes.push_back(*mesh);
+    }
+  }
+  if (source == TreeSource::kSharedCache) {
+    for (const MeshGeometry& mesh : meshes) (void)sharedMeshBvh(mesh);  // in the cache before timing
+  }
+  std::vector<double> times;
+  for (auto _ : state) {
+    std::vector<MeshGeometry> fresh = meshes;
+    if (source != TreeSource::kSharedCache) {
+      for (MeshGeometry& mesh : fresh) mesh.mesh = std::make_shared<const TriangleMesh>(*mesh.mesh);
+    }
+    std::vector<const MeshGeometry*> pointers;
+    for (const MeshGeometry& mesh : fresh) pointers.push_back(&mesh);
+    const auto start = std::chrono::steady_clock::now();
+    prebuildMeshBvhs(pointers, source == TreeSource::kBuiltPerChecker ? 1U : std::thread::hardware_concurrency());
+    for (const MeshGeometry& mesh : fresh) benchmark::DoNotOptimize(sharedMeshBvh(mesh));
+    times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::sort(times.begin(), times.end());
+  const double median = times[times.size() / 2];
+  state.counters["median_ms"] = median;
+  state.counters["p95_ms"] = times[times.size() * 95 / 100];
+  if (source == TreeSource::kBuiltPerChecker) rebuiltMedian = median;
+  if (source != TreeSource::kBuiltPerChecker && rebuiltMedian > 0.0) state.counters["median_over_rebuilt"] = median / rebuiltMedian;
+}
+
 void registerAll() {
+  for (const auto& [name, source] : {std::pair{"MeshTrees/tx90/built_per_checker", TreeSource::kBuiltPerChecker},
+                                     std::pair{"MeshTrees/tx90/built_per_checker_on_all_cores", TreeSource::kBuiltPerCheckerOnAllCores},
+                                     std::pair{"MeshTrees/tx90/shared_cache", TreeSource::kSharedCache}}) {
+    const TreeSource chosen = source;
+    benchmark::RegisterBenchmark(name, [chosen](benchmark::State& state) { meshTrees(state, chosen); })
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(20);
+  }
   for (const std::string scene : {"self", "desk", "tx90"}) {
     for (const bool validOnly : {false, true}) {
       for (const Variant variant : {Variant::kDefault, Variant::kNoPrecheck, Variant::kStrictContacts}) {

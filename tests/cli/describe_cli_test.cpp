@@ -37,6 +37,16 @@ const char* const kHingedGripperRobot = R"(<robot name="hinged">
 </robot>
 )";
 
+/// The hinged robot without its fingers (a bare palm), written as bare.urdf in `directory`.
+fs::path writeBareRobot(const TempDirectory& directory) {
+  std::string robot = kHingedGripperRobot;
+  robot.erase(robot.find("  <joint name=\"left_hinge\""), robot.find("</robot>") - robot.find("  <joint name=\"left_hinge\""));
+  robot.erase(robot.find("  <link name=\"left\">"), robot.find("  <joint name=\"shoulder\"") - robot.find("  <link name=\"left\">"));
+  const fs::path urdf = directory.path() / "bare.urdf";
+  std::ofstream(urdf) << robot;
+  return urdf;
+}
+
 TEST(DescribeCli, TheBuiltInPandaIsDescribedFromItsSrdfAndItsFingers) {
   const RunResult result = run("describe panda_desk", false);
   EXPECT_EQ(result.exitCode, 0) << result.output;
@@ -72,11 +82,7 @@ TEST(DescribeCli, AnInferredGripperIsWrittenAsAnSrdfThatReadsBackTheSame) {
 
 TEST(DescribeCli, ARobotWithoutGripperSaysItCannotPick) {
   const TempDirectory directory;
-  std::string robot = kHingedGripperRobot;
-  robot.erase(robot.find("  <joint name=\"left_hinge\""), robot.find("</robot>") - robot.find("  <joint name=\"left_hinge\""));
-  robot.erase(robot.find("  <link name=\"left\">"), robot.find("  <joint name=\"shoulder\"") - robot.find("  <link name=\"left\">"));
-  const fs::path urdf = directory.path() / "bare.urdf";
-  std::ofstream(urdf) << robot;
+  const fs::path urdf = writeBareRobot(directory);
   const RunResult result = run("describe " + urdf.string(), false);
   EXPECT_EQ(result.exitCode, 0) << result.output;
   EXPECT_THAT(result.output, HasSubstr("gripper: none (moves and pushes; cannot pick)"));
@@ -85,11 +91,7 @@ TEST(DescribeCli, ARobotWithoutGripperSaysItCannotPick) {
 
 TEST(DescribeCli, TheApproachAxisIsSetOnTheCommandLineAndKeptInTheSrdf) {
   const TempDirectory directory;
-  std::string robot = kHingedGripperRobot;
-  robot.erase(robot.find("  <joint name=\"left_hinge\""), robot.find("</robot>") - robot.find("  <joint name=\"left_hinge\""));
-  robot.erase(robot.find("  <link name=\"left\">"), robot.find("  <joint name=\"shoulder\"") - robot.find("  <link name=\"left\">"));
-  const fs::path urdf = directory.path() / "bare.urdf";
-  std::ofstream(urdf) << robot;
+  const fs::path urdf = writeBareRobot(directory);
   const fs::path srdf = directory.path() / "written.srdf";
   const RunResult given = run("describe " + urdf.string() + " --approach-axis=-x --write-srdf " + srdf.string(), false);
   ASSERT_EQ(given.exitCode, 0) << given.output;

@@ -229,10 +229,14 @@ class GlbBuilder {
   std::map<std::tuple<int, double, double, double, double>, int> meshes_;
 };
 
+void requireRoundSegments(int roundSegments) {
+  if (roundSegments < 3) throw InputError("glTF: a round shape needs at least 3 segments, got " + std::to_string(roundSegments));
+}
+
 }  // namespace
 
 TriangleMesh tessellated(const Geometry& geometry, int roundSegments) {
-  if (roundSegments < 3) throw InputError("glTF: a round shape needs at least 3 segments, got " + std::to_string(roundSegments));
+  requireRoundSegments(roundSegments);
   if (const auto* box = std::get_if<Box>(&geometry)) return boxMesh(box->size);
   if (const auto* sphere = std::get_if<Sphere>(&geometry)) return sphereMesh(sphere->radius, roundSegments);
   if (const auto* cylinder = std::get_if<Cylinder>(&geometry)) return cylinderMesh(cylinder->radius, cylinder->length, roundSegments);
@@ -246,7 +250,7 @@ TriangleMesh tessellated(const Geometry& geometry, int roundSegments) {
 }
 
 std::string sceneToGlb(const Scene& scene, const GltfOptions& options, GltfSummary* summary) {
-  if (options.roundSegments < 3) (void)tessellated(Box{}, options.roundSegments);
+  requireRoundSegments(options.roundSegments);
   GlbBuilder builder(options);
   for (const SceneRobot& robot : scene.robots()) {
     const std::vector<Pose> X_BL = robot.model->linkPoses(robot.configuration);
