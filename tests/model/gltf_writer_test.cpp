@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "lang2manip/core/error.hpp"
@@ -60,6 +61,7 @@ std::size_t checkPrimitives(const Glb& glb) {
   std::size_t triangles = 0;
   for (const json& mesh : glb.document["meshes"]) {
     for (const json& primitive : mesh["primitives"]) {
+      if (primitive.contains("mode")) continue;  // lines: checked by checkLines()
       const json& position = accessors[primitive["attributes"]["POSITION"].get<std::size_t>()];
       const json& index = accessors[primitive["indices"].get<std::size_t>()];
       const json& positionView = views[position["bufferView"].get<std::size_t>()];
@@ -117,35 +119,100 @@ TEST(GltfWriter, PrimitivesAreClosedSurfacesOfTheirSize) {
   EXPECT_THROW((void)tessellated(Sphere{0.3}, 2), InputError);
 }
 
-TEST(GltfWriter, ThePaperSceneIsAValidGlbWithEveryShape) {
+/// The body nodes (children of the root) by name.
+std::map<std::string, json> bodiesOf(const Glb& glb) {
+  std::map<std::string, json> bodies;
+  for (const json& child : glb.document["nodes"][0]["children"]) {
+    const json& node = glb.document["nodes"][child.get<std::size_t>()];
+    if (node.contains("extras")) bodies[node["name"]] = node;
+  }
+  return bodies;
+}
+
+/// Names of the children of `node`.
+std::vector<std::string> childNames(const Glb& glb, const json& node) {
+  std::vector<std::string> names;
+  for (const json& child : node.value("children", json::array())) names.push_back(glb.document["nodes"][child.get<std::size_t>()]["name"]);
+  return names;
+}
+
+TEST(GltfWriter, ThePaperSceneIsAValidGlbWithEveryBody) {
   const Scene scene = readKauthamProblem(resolveProblem("panda_desk")).scene;
   GltfSummary summary;
   const Glb glb = parseGlb(sceneToGlb(scene, {}, &summary));
   EXPECT_EQ(glb.document["asset"]["version"], "2.0");
   EXPECT_EQ(checkPrimitives(glb), static_cast<std::size_t>(summary.triangles));
-  const json& nodes = glb.document["nodes"];
-  EXPECT_EQ(nodes.size(), static_cast<std::size_t>(summary.nodes) + 1);
-  EXPECT_EQ(nodes[0]["children"].size(), static_cast<std::size_t>(summary.nodes));
-  std::vector<std::string> names;
-  for (const json& node : nodes) names.push_back(node["name"]);
-  for (const char* expected : {"marker", "holder", "desk", "panda/panda_hand"}) {
-    EXPECT_TRUE(std::any_of(names.begin(), names.end(), [&](const std::string& n) { return n.rfind(expected, 0) == 0; })) << expected;
+  EXPECT_EQ(glb.document["nodes"].size(), static_cast<std::size_t>(summary.nodes) + 1);
+  const std::map<std::string, json> bodies = bodiesOf(glb);
+  std::size_t links = 0;
+  for (const SceneRobot& robot : scene.robots()) links += robot.model->links().size();
+  EXPECT_EQ(bodies.size(), links + scene.objects().size());
+  for (const char* expected : {"marker", "holder", "desk", "panda/panda_hand"}) EXPECT_EQ(bodies.count(expected), 1U) << expected;
+  EXPECT_EQ(bodies.at("marker")["extras"]["kind"], "object");
+  EXPECT_EQ(bodies.at("panda/panda_hand")["extras"]["kind"], "link");
+  // Every body node carries its world pose: the marker lies on the desk at (0.02, -0.18).
+  EXPECT_NEAR(bodies.at("marker")["translation"][1].get<double>(), -0.18, 0.01);
+  EXPECT_EQ(childNames(glb, bodies.at("marker")), std::vector<std::string>{"visual"});
+
+  // Collision geometry instead of visuals, and both for the viewer: different, still valid files.
+  for (const GltfGeometry geometry : {GltfGeometry::kCollision, GltfGeometry::kBoth}) {
+    GltfOptions options;
+    options.geometry = geometry;
+    GltfSummary other;
+    const Glb otherGlb = parseGlb(sceneToGlb(scene, options, &other));
+    // Triangles are written once per geometry; meshes of two colours may share them.
+    EXPECT_GE(checkPrimitives(otherGlb), static_cast<std::size_t>(other.triangles));
+    const std::vector<std::string> groups = childNames(otherGlb, bodiesOf(otherGlb).at("panda/panda_hand"));
+    const std::vector<std::string> expected =
+        geometry == GltfGeometry::kBoth ? std::vector<std::string>{"visual", "collision"} : std::vector<std::string>{"collision"};
+    EXPECT_EQ(groups, expected);
   }
-  // Every shape's node carries its world pose: the marker lies on the desk at (0.02, -0.18).
-  for (const json& node : nodes) {
-    if (node["name"] == "marker") {
-      EXPECT_NEAR(node["translation"][1].get<double>(), -0.18, 0.01);
-    }
-  }
-  // Collision geometry instead of visuals: a different, still valid file.
-  GltfOptions collision;
-  collision.collision = true;
-  GltfSummary collisionSummary;
-  const Glb collisionGlb = parseGlb(sceneToGlb(scene, collision, &collisionSummary));
-  EXPECT_EQ(checkPrimitives(collisionGlb), static_cast<std::size_t>(collisionSummary.triangles));
   GltfOptions bad;
   bad.roundSegments = 0;
   EXPECT_THROW((void)sceneToGlb(scene, bad), InputError);
+}
+
+TEST(GlbBuilder, AnimationsAndLinesAreValid) {
+  GlbBuilder builder(GltfGeometry::kVisual, 12);
+  const Shape box{Box{Vector3(0.1, 0.1, 0.1)}, Pose::Identity(), std::nullopt, ""};
+  const int body = builder.addBody("cube", "object", {box}, {}, Pose::Identity());
+  std::vector<Pose> poses(3, Pose::Identity());
+  poses[1].translation() = Vector3(0.5, 0.0, 0.0);
+  poses[2].linear() = Eigen::AngleAxisd(3.0, Vector3::UnitZ()).toRotationMatrix();
+  builder.addAnimation("trajectory", {0.0, 0.5, 1.25}, {{body, poses}});
+  builder.addPolyline("tool_paths", "tool_path/0", {Vector3::Zero(), Vector3::UnitX(), Vector3::UnitY()}, Vector4(1, 0, 0, 1));
+  builder.addLines("exploration_tree", "exploration_tree/edges", {{Vector3::Zero(), Vector3::UnitZ()}}, Vector4(0, 1, 0, 1));
+  EXPECT_THROW(builder.addAnimation("bad", {0.0, 0.0}, {{body, {Pose::Identity(), Pose::Identity()}}}), InputError);
+  EXPECT_THROW(builder.addAnimation("bad", {0.0, 1.0}, {{body, {Pose::Identity()}}}), InputError);
+  const Glb glb = parseGlb(builder.finish());
+  const json& animation = glb.document["animations"][0];
+  EXPECT_EQ(animation["name"], "trajectory");
+  ASSERT_EQ(animation["channels"].size(), 2U);
+  const json& accessors = glb.document["accessors"];
+  for (const json& sampler : animation["samplers"]) {
+    const json& input = accessors[sampler["input"].get<std::size_t>()];
+    EXPECT_EQ(input["count"], 3);
+    EXPECT_FLOAT_EQ(input["max"][0].get<float>(), 1.25F);
+    const json& output = accessors[sampler["output"].get<std::size_t>()];
+    EXPECT_EQ(output["count"], 3);
+    const json& view = glb.document["bufferViews"][output["bufferView"].get<std::size_t>()];
+    EXPECT_EQ(view["byteLength"].get<std::size_t>(), 3U * (output["type"] == "VEC3" ? 12U : 16U));
+  }
+  for (const json& channel : animation["channels"]) EXPECT_EQ(channel["target"]["node"], body);
+  std::map<std::string, int> modes;
+  for (const json& node : glb.document["nodes"]) {
+    if (!node.contains("mesh")) continue;
+    const json& primitive = glb.document["meshes"][node["mesh"].get<std::size_t>()]["primitives"][0];
+    modes[node["name"]] = primitive.value("mode", 4);
+  }
+  EXPECT_EQ(modes.at("tool_path/0"), 3);
+  EXPECT_EQ(modes.at("exploration_tree/edges"), 1);
+  EXPECT_EQ(modes.at("cube"), 4);
+  for (const json& node : glb.document["nodes"]) {
+    if (node.contains("children")) {
+      EXPECT_FALSE(node["children"].empty()) << node["name"];
+    }
+  }
 }
 
 TEST(GltfWriter, MeshesAreWrittenOncePerMeshAndScale) {
@@ -166,7 +233,8 @@ TEST(GltfWriter, MeshesAreWrittenOncePerMeshAndScale) {
   GltfSummary summary;
   const Glb glb = parseGlb(sceneToGlb(scene, {}, &summary));
   EXPECT_EQ(glb.document["accessors"].size(), 4U);
-  EXPECT_EQ(summary.nodes, 3);
+  EXPECT_EQ(bodiesOf(glb).size(), 4U);
+  EXPECT_EQ(std::count_if(glb.document["nodes"].begin(), glb.document["nodes"].end(), [](const json& node) { return node.contains("mesh"); }), 3);
   EXPECT_EQ(summary.unloadedMeshes, 1);
   EXPECT_EQ(glb.document["meshes"].size(), 2U);
   EXPECT_EQ(checkPrimitives(glb), 2U * 12U);

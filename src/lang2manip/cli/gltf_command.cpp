@@ -36,7 +36,7 @@ Scene posedScene(const LoadedProblem& loaded, bool goal) {
 void writeGltf(const GltfCommandOptions& options, std::ostream& out) {
   const LoadedProblem loaded = loadProblem(options.problem, options.robot, options.scene);
   GltfOptions gltf;
-  gltf.collision = options.collision;
+  gltf.geometry = options.collision ? GltfGeometry::kCollision : GltfGeometry::kVisual;
   GltfSummary summary;
   const std::string glb = sceneToGlb(posedScene(loaded, options.goal), gltf, &summary);
   std::ofstream file(options.out, std::ios::binary);

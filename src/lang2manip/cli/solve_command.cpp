@@ -13,6 +13,7 @@
 #include "lang2manip/cli/problem_loading.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/model/builtin_data.hpp"
+#include "lang2manip/planning/motion_plan_json.hpp"
 #include "lang2manip/planning/planning_session.hpp"
 
 namespace lang2manip {
@@ -43,31 +44,14 @@ void configurePlanner(PlanningSession& session, const SolveOptions& options) {
   if (options.timeLimit > 0.0) session.setPlannerParameter("_Max Planning Time", std::to_string(options.timeLimit));
 }
 
-json statisticsJson(const MotionPlanStatistics& statistics) {
-  return {{"planning_seconds", statistics.planningSeconds},
-          {"simplify_seconds", statistics.simplifySeconds},
-          {"parameterization_seconds", statistics.parameterizationSeconds},
-          {"verification_seconds", statistics.verificationSeconds},
-          {"iterations", statistics.iterations},
-          {"vertices", statistics.vertices},
-          {"edges", statistics.edges},
-          {"state_checks", statistics.stateChecks},
-          {"motion_checks", statistics.motionChecks},
-          {"length_before_simplification", statistics.lengthBeforeSimplification},
-          {"length_after_simplification", statistics.lengthAfterSimplification},
-          {"rejected_paths", statistics.rejectedPaths}};
-}
-
 json queryJson(std::size_t index, const PlanningSession& session, const MotionPlan& plan) {
-  json path = json::array();
-  for (const VectorX& point : plan.path) path.push_back(std::vector<double>(point.data(), point.data() + point.size()));
   return {{"query", index + 1},
           {"status", motionPlanStatusName(plan.status)},
           {"message", plan.message},
           {"planner", session.plannerSettings().planner()},
-          {"statistics", statisticsJson(plan.statistics)},
+          {"statistics", motionPlanStatisticsToJson(plan.statistics)},
           {"path_dof_names", session.pathDofNames()},
-          {"path", path},
+          {"path", pathToJson(plan.path)},
           {"trajectory", trajectoryToJson(plan.trajectory)},
           {"duration", plan.trajectory.duration()}};
 }
@@ -126,7 +110,7 @@ json rejectedQueryJson(std::size_t index, const PlanningSession& session, const 
           {"status", "invalid_query"},
           {"message", reason},
           {"planner", session.plannerSettings().planner()},
-          {"statistics", statisticsJson(MotionPlanStatistics{})},
+          {"statistics", motionPlanStatisticsToJson(MotionPlanStatistics{})},
           {"path_dof_names", session.pathDofNames()},
           {"path", json::array()},
           {"trajectory", json()},

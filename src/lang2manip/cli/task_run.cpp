@@ -1,10 +1,21 @@
 #include "lang2manip/cli/task_run.hpp"
 
+#include <chrono>
+
+#include <ompl/util/RandomNumbers.h>
+
+#include "lang2manip/cli/run_report.hpp"
 #include "lang2manip/language/instruction.hpp"
 #include "lang2manip/language/object_descriptor.hpp"
+#include "lang2manip/symbolic/llm_task_planner.hpp"
+#include "lang2manip/symbolic/observation.hpp"
+#include "lang2manip/symbolic/plan_json.hpp"
+#include "lang2manip/symbolic/plan_prompt.hpp"
 
 namespace lang2manip {
 namespace {
+
+using Clock = std::chrono::steady_clock;
 
 void chooseGoals(const std::string& task, const Scene& scene, const std::string& robot, TaskRun& run) {
   try {
@@ -17,9 +28,44 @@ void chooseGoals(const std::string& task, const Scene& scene, const std::string&
   if (run.repair.plan) run.goals = goalsImpliedByPlan(*run.repair.plan);
 }
 
+ExecutionSettings executionSettings(const RunRequest& request) {
+  ExecutionSettings settings;
+  settings.manipulator = request.arm;
+  if (!request.motionPlanner.empty()) settings.defaultPlanner = request.motionPlanner;
+  if (!request.ik.empty()) settings.ikSolver = request.ik;
+  settings.seed = static_cast<std::uint64_t>(request.seed);
+  settings.planningTimeSeconds = request.timeLimit;
+  settings.reach.ikTimeoutSeconds = request.ikTimeout;
+  return settings;
+}
+
+void observe(const RunRequest& request, const Scene& scene, const std::string& robot, RunDocuments& documents,
+             double& observationSeconds) {
+  const auto began = Clock::now();
+  ObservationOptions options;
+  options.robot = robot;
+  documents.observation = observeEnvironment(scene, options);
+  observationSeconds = secondsSince(began);
+  documents.observationText = observationText(documents.observation);
+  PlanningRequest planning;
+  planning.task = request.task;
+  planning.scene = &scene;
+  planning.robot = robot;
+  const LlmRequest llm = buildPlanRequest(planning, defaultLlmTaskPlannerOptions());
+  documents.prompt = renderPrompt(llm.system, llm.messages);
+}
+
+/// The accepted plan, else the last one that was parsed.
+const Plan* planOf(const RepairResult& repair) {
+  if (repair.plan) return &*repair.plan;
+  if (!repair.rounds.empty() && repair.rounds.back().plan) return &*repair.rounds.back().plan;
+  return nullptr;
+}
+
 }  // namespace
 
-TaskRun planExecuteAndVerify(TaskPlanner& planner, TaskExecutor& executor, const std::string& task, int rounds) {
+TaskRun planExecuteAndVerify(TaskPlanner& planner, TaskExecutor& executor, const std::string& task, int rounds,
+                             const RunControl& control) {
   const Scene& scene = executor.initialScene();
   PlanningRequest request;
   request.task = task;
@@ -27,13 +73,56 @@ TaskRun planExecuteAndVerify(TaskPlanner& planner, TaskExecutor& executor, const
   request.robot = executor.arm().robotName();
   RepairOptions options;
   options.maxRounds = rounds;
+  options.progress = control.progress;
+  executor.setProgressSink(control.progress);
   TaskRun run;
-  run.repair = planWithRepair(planner, request, &executor, options, StopCondition::never());
+  run.repair = planWithRepair(planner, request, &executor, options, control.stop);
+  executor.setProgressSink({});
   chooseGoals(task, scene, request.robot, run);
   if (!executor.executions().empty()) {
+    report(control.progress, {ProgressStage::kVerify, 0, -1, "", ""});
     run.verification = verifyExecution(executor.arm(), scene, executor.lastExecution(), run.goals);
   }
   return run;
+}
+
+RunDocuments runTask(const RunRequest& request, const RunControl& control) {
+  const auto began = Clock::now();
+  const LoadedProblem loaded = loadProblem(request.problem, request.robot, request.scene);
+  const Scene& scene = loaded.problem.scene;
+  TaskExecutor executor(scene, executionSettings(request));
+  const SelectedTaskPlanner selected = makeTaskPlanner(request.planner);
+  ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(request.seed));
+
+  RunOutcome outcome;
+  outcome.problem = loaded.name;
+  outcome.task = request.task;
+  outcome.taskPlanner = selected.label();
+  outcome.robot = executor.arm().robotName();
+  outcome.manipulator = executor.arm().manipulator().name;
+  outcome.seed = request.seed;
+  RunDocuments documents;
+  report(control.progress, {ProgressStage::kObserve, 0, -1, "", outcome.robot});
+  observe(request, scene, outcome.robot, documents, outcome.observationSeconds);
+
+  TaskRun run = planExecuteAndVerify(selected.planner(), executor, request.task, request.rounds, control);
+  outcome.repair = std::move(run.repair);
+  outcome.goals = std::move(run.goals);
+  outcome.goalSource = std::move(run.goalSource);
+  outcome.verification = std::move(run.verification);
+  outcome.executions = &executor.executions();
+  if (!executor.executions().empty()) outcome.execution = &executor.lastExecution();
+  outcome.totalSeconds = secondsSince(began);
+
+  if (const Plan* plan = planOf(outcome.repair)) documents.plan = toJson(*plan);
+  if (outcome.execution != nullptr) {
+    documents.trajectory = runTrajectoryJson(*outcome.execution);
+    documents.trajectoryCsv = runTrajectoryCsv(*outcome.execution);
+  }
+  documents.report = runReportJson(outcome);
+  documents.summary = runSummary(outcome);
+  documents.success = outcome.success();
+  return documents;
 }
 
 }  // namespace lang2manip

@@ -1,15 +1,25 @@
 #pragma once
-/// @file One task, as `run` and `bench task` do it: planned through the repair loop with the
-/// executor grounding every answer, then the last execution verified against the goals.
+/// @file One task, as `run`, `bench task` and the server's /api/runs do it: planned through the
+/// repair loop with the executor grounding every answer, then the last execution verified against
+/// the goals; and a whole run from its request to the documents `run` writes.
 
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "lang2manip/cli/problem_loading.hpp"
+#include "lang2manip/cli/task_planner_choice.hpp"
+#include "lang2manip/core/progress.hpp"
+#include "lang2manip/core/stop_condition.hpp"
 #include "lang2manip/execution/execution_verification.hpp"
 #include "lang2manip/execution/task_executor.hpp"
 #include "lang2manip/symbolic/repair_loop.hpp"
 
 namespace lang2manip {
+
+/// The paper's task, the default instruction of `run`.
+inline constexpr const char* kPaperTask = "put the marker and eraser in the holder";
 
 struct TaskRun {
   RepairResult repair;
@@ -23,8 +33,59 @@ struct TaskRun {
   [[nodiscard]] bool success() const { return repair.succeeded() && verification.success; }
 };
 
+/// How a run may be stopped and watched.
+struct RunControl {
+  /// Ends planning and execution early (deadline or cancellation); the run then fails.
+  StopCondition stop = StopCondition::never();
+  ProgressSink progress;
+};
+
 /// Plans `task` on `executor`'s initial scene with `planner` for at most `rounds` rounds, each
 /// accepted answer executed by `executor`, and verifies the last execution.
-TaskRun planExecuteAndVerify(TaskPlanner& planner, TaskExecutor& executor, const std::string& task, int rounds);
+TaskRun planExecuteAndVerify(TaskPlanner& planner, TaskExecutor& executor, const std::string& task, int rounds,
+                             const RunControl& control = {});
+
+/// Everything that defines a run (the options of `lang2manip run`).
+struct RunRequest {
+  /// Built-in name, Kautham problem, MoveIt scene or robot description (loadProblem()).
+  std::string problem;
+  std::string robot = "panda";
+  SceneOptions scene;
+  /// The arm that executes the task; empty = the robot's first.
+  std::string arm;
+  std::string task = kPaperTask;
+  TaskPlannerChoice planner;
+  /// Motion planner of actions that name none; empty = the executor's default.
+  std::string motionPlanner;
+  /// IK solver; empty = the executor's default.
+  std::string ik;
+  int rounds = RepairOptions{}.maxRounds;
+  long seed = 1;
+  double timeLimit = ExecutionSettings{}.planningTimeSeconds;
+  double ikTimeout = ExecutionSettings{}.reach.ikTimeoutSeconds;
+};
+
+/// What a run produced: the contents of the files `run` writes.
+struct RunDocuments {
+  /// observation.json and observation.txt: what the task planner was shown.
+  nlohmann::json observation;
+  std::string observationText;
+  /// prompt.txt: the system prompt and first message an LLM planner is sent.
+  std::string prompt;
+  /// plan.json: the accepted plan, else the last plan tried; absent when no plan was parsed.
+  std::optional<nlohmann::json> plan;
+  /// trajectory.json and trajectory.csv of the last execution; absent when nothing was executed.
+  std::optional<nlohmann::json> trajectory;
+  std::string trajectoryCsv;
+  /// report.json and the summary `run` prints.
+  nlohmann::json report;
+  std::string summary;
+  bool success = false;
+};
+
+/// Loads the problem, plans, executes and verifies the task of `request`. A task that fails is a
+/// result (success false, the report says why). Throws InputError for a bad problem, arm, planner
+/// or solver name, and LlmError for an LLM planner that cannot be set up (no key, bad URL).
+RunDocuments runTask(const RunRequest& request, const RunControl& control = {});
 
 }  // namespace lang2manip

@@ -2,6 +2,7 @@
 
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/execution/action_grounding.hpp"
+#include "lang2manip/symbolic/plan_json.hpp"
 
 namespace lang2manip {
 
@@ -20,7 +21,11 @@ std::optional<GroundingFailure> TaskExecutor::execute(const Plan& plan, const St
       record.actions.push_back(std::move(skipped));
       continue;
     }
+    const int index = static_cast<int>(i);
+    report(progress_, {ProgressStage::kActionStarted, 0, index, "", describeAction(plan.actions[i])});
     ActionExecution action = executeAction(context, world, plan.actions[i], i);
+    report(progress_, {ProgressStage::kActionFinished, 0, index, actionStatusName(action.status),
+                       action.status == ActionStatus::kFailed ? action.reason : action.choice});
     record.times += action.times;
     if (action.status == ActionStatus::kFailed) {
       record.failure = GroundingFailure{i, action.stage.empty() ? "motion" : action.stage, plan.actions[i].object, action.reason};

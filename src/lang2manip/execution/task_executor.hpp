@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "lang2manip/core/progress.hpp"
 #include "lang2manip/execution/arm_motion.hpp"
 
 namespace lang2manip {
@@ -20,6 +21,9 @@ class TaskExecutor final : public PlanExecutor {
   /// Executes `plan` from the initial world; the first action that failed, or nullopt.
   std::optional<GroundingFailure> execute(const Plan& plan, const StopCondition& stop) override;
 
+  /// Told when each action starts and ends (kActionStarted, kActionFinished).
+  void setProgressSink(ProgressSink sink) { progress_ = std::move(sink); }
+
   [[nodiscard]] const Scene& initialScene() const noexcept { return initial_; }
   [[nodiscard]] const ArmContext& arm() const noexcept { return arm_; }
   /// Every execution so far, oldest first.
@@ -31,6 +35,7 @@ class TaskExecutor final : public PlanExecutor {
   Scene initial_;
   ArmContext arm_;
   std::vector<ExecutionRecord> executions_;
+  ProgressSink progress_;
 };
 
 }  // namespace lang2manip

@@ -5,26 +5,19 @@
 /// colours. The world's z-up frame hangs under a root node turned to glTF's y-up.
 
 #include <string>
+#include <vector>
 
+#include "lang2manip/model/glb_builder.hpp"
 #include "lang2manip/model/scene.hpp"
 
 namespace lang2manip {
 
 struct GltfOptions {
-  /// Draw the collision geometry instead of the visual one (links and objects without visual
-  /// geometry are drawn by their collision geometry anyway).
-  bool collision = false;
+  /// The visual geometry (links and objects without one are drawn by their collision geometry),
+  /// the collision geometry, or both (as each body's "visual" and "collision" children).
+  GltfGeometry geometry = GltfGeometry::kVisual;
   /// Segments around a cylinder or sphere.
   int roundSegments = 24;
-};
-
-/// What was written.
-struct GltfSummary {
-  int nodes = 0;
-  int meshes = 0;
-  int triangles = 0;
-  /// Mesh shapes left out because their file was not loaded (UrdfReadOptions::loadMeshes off).
-  int unloadedMeshes = 0;
 };
 
 /// The triangles of a geometry in its own frame, scale applied (primitives tessellated with
@@ -34,5 +27,9 @@ TriangleMesh tessellated(const Geometry& geometry, int roundSegments = 24);
 /// The scene with each robot at its configuration (held objects with their links) as GLB bytes.
 /// Throws InputError for roundSegments below 3.
 std::string sceneToGlb(const Scene& scene, const GltfOptions& options = {}, GltfSummary* summary = nullptr);
+
+/// Adds a body node for every link of every robot (named "robot/link", kind "link") and every
+/// object (kind "object") at its place in `scene`; their node indices, links first, in order.
+std::vector<int> addSceneBodies(const Scene& scene, GlbBuilder& builder);
 
 }  // namespace lang2manip

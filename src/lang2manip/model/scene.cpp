@@ -177,6 +177,15 @@ const Attachment* Scene::findAttachment(const std::string& objectName) const {
   return found == attachments_.end() ? nullptr : &*found;
 }
 
+Pose Scene::objectWorldPose(const std::string& objectName) const {
+  const SceneObject& found = object(objectName);
+  const Attachment* held = findAttachment(objectName);
+  if (held == nullptr) return found.pose;
+  const SceneRobot& holder = robot(held->robot);
+  const int link = holder.model->linkIndex(held->link);
+  return holder.basePose * holder.model->linkPoses(holder.configuration)[static_cast<std::size_t>(link)] * held->linkToObject;
+}
+
 void Scene::setContactTolerance(double metres) {
   if (!std::isfinite(metres) || metres < 0.0 || metres > kMaximumContactTolerance) {
     std::ostringstream message;

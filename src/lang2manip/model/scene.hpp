@@ -116,6 +116,9 @@ class Scene {
   /// Detaches `object`, leaving it at `worldPose`; throws InputError if it is not attached.
   void detach(const std::string& object, const Pose& worldPose);
   [[nodiscard]] const Attachment* findAttachment(const std::string& object) const;
+  /// Where `object` is in the world: its pose, or where the link holding it carries it. Throws
+  /// InputError for an unknown object.
+  [[nodiscard]] Pose objectWorldPose(const std::string& object) const;
 
   /// Penetration (m) up to which two bodies are in contact, not in collision: a robot base or
   /// an object resting exactly on a surface (models rarely meet to the micrometre). Every

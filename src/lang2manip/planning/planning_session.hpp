@@ -54,6 +54,11 @@ class PlanningSession {
   void setQuery(const std::vector<double>& init, const std::vector<double>& goal);
   void setInit(const std::vector<double>& init);
   void setGoal(const std::vector<double>& goal);
+  /// The current start and goal (absent until set).
+  [[nodiscard]] const std::optional<VectorX>& init() const noexcept { return init_; }
+  [[nodiscard]] const std::optional<VectorX>& goal() const noexcept { return goal_; }
+  /// Whether solve() stored a result that getPath() returns.
+  [[nodiscard]] bool hasPath() const noexcept { return lastPlan_ && lastPlan_->solved(); }
   /// Names of the coordinates of queries and paths (the control names).
   [[nodiscard]] std::vector<std::string> pathDofNames() const;
 

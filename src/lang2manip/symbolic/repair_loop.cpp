@@ -119,8 +119,10 @@ RepairResult planWithRepair(TaskPlanner& planner, const PlanningRequest& request
     }
     RepairRound& round = result.rounds.emplace_back();
     round.round = number;
+    report(options.progress, {ProgressStage::kPlannerCall, number, -1, "", planner.name()});
     askPlanner(planner, current, stop, round);
     if (round.plan) checkPlan(current, executor, options, stop, round);
+    report(options.progress, {ProgressStage::kPlannerAnswer, number, -1, roundOutcomeName(round.outcome), round.attempt.failure});
     accumulate(result.statistics, round.statistics);
     if (round.outcome == RoundOutcome::kAccepted) {
       result.plan = round.plan;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "lang2manip/core/progress.hpp"
 #include "lang2manip/symbolic/symbolic_state.hpp"
 #include "lang2manip/symbolic/task_planner.hpp"
 
@@ -18,6 +19,8 @@ struct RepairOptions {
   /// Check plans against the symbolic state before accepting or executing them.
   bool validate = true;
   SymbolicStateTolerances tolerances;
+  /// Told of every planner call and of each answer's outcome.
+  ProgressSink progress;
 };
 
 /// What happened to one round's answer.

@@ -1,7 +1,8 @@
-#include "lang2manip/cli/cli_app.hpp"
+#include "lang2manip/app/cli_app.hpp"
 
 #include "lang2manip/cli/commands.hpp"
 #include "lang2manip/core/log.hpp"
+#include "lang2manip/server/serve_command.hpp"
 
 namespace lang2manip {
 
@@ -20,9 +21,11 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   addPlanCommand(app, out);
   addRunCommand(app, out);
   addBenchCommand(app, out);
+  addBenchApiCommand(*app.get_subcommand("bench"), out);
   addXacroCommand(app, out);
   addDescribeCommand(app, out);
   addGltfCommand(app, out);
+  addServeCommand(app, out);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

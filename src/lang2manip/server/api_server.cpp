@@ -1,0 +1,294 @@
+#include "lang2manip/server/api_server.hpp"
+
+// After Eigen (api_server.hpp): glibc's <resolv.h>, which httplib includes, defines _res.
+#include <httplib.h>
+
+#include <algorithm>
+#include <atomic>
+#include <regex>
+
+#include <sys/socket.h>
+
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/core/json_limits.hpp"
+#include "lang2manip/core/log.hpp"
+#include "lang2manip/server/run_registry.hpp"
+#include "lang2manip/server/server_routes.hpp"
+#include "lang2manip/server/session_registry.hpp"
+#include "lang2manip/server/static_files.hpp"
+
+namespace lang2manip {
+namespace {
+
+using nlohmann::json;
+
+constexpr int kListenBacklog = 1024;
+
+/// "/api/sessions/{client}/solve" -> "/api/sessions/([^/]+)/solve" (dots escaped).
+std::string routePattern(const std::string& path) {
+  std::string pattern;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    if (path[i] == '{') {
+      i = path.find('}', i);
+      pattern += "([^/]+)";
+    } else {
+      if (std::string_view(".+*?()[]^$|\\").find(path[i]) != std::string_view::npos) pattern += '\\';
+      pattern += path[i];
+    }
+  }
+  return pattern;
+}
+
+void setError(httplib::Response& response, int status, const std::string& code, const std::string& message) {
+  response.status = status;
+  response.set_content(apiErrorBody(status, code, message).dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
+}
+
+const char* statusCode(int status) {
+  switch (status) {
+    case 400: return "bad_request";
+    case 401: return "unauthorized";
+    case 403: return "forbidden";
+    case 404: return "not_found";
+    case 405: return "method_not_allowed";
+    case 413: return "payload_too_large";
+    case 415: return "unsupported_media_type";
+    default: return status >= 500 ? "internal_error" : "error";
+  }
+}
+
+/// Constant-time comparison, so that the token cannot be guessed byte by byte from timings.
+bool sameSecret(const std::string& given, const std::string& expected) {
+  unsigned char difference = given.size() == expected.size() ? 0 : 1;
+  for (std::size_t i = 0; i < expected.size(); ++i) difference |= static_cast<unsigned char>(expected[i] ^ (i < given.size() ? given[i] : 0));
+  return difference == 0;
+}
+
+std::string cookieValue(const httplib::Request& request, const std::string& name) {
+  const std::string cookies = request.get_header_value("Cookie");
+  const std::string key = name + "=";
+  for (std::size_t start = 0; start < cookies.size();) {
+    const std::size_t end = std::min(cookies.find(';', start), cookies.size());
+    std::string_view item(cookies.data() + start, end - start);
+    while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
+    if (item.substr(0, key.size()) == key) return std::string(item.substr(key.size()));
+    start = end + 1;
+  }
+  return "";
+}
+
+}  // namespace
+
+struct ApiServer::Impl {
+  explicit Impl(ServerOptions serverOptions)
+      : options(std::move(serverOptions)),
+        sessions(options.maxSessions, std::chrono::seconds(options.sessionIdleSeconds)),
+        runs(options.maxQueuedRuns, options.maxKeptRuns) {}
+
+  ServerOptions options;
+  SessionRegistry sessions;
+  RunRegistry runs;
+  std::vector<ApiRoute> routes;
+  httplib::Server http;
+  int port = 0;
+  /// The listening socket (seen when httplib creates it), for its backlog.
+  int listeningSocket = -1;
+  std::atomic<bool> stopped{false};
+
+  void configure();
+  void addRoute(const ApiRoute& route);
+  void addEventStream();
+  void addFixedRoutes();
+  bool authorized(const httplib::Request& request, httplib::Response& response) const;
+  [[nodiscard]] ApiRequest apiRequest(const httplib::Request& request) const;
+  void answerUnrouted(const httplib::Request& request, httplib::Response& response) const;
+};
+
+bool ApiServer::Impl::authorized(const httplib::Request& request, httplib::Response& response) const {
+  if (options.token.empty()) return true;
+  const std::string header = request.get_header_value("Authorization");
+  const std::string bearer = header.rfind("Bearer ", 0) == 0 ? header.substr(7) : "";
+  const std::string query = request.get_param_value("token");
+  if (sameSecret(bearer, options.token) || sameSecret(cookieValue(request, "lang2manip_token"), options.token)) return true;
+  if (sameSecret(query, options.token)) {
+    // The viewer is opened as /?token=...; the cookie lets the page load its script and data.
+    response.set_header("Set-Cookie", "lang2manip_token=" + options.token + "; Path=/; HttpOnly; SameSite=Strict");
+    return true;
+  }
+  response.set_header("WWW-Authenticate", "Bearer realm=\"lang2manip\"");
+  setError(response, 401, "unauthorized",
+           header.empty() && query.empty() ? "this server requires a token: send \"Authorization: Bearer <token>\""
+                                           : "the token is not the server's");
+  return false;
+}
+
+ApiRequest ApiServer::Impl::apiRequest(const httplib::Request& request) const {
+  ApiRequest api;
+  for (std::size_t i = 1; i < request.matches.size(); ++i) api.pathParameters.push_back(request.matches[i].str());
+  for (const auto& [name, value] : request.params) api.query.emplace(name, value);
+  if (request.body.empty()) return api;
+  const std::string type = request.get_header_value("Content-Type");
+  if (!type.empty() && type.rfind("application/json", 0) != 0) {
+    throw ApiError(415, "unsupported_media_type", "request bodies are JSON (Content-Type: application/json), got " + type.substr(0, 80));
+  }
+  JsonLimits limits;
+  limits.maxBytes = options.maxBodyBytes;
+  limits.maxDepth = options.maxJsonDepth;
+  try {
+    api.body = parseJsonWithinLimits(request.body, limits, "request body");
+  } catch (const InputError& error) {
+    throw ApiError(request.body.size() > options.maxBodyBytes ? 413 : 400, "bad_request", error.what());
+  }
+  if (!api.body.is_object()) throw ApiError(400, "bad_request", "request body: expected a JSON object, got " + boundedJsonDump(api.body));
+  return api;
+}
+
+void ApiServer::Impl::addRoute(const ApiRoute& route) {
+  const auto handler = [this, route](const httplib::Request& request, httplib::Response& response) {
+    try {
+      const ApiResponse answer = guarded([&] { return route.handler(apiRequest(request)); });
+      response.status = answer.status;
+      response.set_content(answer.body, answer.contentType);
+    } catch (const ApiError& error) {
+      setError(response, error.status(), error.code(), error.what());
+    }
+  };
+  const std::string pattern = routePattern(route.path);
+  if (route.method == "GET") http.Get(pattern, handler);
+  if (route.method == "POST") http.Post(pattern, handler);
+  if (route.method == "DELETE") http.Delete(pattern, handler);
+}
+
+void ApiServer::Impl::addEventStream() {
+  http.Get(routePattern("/api/runs/{run}/events"), [this](const httplib::Request& request, httplib::Response& response) {
+    const std::string id = request.matches[1].str();
+    std::size_t from = 0;
+    try {
+      (void)runs.status(id);
+      const std::string last = request.get_header_value("Last-Event-ID");
+      if (!last.empty()) from = std::stoul(last) + 1;
+    } catch (const ApiError& error) {
+      return setError(response, error.status(), error.code(), error.what());
+    } catch (const std::exception&) {
+      return setError(response, 400, "bad_request", "header Last-Event-ID: expected an event index");
+    }
+    auto next = std::make_shared<std::size_t>(from);
+    response.set_header("Cache-Control", "no-cache");
+    response.set_chunked_content_provider("text/event-stream", [this, id, next](std::size_t, httplib::DataSink& sink) {
+      RunEventBatch batch;
+      try {
+        batch = runs.events(id, *next, std::chrono::milliseconds(500));
+      } catch (const ApiError&) {
+        batch.finished = true;  // forgotten meanwhile
+      }
+      std::string text = batch.events.empty() ? ": waiting\n\n" : "";
+      for (const json& event : batch.events) {
+        text += "id: " + std::to_string(*next) + "\nevent: " + event.value("type", "progress") + "\ndata: " +
+                event.dump(-1, ' ', false, json::error_handler_t::replace) + "\n\n";
+        ++*next;
+      }
+      // A failed write means the client went away; the run goes on.
+      if (!sink.write(text.data(), text.size())) return false;
+      if (batch.finished || stopped.load()) sink.done();
+      return true;
+    });
+  });
+}
+
+void ApiServer::Impl::addFixedRoutes() {
+  routes.push_back({"GET", "/api/health", [](const ApiRequest&) { return ApiResponse::json({{"ok", true}, {"version", "0.1.0"}}); }});
+  routes.push_back({"GET", "/api/openapi.json", [](const ApiRequest&) { return ApiResponse{200, "application/json", openApiDocument()}; }});
+}
+
+void ApiServer::Impl::answerUnrouted(const httplib::Request& request, httplib::Response& response) const {
+  std::vector<std::string> allowed;
+  for (const ApiRoute& route : routes) {
+    if (std::regex_match(request.path, std::regex(routePattern(route.path)))) allowed.push_back(route.method);
+  }
+  if (std::regex_match(request.path, std::regex(routePattern("/api/runs/{run}/events")))) allowed.push_back("GET");
+  if (!allowed.empty()) {
+    std::string list;
+    for (const std::string& method : allowed) list += (list.empty() ? "" : ", ") + method;
+    response.set_header("Allow", list);
+    return setError(response, 405, "method_not_allowed", request.method + " " + request.path + ": allowed " + list);
+  }
+  setError(response, 404, "not_found", "no endpoint " + request.method + " " + request.path.substr(0, 200) + "; see /api/openapi.json");
+}
+
+void ApiServer::Impl::configure() {
+  http.set_socket_options([this](socket_t socket) {
+    httplib::default_socket_options(socket);
+    listeningSocket = socket;
+  });
+  const int threads = options.threads;
+  http.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
+  http.set_payload_max_length(options.maxBodyBytes);
+  http.set_read_timeout(10, 0);
+  http.set_write_timeout(10, 0);
+  http.set_keep_alive_timeout(2);
+  http.set_keep_alive_max_count(1000);
+  http.set_default_headers({{"X-Content-Type-Options", "nosniff"}});
+  http.set_pre_routing_handler([this](const httplib::Request& request, httplib::Response& response) {
+    return authorized(request, response) ? httplib::Server::HandlerResponse::Unhandled : httplib::Server::HandlerResponse::Handled;
+  });
+  http.set_error_handler(httplib::Server::HandlerWithResponse([this](const httplib::Request& request, httplib::Response& response) {
+    if (!response.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
+    if (response.status == 404 || response.status == 405) {
+      answerUnrouted(request, response);
+    } else {
+      setError(response, response.status, statusCode(response.status),
+               response.status == 413 ? "request body larger than " + std::to_string(options.maxBodyBytes) + " bytes"
+                                      : "HTTP " + std::to_string(response.status));
+    }
+    return httplib::Server::HandlerResponse::Handled;
+  }));
+  addFixedRoutes();
+  for (ApiRoute& route : sessionRoutes(sessions, options)) routes.push_back(std::move(route));
+  for (ApiRoute& route : taskRoutes(runs, options)) routes.push_back(std::move(route));
+  for (const ApiRoute& route : routes) addRoute(route);
+  addEventStream();
+  http.Get("/(.*)", [this](const httplib::Request& request, httplib::Response& response) {
+    if (request.path.rfind("/api/", 0) == 0) return answerUnrouted(request, response);
+    try {
+      const StaticFile file = readStaticFile(options.viewerDirectory, request.path);
+      response.set_content(file.content, file.contentType);
+    } catch (const ApiError& error) {
+      setError(response, error.status(), error.code(), error.what());
+    }
+  });
+}
+
+ApiServer::ApiServer(ServerOptions options) : impl_(std::make_unique<Impl>(std::move(options))) {
+  checkServerOptions(impl_->options);
+  impl_->configure();
+  const ServerOptions& bound = impl_->options;
+  impl_->port = bound.port == 0 ? impl_->http.bind_to_any_port(bound.host) : (impl_->http.bind_to_port(bound.host, bound.port) ? bound.port : -1);
+  if (impl_->port <= 0) {
+    throw InputError("serve: cannot listen on " + bound.host + ":" + std::to_string(bound.port) +
+                     " (address in use, not an address of this machine, or a port that needs privileges)");
+  }
+  // httplib listens with a backlog of 5: a burst of clients would see connections reset. Linux
+  // takes a second listen() on the socket as a new backlog.
+  if (impl_->listeningSocket >= 0) ::listen(impl_->listeningSocket, kListenBacklog);
+}
+
+ApiServer::~ApiServer() { stop(); }
+
+int ApiServer::port() const noexcept { return impl_->port; }
+
+void ApiServer::serve() { impl_->http.listen_after_bind(); }
+
+void ApiServer::stop() {
+  if (impl_->stopped.exchange(true)) return;
+  impl_->runs.shutdown();
+  impl_->http.stop();
+}
+
+std::vector<std::pair<std::string, std::string>> ApiServer::endpoints() const {
+  std::vector<std::pair<std::string, std::string>> list;
+  for (const ApiRoute& route : impl_->routes) list.emplace_back(route.method, route.path);
+  list.emplace_back("GET", "/api/runs/{run}/events");
+  return list;
+}
+
+}  // namespace lang2manip

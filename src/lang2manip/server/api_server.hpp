@@ -1,0 +1,73 @@
+#pragma once
+/// @file `lang2manip serve`: the HTTP/JSON API. Kautham's planning-session verbs per client
+/// (/api/sessions/{client}/...), observe, plan and runs (with progress as server-sent events and
+/// cancellation), the OpenAPI document at /api/openapi.json, and the web viewer's files. Bound to
+/// loopback unless told otherwise; bodies and JSON depth limited; an optional bearer token.
+
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lang2manip/server/api_types.hpp"
+
+namespace lang2manip {
+
+struct ServerOptions {
+  std::string host = "127.0.0.1";
+  /// 0: any free port (see ApiServer::port()).
+  int port = 8080;
+  /// When not empty, every request must carry "Authorization: Bearer <token>".
+  std::string token;
+  /// Problem, robot and obstacle files named by requests must lie under this directory
+  /// (built-in problem and robot names are always allowed). Empty: the current directory.
+  std::filesystem::path dataRoot;
+  /// The viewer's files (index.html, viewer.js), served at / ; empty: no viewer.
+  std::filesystem::path viewerDirectory;
+  /// A request body may have this many bytes and JSON nesting levels at most.
+  std::size_t maxBodyBytes = std::size_t{1} << 20;
+  std::size_t maxJsonDepth = 32;
+  /// Planning sessions held at once (one per client id) and the idle time after which one may be
+  /// evicted for a new client.
+  std::size_t maxSessions = 256;
+  int sessionIdleSeconds = 600;
+  /// Runs waiting or running at once (they run one after another), and finished runs kept.
+  std::size_t maxQueuedRuns = 8;
+  std::size_t maxKeptRuns = 64;
+  /// Threads serving requests (each open connection holds one while it is kept alive).
+  int threads = 32;
+  /// The problem opened for every new session that does not name one; empty: none.
+  std::string defaultProblem;
+};
+
+/// Throws InputError for options out of range (port, limits, a token with spaces, a data root or
+/// viewer directory that is not a directory).
+void checkServerOptions(const ServerOptions& options);
+
+class ApiServer {
+ public:
+  /// Binds the socket (throws InputError when the host or port cannot be bound).
+  explicit ApiServer(ServerOptions options);
+  ~ApiServer();
+  ApiServer(const ApiServer&) = delete;
+  ApiServer& operator=(const ApiServer&) = delete;
+
+  /// The bound port.
+  [[nodiscard]] int port() const noexcept;
+  /// Serves until stop() (blocking; call from one thread).
+  void serve();
+  /// Ends serve(): cancels runs, closes connections. Thread-safe; idempotent.
+  void stop();
+  /// Every endpoint (method, OpenAPI path) it answers; the OpenAPI document's test compares them.
+  [[nodiscard]] std::vector<std::pair<std::string, std::string>> endpoints() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// The OpenAPI 3 document served at /api/openapi.json.
+const std::string& openApiDocument();
+
+}  // namespace lang2manip

@@ -1,0 +1,94 @@
+// What every route shares: files named by requests kept under the data root, errors mapped to
+// HTTP statuses, and the server's options checked.
+
+#include <algorithm>
+#include <filesystem>
+#include <new>
+
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/llm/llm_client.hpp"
+#include "lang2manip/model/builtin_data.hpp"
+#include "lang2manip/server/server_routes.hpp"
+#include "lang2manip/symbolic/task_planner.hpp"
+
+namespace lang2manip {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path dataRoot(const ServerOptions& options) {
+  std::error_code error;
+  const fs::path root = fs::canonical(options.dataRoot.empty() ? fs::current_path() : options.dataRoot, error);
+  if (error) throw ApiError(500, "internal_error", "the server's data directory is gone: " + error.message());
+  return root;
+}
+
+}  // namespace
+
+fs::path servedFile(const ServerOptions& options, const std::string& path) {
+  if (path.empty() || path.find('\0') != std::string::npos) throw ApiError(400, "bad_request", "a file name must not be empty");
+  const fs::path root = dataRoot(options);
+  std::error_code error;
+  const fs::path file = fs::weakly_canonical(fs::path(path).is_absolute() ? fs::path(path) : root / path, error);
+  const std::string prefix = root == root.root_path() ? root.string() : root.string() + "/";
+  if (error || file.string().rfind(prefix, 0) != 0) {
+    throw ApiError(403, "forbidden", "file " + path.substr(0, 200) + ": outside the server's data directory " + root.string());
+  }
+  if (!fs::is_regular_file(file, error)) throw ApiError(404, "not_found", "file " + path.substr(0, 200) + ": no such file in the data directory");
+  return file;
+}
+
+std::string servedProblem(const ServerOptions& options, const std::string& nameOrPath) {
+  if (nameOrPath.empty()) return nameOrPath;
+  for (const BuiltinProblem& problem : builtinProblems()) {
+    if (problem.shortName == nameOrPath) return nameOrPath;
+  }
+  return servedFile(options, nameOrPath).string();
+}
+
+std::string servedRobot(const ServerOptions& options, const std::string& nameOrPath) {
+  const std::vector<std::string> names = builtinRobotNames();
+  if (std::find(names.begin(), names.end(), nameOrPath) != names.end()) return nameOrPath;
+  return servedFile(options, nameOrPath).string();
+}
+
+ApiResponse guarded(const std::function<ApiResponse()>& operation) {
+  try {
+    return operation();
+  } catch (const ApiError&) {
+    throw;
+  } catch (const InputError& error) {
+    throw ApiError(400, "bad_request", error.what());
+  } catch (const NotSupportedError& error) {
+    throw ApiError(501, "not_supported", error.what());
+  } catch (const LlmError& error) {
+    throw ApiError(502, "llm_error", error.what());
+  } catch (const PlanningError& error) {
+    throw ApiError(422, "planning_failed", error.what());
+  } catch (const std::bad_alloc&) {
+    throw ApiError(503, "out_of_memory", "the server ran out of memory for this request");
+  } catch (const std::exception& error) {
+    throw ApiError(500, "internal_error", error.what());
+  }
+}
+
+void checkServerOptions(const ServerOptions& options) {
+  if (options.port < 0 || options.port > 65535) throw InputError("serve: --port " + std::to_string(options.port) + ": expected 0 to 65535");
+  if (options.host.empty()) throw InputError("serve: --host must not be empty");
+  if (options.token.find_first_of(" \t\r\n;,\"") != std::string::npos) {
+    throw InputError("serve: the token must not contain spaces, quotes, commas or semicolons");
+  }
+  if (options.maxBodyBytes < 1024 || options.maxJsonDepth < 4) throw InputError("serve: body limits below 1 KiB or 4 JSON levels");
+  if (options.maxSessions < 1 || options.maxQueuedRuns < 1 || options.maxKeptRuns < 1 || options.threads < 2 || options.threads > 1024) {
+    throw InputError("serve: session, run and thread limits must be positive (threads 2 to 1024)");
+  }
+  std::error_code error;
+  if (!options.dataRoot.empty() && !fs::is_directory(options.dataRoot, error)) {
+    throw InputError("serve: --data-root " + options.dataRoot.string() + ": not a directory");
+  }
+  if (!options.viewerDirectory.empty() && !fs::is_regular_file(options.viewerDirectory / "index.html", error)) {
+    throw InputError("serve: --viewer " + options.viewerDirectory.string() + ": no index.html in it (build the viewer first)");
+  }
+}
+
+}  // namespace lang2manip

@@ -1,0 +1,129 @@
+// The token, the viewer's static files and the data directory: what a server on a network must refuse.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "server/api_test_server.hpp"
+#include "lang2manip/core/error.hpp"
+#include "test_paths.hpp"
+
+namespace lang2manip {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using test::ApiTestServer;
+using test::bodyOf;
+using test::errorOf;
+using ::testing::HasSubstr;
+
+void writeText(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
+  std::ofstream(path) << text;
+}
+
+TEST(ApiToken, EveryRequestNeedsTheToken) {
+  ServerOptions options;
+  options.token = "s3cret-token";
+  ApiTestServer server(options);
+  const auto none = server.get("/api/health");
+  EXPECT_EQ(none->status, 401);
+  EXPECT_EQ(none->get_header_value("WWW-Authenticate"), "Bearer realm=\"lang2manip\"");
+  EXPECT_THAT(errorOf(none), HasSubstr("requires a token"));
+  server.setToken("s3cret-tokem");
+  EXPECT_EQ(server.get("/api/health")->status, 401);
+  EXPECT_EQ(server.post("/api/sessions/x/openProblem")->status, 401);
+  EXPECT_EQ(server.get("/api/openapi.json")->status, 401);
+  EXPECT_EQ(server.get("/index.html")->status, 401);
+  server.setToken("s3cret-token");
+  EXPECT_EQ(server.get("/api/health")->status, 200);
+
+  // The viewer is opened with ?token=...; the cookie set then lets the page load the rest.
+  httplib::Client browser = server.client();
+  const auto first = browser.Get("/api/health?token=s3cret-token");
+  ASSERT_EQ(first->status, 200);
+  const std::string cookie = first->get_header_value("Set-Cookie");
+  EXPECT_THAT(cookie, HasSubstr("HttpOnly"));
+  const auto next = browser.Get("/api/health", {{"Cookie", cookie.substr(0, cookie.find(';'))}});
+  EXPECT_EQ(next->status, 200);
+  EXPECT_EQ(browser.Get("/api/health", {{"Cookie", "lang2manip_token=wrong"}})->status, 401);
+}
+
+TEST(ApiStaticFiles, ServesOnlyTheViewersOwnFiles) {
+  const test::TempDirectory temporary;
+  const fs::path viewer = temporary.path() / "viewer";
+  writeText(viewer / "index.html", "<html>viewer</html>");
+  writeText(viewer / "viewer.js", "console.log(1)");
+  writeText(viewer / ".hidden", "no");
+  writeText(temporary.path() / "secret.txt", "TOP-SECRET-CONTENT");
+  fs::create_symlink(temporary.path() / "secret.txt", viewer / "link.txt");
+  ServerOptions options;
+  options.viewerDirectory = viewer;
+  ApiTestServer server(options);
+  const auto index = server.get("/");
+  ASSERT_EQ(index->status, 200);
+  EXPECT_EQ(index->body, "<html>viewer</html>");
+  EXPECT_THAT(index->get_header_value("Content-Type"), HasSubstr("text/html"));
+  const auto script = server.get("/viewer.js");
+  EXPECT_THAT(script->get_header_value("Content-Type"), HasSubstr("text/javascript"));
+  for (const char* path : {"/../secret.txt", "/%2e%2e/secret.txt", "/.hidden", "/link.txt", "/sub/../../secret.txt", "/a\\..\\..\\secret.txt"}) {
+    const auto refused = server.get(path);
+    ASSERT_TRUE(refused) << path;
+    EXPECT_EQ(refused->status, 403) << path << ": " << refused->body;
+    EXPECT_THAT(refused->body, ::testing::Not(HasSubstr("TOP-SECRET-CONTENT"))) << path;
+  }
+  EXPECT_EQ(server.get("/missing.js")->status, 404);
+}
+
+TEST(ApiStaticFiles, NoViewerIsAClearNotFound) {
+  ApiTestServer server;
+  const auto page = server.get("/");
+  EXPECT_EQ(page->status, 404);
+  EXPECT_THAT(errorOf(page), HasSubstr("no viewer directory"));
+}
+
+TEST(ApiDataRoot, RequestsNameFilesOnlyUnderTheDataDirectory) {
+  const test::TempDirectory temporary;
+  const fs::path root = temporary.path() / "data";
+  writeText(root / "broken.xml", "<Problem><Robot robot=\"missing.urdf\"");
+  writeText(temporary.path() / "outside.xml", "<Problem/>");
+  ServerOptions options;
+  options.dataRoot = root;
+  ApiTestServer server(options);
+  for (const std::string& name : {(temporary.path() / "outside.xml").string(), std::string("../outside.xml"), std::string("/etc/passwd")}) {
+    const auto refused = server.postJson("/api/sessions/e/openProblem", {{"problem", name}});
+    EXPECT_EQ(refused->status, 403) << name;
+    EXPECT_THAT(errorOf(refused), HasSubstr("outside the server's data directory")) << name;
+  }
+  const auto missing = server.postJson("/api/sessions/e/openProblem", {{"problem", "nothing.xml"}});
+  EXPECT_EQ(missing->status, 404);
+  const auto broken = server.postJson("/api/sessions/e/openProblem", {{"problem", "broken.xml"}});
+  EXPECT_EQ(broken->status, 400);
+  EXPECT_THAT(errorOf(broken), HasSubstr("broken.xml"));
+  const auto builtin = server.postJson("/api/sessions/e/openProblem", {{"problem", "ur5_desk"}});
+  EXPECT_EQ(builtin->status, 200) << builtin->body;
+  const auto obstacle = server.postJson("/api/sessions/e/addObstacle",
+                                        {{"urdf", "/etc/hostname"}, {"name", "x"}, {"pose", {{"position", {0, 0, 0}}}}});
+  EXPECT_EQ(obstacle->status, 403);
+}
+
+TEST(ApiOptions, BadServerOptionsAreRefused) {
+  ServerOptions options;
+  options.port = 70000;
+  EXPECT_THROW(ApiServer{options}, InputError);
+  options = {};
+  options.viewerDirectory = "/nonexistent-viewer";
+  EXPECT_THROW(ApiServer{options}, InputError);
+  options = {};
+  options.token = "has space";
+  EXPECT_THROW(ApiServer{options}, InputError);
+  options = {};
+  options.host = "203.0.113.7";  // TEST-NET-3: not an address of this machine
+  EXPECT_THROW(ApiServer{options}, InputError);
+}
+
+}  // namespace
+}  // namespace lang2manip

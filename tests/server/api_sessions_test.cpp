@@ -1,0 +1,172 @@
+// The planning-session verbs over HTTP, and the OpenAPI document kept in sync with the routes.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+#include "server/api_test_server.hpp"
+
+namespace lang2manip {
+namespace {
+
+using nlohmann::json;
+using test::ApiTestServer;
+using test::bodyOf;
+using test::errorOf;
+using ::testing::HasSubstr;
+
+TEST(ApiOpenApi, DocumentsExactlyTheEndpointsTheServerAnswers) {
+  ApiTestServer server;
+  const json document = json::parse(openApiDocument());
+  EXPECT_EQ(document["openapi"].get<std::string>().substr(0, 2), "3.");
+  std::set<std::pair<std::string, std::string>> documented;
+  for (const auto& [path, operations] : document["paths"].items()) {
+    for (const auto& [method, operation] : operations.items()) {
+      std::string upper = method;
+      std::transform(upper.begin(), upper.end(), upper.begin(), ::toupper);
+      documented.emplace(upper, path);
+      EXPECT_TRUE(operation.contains("responses")) << method << " " << path;
+    }
+  }
+  std::set<std::pair<std::string, std::string>> served;
+  for (const auto& endpoint : server.server().endpoints()) served.insert(endpoint);
+  EXPECT_EQ(documented, served);
+  const auto answer = server.get("/api/openapi.json");
+  ASSERT_TRUE(answer);
+  EXPECT_EQ(bodyOf(answer), document);
+}
+
+TEST(ApiSessions, OpenSolveGetPathCheckAndEditTheWorld) {
+  ApiTestServer server;
+  const std::string base = "/api/sessions/alice";
+  const auto opened = server.postJson(base + "/openProblem", {{"problem", "panda_desk"}});
+  ASSERT_TRUE(opened);
+  ASSERT_EQ(opened->status, 200) << opened->body;
+  EXPECT_EQ(bodyOf(opened)["queries"], 1);
+
+  const json state = bodyOf(server.get(base));
+  EXPECT_TRUE(state["open"].get<bool>());
+  EXPECT_FALSE(state["has_path"].get<bool>());
+  ASSERT_TRUE(state["query"]["init"].is_array());
+  const json init = state["query"]["init"];
+
+  const auto planner = server.postJson(base + "/setPlanner", {{"name", "RRTConnect"}, {"parameters", {{"range", 0.5}}}});
+  ASSERT_EQ(planner->status, 200) << planner->body;
+  const auto solved = server.postJson(base + "/solve", {{"time_limit", 5}});
+  ASSERT_EQ(solved->status, 200) << solved->body;
+  EXPECT_TRUE(bodyOf(solved)["solved"].get<bool>()) << solved->body;
+
+  const json path = bodyOf(server.get(base + "/getPath"));
+  ASSERT_GE(path["path"].size(), 2U);
+  EXPECT_EQ(path["path"][0].size(), path["dof_names"].size());
+  EXPECT_GT(path["duration"].get<double>(), 0.0);
+
+  const json collision = bodyOf(server.postJson(base + "/checkCollision", {{"controls", init}}));
+  EXPECT_TRUE(collision["valid"].get<bool>()) << collision.dump();
+
+  const std::string obstacle = bodyOf(server.get(base))["obstacles"][0];
+  const json moved{{"position", {0.1, 0.2, 0.3}}, {"orientation_wxyz", {1, 0, 0, 0}}};
+  ASSERT_EQ(server.postJson(base + "/setObstaclePos", {{"obstacle", obstacle}, {"pose", moved}})->status, 200);
+  const json pose = bodyOf(server.get(base + "/getObstaclePos?obstacle=" + obstacle));
+  EXPECT_NEAR(pose["position"][1].get<double>(), 0.2, 1e-12);
+  EXPECT_FALSE(bodyOf(server.get(base))["has_path"].get<bool>()) << "a changed world invalidates the path";
+
+  const auto glb = server.get(base + "/scene.glb");
+  ASSERT_EQ(glb->status, 200);
+  EXPECT_EQ(glb->body.substr(0, 4), "glTF");
+  EXPECT_EQ(glb->get_header_value("Content-Type"), "model/gltf-binary");
+
+  ASSERT_EQ(server.del(base)->status, 200);
+  EXPECT_EQ(server.get(base)->status, 404);
+}
+
+TEST(ApiSessions, EachClientHasItsOwnSession) {
+  ApiTestServer server;
+  ASSERT_EQ(server.postJson("/api/sessions/a/openProblem", {{"problem", "panda_desk"}})->status, 200);
+  const auto other = server.get("/api/sessions/b");
+  EXPECT_EQ(other->status, 404);
+  EXPECT_THAT(errorOf(other), HasSubstr("openProblem first"));
+  EXPECT_EQ(server.post("/api/sessions/b/solve")->status, 404);
+  EXPECT_EQ(bodyOf(server.get("/api/sessions/a"))["problem"], "panda_desk");
+}
+
+TEST(ApiSessions, VerbErrorsNameWhatIsWrong) {
+  ApiTestServer server;
+  const std::string base = "/api/sessions/c";
+  ASSERT_EQ(server.postJson(base + "/openProblem", {{"problem", "panda_desk"}})->status, 200);
+  const auto wrongSize = server.postJson(base + "/setQuery", {{"init", {0.5}}, {"goal", {0.5}}});
+  EXPECT_EQ(wrongSize->status, 400);
+  EXPECT_THAT(errorOf(wrongSize), HasSubstr("init"));
+  const auto badPlanner = server.postJson(base + "/setPlanner", {{"name", "NoSuchPlanner"}});
+  EXPECT_EQ(badPlanner->status, 400);
+  EXPECT_THAT(errorOf(badPlanner), HasSubstr("NoSuchPlanner"));
+  const auto badParameter = server.postJson(base + "/setPlannerParameter", {{"name", "range"}, {"value", "-3"}});
+  EXPECT_EQ(badParameter->status, 400);
+  EXPECT_EQ(server.get(base + "/getPath")->status, 400) << "no path before solve";
+  const auto missing = server.get(base + "/getObstaclePos");
+  EXPECT_EQ(missing->status, 400);
+  EXPECT_THAT(errorOf(missing), HasSubstr("\"obstacle\""));
+  const auto unknown = server.get(base + "/getObstaclePos?obstacle=nothing_here");
+  EXPECT_EQ(unknown->status, 400);
+  EXPECT_THAT(errorOf(unknown), HasSubstr("nothing_here"));
+  const auto typo = server.postJson(base + "/setObstaclePos", {{"obstacel", "x"}});
+  EXPECT_EQ(typo->status, 400);
+  EXPECT_THAT(errorOf(typo), HasSubstr("\"obstacel\" is not known"));
+  const auto badPose = server.postJson(base + "/setRobotPos", {{"robot", "panda"}, {"pose", {{"kautham", {0, 0, 0, 0, 0, 0, 1}}}}});
+  EXPECT_EQ(badPose->status, 400);
+  EXPECT_THAT(errorOf(badPose), HasSubstr("zero rotation axis"));
+  const auto nan = server.post(base + "/checkCollision", R"({"controls": [0.5, "x"]})");
+  EXPECT_EQ(nan->status, 400);
+  EXPECT_THAT(errorOf(nan), HasSubstr("\"controls\""));
+  EXPECT_EQ(server.post(base + "/solve", R"({"time_limit": -1})")->status, 400);
+}
+
+TEST(ApiRequests, MalformedOversizedAndUnknownRequestsGetJsonErrors) {
+  ServerOptions options;
+  options.maxBodyBytes = 4096;
+  ApiTestServer server(options);
+  const auto malformed = server.post("/api/sessions/d/openProblem", "{\"problem\": ");
+  EXPECT_EQ(malformed->status, 400);
+  EXPECT_THAT(errorOf(malformed), HasSubstr("not valid JSON"));
+  const auto deep = server.post("/api/sessions/d/openProblem", std::string(100, '[') + std::string(100, ']'));
+  EXPECT_EQ(deep->status, 400);
+  EXPECT_THAT(errorOf(deep), HasSubstr("nested deeper"));
+  const auto notObject = server.post("/api/sessions/d/openProblem", "[1, 2]");
+  EXPECT_EQ(notObject->status, 400);
+  EXPECT_THAT(errorOf(notObject), HasSubstr("expected a JSON object"));
+  const auto large = server.post("/api/sessions/d/openProblem", "{\"problem\": \"" + std::string(10000, 'x') + "\"}");
+  EXPECT_EQ(large->status, 413);
+  EXPECT_THAT(errorOf(large), HasSubstr("larger than 4096 bytes"));
+  const auto unknown = server.post("/api/sessions/d/fly");
+  EXPECT_EQ(unknown->status, 404);
+  EXPECT_THAT(errorOf(unknown), HasSubstr("no endpoint POST /api/sessions/d/fly"));
+  const auto unknownGet = server.get("/api/nothing");
+  EXPECT_EQ(unknownGet->status, 404);
+  const auto wrongMethod = server.get("/api/sessions/d/solve");
+  EXPECT_EQ(wrongMethod->status, 405);
+  EXPECT_EQ(wrongMethod->get_header_value("Allow"), "POST");
+  const auto badClient = server.post("/api/sessions/a%20b/openProblem");
+  EXPECT_EQ(badClient->status, 400);
+  EXPECT_THAT(errorOf(badClient), HasSubstr("client id"));
+  const auto text = server.client().Post("/api/sessions/d/openProblem", "problem=x", "application/x-www-form-urlencoded");
+  EXPECT_EQ(text->status, 415);
+  // The server still serves after all that.
+  EXPECT_EQ(server.get("/api/health")->status, 200);
+}
+
+TEST(ApiRequests, SessionLimitIsAClearError) {
+  ServerOptions options;
+  options.maxSessions = 2;
+  ApiTestServer server(options);
+  for (const char* client : {"one", "two"}) ASSERT_EQ(server.postJson(std::string("/api/sessions/") + client + "/openProblem", json::object())->status, 200);
+  const auto third = server.postJson("/api/sessions/three/openProblem", json::object());
+  EXPECT_EQ(third->status, 429);
+  EXPECT_THAT(errorOf(third), HasSubstr("DELETE"));
+  ASSERT_EQ(server.del("/api/sessions/one")->status, 200);
+  EXPECT_EQ(server.postJson("/api/sessions/three/openProblem", json::object())->status, 200);
+}
+
+}  // namespace
+}  // namespace lang2manip

@@ -1,0 +1,95 @@
+// `lang2manip serve` as users start it: the real program in the background, stopped by SIGTERM.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <regex>
+#include <thread>
+
+#include "cli/cli_run.hpp"
+#include "server/api_test_server.hpp"
+#include "test_paths.hpp"
+
+namespace lang2manip {
+namespace {
+
+using ::testing::HasSubstr;
+
+/// A `lang2manip serve` process writing to a log file.
+class ServeProcess {
+ public:
+  ServeProcess(const std::filesystem::path& directory, const std::string& arguments, const std::string& environment = "")
+      : log_(directory / "serve.log") {
+    const std::filesystem::path pidFile = directory / "serve.pid";
+    const std::string command = environment + " " + LANG2MANIP_CLI_PATH + " serve " + arguments + " > " + log_.string() +
+                                " 2>&1 & echo $! > " + pidFile.string();
+    EXPECT_EQ(std::system(command.c_str()), 0);
+    pid_ = std::stoi(test::readFileText(pidFile));
+  }
+  ~ServeProcess() { stop(); }
+
+  /// The port it prints, waiting for it (0 when it never does).
+  int port() const {
+    const std::regex serving("serving on http://[^:]+:([0-9]+)/");
+    for (int i = 0; i < 500; ++i) {
+      std::smatch match;
+      const std::string text = log();
+      if (std::regex_search(text, match, serving)) return std::stoi(match[1].str());
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return 0;
+  }
+  void stop() {
+    if (pid_ > 0) ::kill(pid_, SIGTERM);
+    for (int i = 0; pid_ > 0 && i < 500 && ::kill(pid_, 0) == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    pid_ = 0;
+  }
+  [[nodiscard]] std::string log() const { return test::readFileText(log_); }
+
+ private:
+  std::filesystem::path log_;
+  int pid_ = 0;
+};
+
+TEST(ServeCli, ServesUntilSigtermAndStopsCleanly) {
+  const test::TempDirectory temporary;
+  ServeProcess serve(temporary.path(), "--port 0", "LANG2MANIP_TOKEN=from-environment");
+  const int port = serve.port();
+  ASSERT_GT(port, 0) << serve.log();
+  httplib::Client client("127.0.0.1", port);
+  const auto refused = client.Get("/api/health");
+  ASSERT_TRUE(refused);
+  EXPECT_EQ(refused->status, 401) << "the token comes from LANG2MANIP_TOKEN";
+  const auto health = client.Get("/api/health", {{"Authorization", "Bearer from-environment"}});
+  ASSERT_TRUE(health);
+  EXPECT_EQ(health->status, 200);
+  serve.stop();
+  EXPECT_THAT(serve.log(), HasSubstr("server stopped"));
+}
+
+TEST(ServeCli, BadOptionsExitWithAMessage) {
+  const test::RunResult port = test::run("serve --port 70000");
+  EXPECT_EQ(port.exitCode, 1);
+  EXPECT_THAT(port.output, HasSubstr("--port 70000"));
+  const test::RunResult viewer = test::run("serve --port 0 --viewer /nonexistent-viewer");
+  EXPECT_EQ(viewer.exitCode, 1);
+  EXPECT_THAT(viewer.output, HasSubstr("no index.html"));
+  const test::RunResult root = test::run("serve --port 0 --data-root /nonexistent-root");
+  EXPECT_EQ(root.exitCode, 1);
+  EXPECT_THAT(root.output, HasSubstr("--data-root"));
+}
+
+TEST(BenchApiCli, HundredConcurrentClientsWithoutAnError) {
+  const test::RunResult result = test::run("bench api --clients 100 --solves 1 --baseline-solves 3 --json", false);
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  const nlohmann::json report = nlohmann::json::parse(result.output);
+  EXPECT_EQ(report["errors"], 0);
+  EXPECT_EQ(report["api_solve_concurrent"]["count"], 100);
+  EXPECT_GT(report["api_overhead_ratio"].get<double>(), 0.0);
+}
+
+}  // namespace
+}  // namespace lang2manip
