@@ -10,7 +10,7 @@ FUZZ_SECONDS ?= 30
 FUZZ_BUILD_DIR ?= build-fuzz
 FUZZ_JOBS ?= 1
 
-.PHONY: demo test build deps test-sanitize fuzz clean
+.PHONY: demo test build deps deps-browser test-sanitize fuzz clean
 
 deps:
 	@scripts/install-deps.sh
@@ -25,8 +25,12 @@ build: deps
 demo: build
 	$(BUILD_DIR)/src/lang2manip/cli/lang2manip run --out lang2manip-run
 
-test: build
+# The browser tests of the viewer need Debian's chromium (installed here, not for `make demo`).
+test: deps-browser build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+deps-browser:
+	@scripts/install-deps.sh --browser
 
 # Debug build of the tests under AddressSanitizer and UndefinedBehaviorSanitizer.
 # tests/lsan.supp lists the leaks of Debian's libraries that LeakSanitizer is told to ignore.
@@ -42,7 +46,7 @@ test-sanitize:
 fuzz:
 	@scripts/install-deps.sh --fuzz
 	cmake -S . -B $(FUZZ_BUILD_DIR) -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
-	  -DLANG2MANIP_FUZZ=ON -DLANG2MANIP_BUILD_TESTS=OFF -DLANG2MANIP_BUILD_BENCHMARKS=OFF
+	  -DLANG2MANIP_FUZZ=ON -DLANG2MANIP_BUILD_TESTS=OFF -DLANG2MANIP_BUILD_BENCHMARKS=OFF -DLANG2MANIP_BUILD_VIEWER=OFF
 	cmake --build $(FUZZ_BUILD_DIR) -j $(JOBS) --target lang2manip_fuzz_harnesses
 	FUZZ_JOBS=$(FUZZ_JOBS) fuzz/run-fuzz.sh $(FUZZ_BUILD_DIR) $(FUZZ_SECONDS)
 

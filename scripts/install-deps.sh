@@ -3,7 +3,9 @@
 # Uses sudo when not root. Works on Debian 12 and Ubuntu 22.04/24.04.
 # With --fuzz, also what `make fuzz` needs: clang, its libFuzzer and sanitizer runtimes
 # (libclang-rt-dev, the distribution's default version) and llvm-symbolizer (llvm) for stack
-# traces.
+# traces. With --browser, also what the viewer's browser tests need: Debian's chromium.
+# Node.js and npm (the web viewer's build) come from Debian unless an npm is already installed
+# (e.g. NodeSource's nodejs, which bundles npm and conflicts with Debian's npm package).
 set -euo pipefail
 
 packages=(
@@ -13,8 +15,14 @@ packages=(
   liborocos-kdl-dev libfcl-dev libccd-dev libompl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
+if ! command -v npm >/dev/null || ! command -v node >/dev/null; then
+  packages+=(nodejs npm)
+fi
 if [ "${1:-}" = "--fuzz" ]; then
   packages+=(clang libclang-rt-dev llvm)
+fi
+if [ "${1:-}" = "--browser" ]; then
+  packages+=(chromium)
 fi
 
 missing=()

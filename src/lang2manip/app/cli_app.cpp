@@ -25,6 +25,7 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   addXacroCommand(app, out);
   addDescribeCommand(app, out);
   addGltfCommand(app, out);
+  addRenderCommand(app, out);
   addServeCommand(app, out);
   try {
     app.parse(argc, argv);

@@ -50,6 +50,10 @@ void addXacroCommand(CLI::App& app, std::ostream& out);
 /// query's start (or goal), as a glTF binary file.
 void addGltfCommand(CLI::App& app, std::ostream& out);
 
+/// `lang2manip render RUN_DIR [--size WxH] [--camera AZ,EL[,DIST]] [--columns N] [--out DIR]
+/// [--chromium PATH]`: PNG snapshots of a run's key moments and a contact sheet (headless Chromium).
+void addRenderCommand(CLI::App& app, std::ostream& out);
+
 /// `lang2manip describe [PROBLEM] [--write-srdf FILE] [--json]`: the arms, tool frames, grippers
 /// (measured by forward kinematics), named states and object semantics lang2manip understood.
 void addDescribeCommand(CLI::App& app, std::ostream& out);

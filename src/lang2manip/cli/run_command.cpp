@@ -6,6 +6,7 @@
 
 #include "lang2manip/cli/commands.hpp"
 #include "lang2manip/cli/problem_loading.hpp"
+#include "lang2manip/cli/run_page.hpp"
 #include "lang2manip/cli/task_planner_choice.hpp"
 #include "lang2manip/cli/task_run.hpp"
 #include "lang2manip/core/error.hpp"
@@ -21,6 +22,7 @@ struct RunOptions {
   RunRequest request;
   std::string out = "lang2manip-run";
   bool json = false;
+  bool html = false;
 };
 
 void checkOptions(const RunOptions& options) {
@@ -65,17 +67,23 @@ void writeDocuments(const fs::path& out, const RunDocuments& documents) {
     writeFile(out / "trajectory.csv", documents.trajectoryCsv);
   }
   writeFile(out / "report.json", documents.report.dump(2) + "\n");
+  writeFile(out / "scene.glb", documents.sceneGlb);
+  writeFile(out / "viewer.json", documents.viewerDocument.dump(1) + "\n");
 }
 
 void runCommand(const RunOptions& options, std::ostream& out) {
   checkOptions(options);
+  // Before the long work: a missing viewer is an error now, not after the run.
+  const std::string viewer = options.html ? viewerScript() : "";
   const fs::path directory = prepareOutput(options.out);
   const RunDocuments documents = runTask(options.request);
   writeDocuments(directory, documents);
+  if (options.html) writeFile(directory / "run.html", runPageHtml(documents.viewerDocument, documents.sceneGlb, viewer));
   if (options.json) {
     out << documents.report.dump(2) << '\n';
   } else {
-    out << documents.summary << "  wrote " << directory.string() << "/ (plan.json, trajectory.json, trajectory.csv, report.json)\n";
+    out << documents.summary << "  wrote " << directory.string() << "/ (plan.json, trajectory.json, trajectory.csv, report.json, scene.glb"
+        << (options.html ? ", run.html" : "") << ")\n";
   }
   if (!documents.success) throw TaskFailedError("run: the task did not succeed; see " + (directory / "report.json").string());
 }
@@ -102,6 +110,7 @@ void addRunCommand(CLI::App& app, std::ostream& out) {
   command->add_option("--time-limit", options->request.timeLimit, "Seconds one motion query may take")->capture_default_str();
   command->add_option("--ik-timeout", options->request.ikTimeout, "Seconds of IK search per pose")->capture_default_str();
   command->add_option("--out", options->out, "Output directory")->capture_default_str();
+  command->add_flag("--html", options->html, "Also write run.html: the scene, the motion and the plan in one page that opens offline");
   command->add_flag("--json", options->json, "Print the report (report.json) to standard output instead of the summary");
   command->callback([options, &out] { runCommand(*options, out); });
 }

@@ -23,18 +23,6 @@ JointTrajectory shiftedBy(JointTrajectory trajectory, double seconds) {
   return trajectory;
 }
 
-/// Each succeeded action's trajectory with its start time in the whole run.
-std::vector<std::pair<const ActionExecution*, JointTrajectory>> timedActions(const ExecutionRecord& execution) {
-  std::vector<std::pair<const ActionExecution*, JointTrajectory>> timed;
-  double start = 0.0;
-  for (const ActionExecution& action : execution.actions) {
-    if (action.status != ActionStatus::kSucceeded) continue;
-    timed.emplace_back(&action, shiftedBy(action.trajectory, start));
-    start += action.trajectory.duration();
-  }
-  return timed;
-}
-
 json actionJson(const ActionExecution& action) {
   json segments = json::array();
   for (const MotionSegment& segment : action.segments) {
@@ -111,6 +99,17 @@ std::string fixed(double value, int decimals) {
 }
 
 }  // namespace
+
+std::vector<std::pair<const ActionExecution*, JointTrajectory>> timedActions(const ExecutionRecord& execution) {
+  std::vector<std::pair<const ActionExecution*, JointTrajectory>> timed;
+  double start = 0.0;
+  for (const ActionExecution& action : execution.actions) {
+    if (action.status != ActionStatus::kSucceeded) continue;
+    timed.emplace_back(&action, shiftedBy(action.trajectory, start));
+    start += action.trajectory.duration();
+  }
+  return timed;
+}
 
 json runReportJson(const RunOutcome& outcome) {
   const Totals sum = totals(outcome);

@@ -36,6 +36,9 @@ struct RunOutcome {
   [[nodiscard]] bool success() const { return repair.succeeded() && verification.success; }
 };
 
+/// Each succeeded action of `execution` with its trajectory, times from the start of the run.
+std::vector<std::pair<const ActionExecution*, JointTrajectory>> timedActions(const ExecutionRecord& execution);
+
 /// The report: success, goals and whether each holds, final object poses, per-action status,
 /// timings per stage and counters.
 nlohmann::json runReportJson(const RunOutcome& outcome);

@@ -5,6 +5,7 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include "lang2manip/cli/run_report.hpp"
+#include "lang2manip/cli/run_scene.hpp"
 #include "lang2manip/language/instruction.hpp"
 #include "lang2manip/language/object_descriptor.hpp"
 #include "lang2manip/symbolic/llm_task_planner.hpp"
@@ -92,7 +93,7 @@ RunDocuments runTask(const RunRequest& request, const RunControl& control) {
   const Scene& scene = loaded.problem.scene;
   TaskExecutor executor(scene, executionSettings(request));
   const SelectedTaskPlanner selected = makeTaskPlanner(request.planner);
-  ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(request.seed));
+  if (control.seedOmpl) ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(request.seed));
 
   RunOutcome outcome;
   outcome.problem = loaded.name;
@@ -122,6 +123,9 @@ RunDocuments runTask(const RunRequest& request, const RunControl& control) {
   documents.report = runReportJson(outcome);
   documents.summary = runSummary(outcome);
   documents.success = outcome.success();
+  documents.sceneGlb = runSceneGlb(scene, executor.arm(), outcome.execution);
+  documents.viewerDocument = viewerRunDocument(request.task, documents.report, outcome.execution, outcome.robot,
+                                               documents.observationText, documents.prompt);
   return documents;
 }
 

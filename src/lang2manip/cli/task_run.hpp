@@ -38,6 +38,9 @@ struct RunControl {
   /// Ends planning and execution early (deadline or cancellation); the run then fails.
   StopCondition stop = StopCondition::never();
   ProgressSink progress;
+  /// Seed OMPL's process-wide random generator with the request's seed. Only the first seeding
+  /// in a process takes effect (OMPL), so a process that runs many tasks (the server) leaves it.
+  bool seedOmpl = true;
 };
 
 /// Plans `task` on `executor`'s initial scene with `planner` for at most `rounds` rounds, each
@@ -77,6 +80,10 @@ struct RunDocuments {
   /// trajectory.json and trajectory.csv of the last execution; absent when nothing was executed.
   std::optional<nlohmann::json> trajectory;
   std::string trajectoryCsv;
+  /// scene.glb and viewer.json: the scene with the executed motion animated and the tool paths,
+  /// and what the viewer lists beside it (run_scene.hpp).
+  std::string sceneGlb;
+  nlohmann::json viewerDocument;
   /// report.json and the summary `run` prints.
   nlohmann::json report;
   std::string summary;

@@ -104,6 +104,25 @@ void fail(ActionExecution& record, const std::string& stage, const std::string& 
   record.reason = reason;
 }
 
+/// When each segment ends in `trajectory`, which passes through every waypoint in order: the time
+/// of the segment's last waypoint (a segment without waypoints ends where the previous one did).
+std::vector<double> segmentEndTimes(const JointTrajectory& trajectory, const std::vector<MotionSegment>& segments) {
+  std::vector<double> ends;
+  std::size_t point = 0;
+  double end = 0.0;
+  for (const MotionSegment& segment : segments) {
+    for (std::size_t p = point; !segment.waypoints.empty() && p < trajectory.points.size(); ++p) {
+      if ((trajectory.points[p].positions - segment.waypoints.back()).cwiseAbs().maxCoeff() <= 1e-9) {
+        point = p;
+        end = trajectory.points[p].time;
+        break;
+      }
+    }
+    ends.push_back(end);
+  }
+  return ends;
+}
+
 }  // namespace
 
 ActionExecution executeAction(const GroundingContext& context, Scene& world, const SymbolicAction& action,
@@ -133,6 +152,7 @@ ActionExecution executeAction(const GroundingContext& context, Scene& world, con
   }
   if (waypoints.empty()) waypoints.push_back(done->q);
   record.trajectory = context.arm.timeParameterize(waypoints);
+  record.segmentEndTimes = segmentEndTimes(record.trajectory, done->segments);
   record.segments = std::move(done->segments);
   record.status = ActionStatus::kSucceeded;
   world = std::move(done->world);

@@ -363,6 +363,7 @@ MotionResult closeGripperOn(const ArmContext& arm, const Scene& world, const Vec
   MotionSegment segment;
   segment.label = label;
   segment.world = world;
+  segment.gripperEvent = GripperEvent::kGrasp;
   segment.allowedContacts = fingerContacts(arm, object);
   segment.waypoints = {start, withGripperFraction(arm.model(), gripper, start, free)};
   result.segment = std::move(segment);

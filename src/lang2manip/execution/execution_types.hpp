@@ -60,6 +60,9 @@ struct ExecutionSettings {
 /// scale outside (0, 1]; the grasp and placement settings are checked by their modules.
 void checkExecutionSettings(const ExecutionSettings& settings);
 
+/// What the gripper does to an object at the end of a motion (a moment worth showing).
+enum class GripperEvent { kNone, kGrasp, kRelease };
+
 /// One motion of the robot, replayable for verification: the robot's full configurations along
 /// it (straight joint-space segments between them), and the world it moves in.
 struct MotionSegment {
@@ -79,6 +82,8 @@ struct MotionSegment {
   Vector3 carriedDisplacement = Vector3::Zero();
   /// Motion planner that produced it (empty for Cartesian and gripper motions).
   std::string planner;
+  /// A gripper motion that closes on an object (kGrasp) or lets it go (kRelease).
+  GripperEvent gripperEvent = GripperEvent::kNone;
 };
 
 /// Work counters, summed over actions and attempts.
@@ -122,6 +127,9 @@ struct ActionExecution {
   std::vector<MotionSegment> segments;
   /// The action's motion, time from the start of the action (empty unless it succeeded).
   JointTrajectory trajectory;
+  /// When each of `segments` ends in `trajectory` (seconds from the start of the action): which
+  /// world (attachments) holds at each moment of the motion.
+  std::vector<double> segmentEndTimes;
   StageTimes times;
 };
 

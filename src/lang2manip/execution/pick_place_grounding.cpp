@@ -76,7 +76,9 @@ std::optional<GroundingAttempt> tryPlace(const GroundingContext& c, const Scene&
     return a;
   }
   if (!a.add(arm, planCartesian(arm, a.world, a.q, place.placePose, "lower " + name), c.counters, record.times)) return a;
-  if (!a.add(arm, gripperMotion(arm, a.world, a.q, place.releaseOpening, "release " + name), c.counters)) return a;
+  MotionSegment release = gripperMotion(arm, a.world, a.q, place.releaseOpening, "release " + name);
+  release.gripperEvent = GripperEvent::kRelease;
+  if (!a.add(arm, std::move(release), c.counters)) return a;
   a.world.detach(name, place.objectPose);
   retreat(c, a, place, record);
   return a;

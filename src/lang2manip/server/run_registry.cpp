@@ -128,6 +128,7 @@ void RunRegistry::work() {
 void RunRegistry::execute(Run& run) {
   RunControl control;
   control.stop = StopCondition::onCancel(run.cancel);
+  control.seedOmpl = false;
   control.progress = [this, &run](const ProgressEvent& event) {
     const std::lock_guard lock(mutex_);
     addEvent(run, progressJson(event));
@@ -207,10 +208,10 @@ RunEventBatch RunRegistry::events(const std::string& id, std::size_t from, std::
 }
 
 std::pair<std::string, std::string> RunRegistry::document(const std::string& id, const std::string& name) const {
-  static const std::vector<std::string> kNames{"plan.json", "report.json", "trajectory.json", "trajectory.csv",
-                                               "observation.json", "observation.txt", "prompt.txt"};
+  static const std::vector<std::string> kNames{"plan.json",        "report.json",     "trajectory.json", "trajectory.csv", "observation.json",
+                                               "observation.txt", "prompt.txt",      "viewer.json",     "scene.glb"};
   if (std::find(kNames.begin(), kNames.end(), name) == kNames.end()) {
-    throw ApiError(404, "not_found", "no document \"" + name.substr(0, 80) + "\": a run has plan.json, report.json, trajectory.json, trajectory.csv, observation.json, observation.txt, prompt.txt");
+    throw ApiError(404, "not_found", "no document \"" + name.substr(0, 80) + "\": a run has plan.json, report.json, trajectory.json, trajectory.csv, observation.json, observation.txt, prompt.txt, viewer.json, scene.glb");
   }
   const std::lock_guard lock(mutex_);
   const std::shared_ptr<Run> run = find(id);
@@ -222,6 +223,8 @@ std::pair<std::string, std::string> RunRegistry::document(const std::string& id,
   if (name == "observation.json") return {"application/json", text(documents.observation)};
   if (name == "observation.txt") return {"text/plain; charset=utf-8", documents.observationText};
   if (name == "prompt.txt") return {"text/plain; charset=utf-8", documents.prompt};
+  if (name == "viewer.json") return {"application/json", text(documents.viewerDocument)};
+  if (name == "scene.glb") return {"model/gltf-binary", documents.sceneGlb};
   if (name == "plan.json" && documents.plan) return {"application/json", text(*documents.plan)};
   if (name == "trajectory.json" && documents.trajectory) return {"application/json", text(*documents.trajectory)};
   if (name == "trajectory.csv" && documents.trajectory) return {"text/csv", documents.trajectoryCsv};

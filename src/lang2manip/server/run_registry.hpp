@@ -46,7 +46,7 @@ class RunRegistry {
   /// Events from index `from`, waiting up to `wait` when there is none yet. 404 for an unknown id.
   RunEventBatch events(const std::string& id, std::size_t from, std::chrono::milliseconds wait) const;
   /// A document of a finished run: plan.json, report.json, trajectory.json, trajectory.csv,
-  /// observation.json, observation.txt, prompt.txt. 404 for an unknown run or name, 409 while the
+  /// observation.json, observation.txt, prompt.txt, viewer.json, scene.glb (the viewer's). 404 for an unknown run or name, 409 while the
   /// run has not finished, 404 when the run did not produce it.
   [[nodiscard]] std::pair<std::string, std::string> document(const std::string& id, const std::string& name) const;
   /// Cancels every run; start() refuses afterwards.

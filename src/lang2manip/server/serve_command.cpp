@@ -6,6 +6,7 @@
 #include <pthread.h>
 #include <thread>
 
+#include "lang2manip/cli/run_page.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/core/log.hpp"
 #include "lang2manip/server/api_server.hpp"
@@ -14,19 +15,6 @@ namespace lang2manip {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// The viewer next to the program: build/viewer for build/src/lang2manip/cli/lang2manip, or
-/// PREFIX/share/lang2manip/viewer for PREFIX/bin/lang2manip; empty when neither has index.html.
-fs::path defaultViewerDirectory() {
-  std::error_code error;
-  const fs::path program = fs::read_symlink("/proc/self/exe", error);
-  if (error) return {};
-  const fs::path directory = program.parent_path();
-  for (const fs::path& candidate : {directory / "../../../viewer", directory / "../share/lang2manip/viewer"}) {
-    if (fs::is_regular_file(candidate / "index.html", error)) return fs::canonical(candidate, error);
-  }
-  return {};
-}
 
 bool isLoopback(const std::string& host) { return host == "127.0.0.1" || host == "::1" || host == "localhost"; }
 
@@ -74,7 +62,7 @@ void addServeCommand(CLI::App& app, std::ostream& out) {
     if (options->token.empty()) {
       if (const char* token = std::getenv("LANG2MANIP_TOKEN")) options->token = token;
     }
-    options->viewerDirectory = viewer->empty() ? defaultViewerDirectory() : fs::path(*viewer);
+    options->viewerDirectory = viewer->empty() ? builtViewerDirectory() : fs::path(*viewer);
     if (!isLoopback(options->host) && options->token.empty()) {
       logWarning("serve: listening on " + options->host + " without a token: anyone who reaches it can use it");
     }

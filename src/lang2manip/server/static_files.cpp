@@ -41,7 +41,7 @@ fs::path relativePath(const std::string& urlPath) {
 
 StaticFile readStaticFile(const fs::path& directory, const std::string& urlPath) {
   if (directory.empty()) {
-    throw ApiError(404, "not_found", "this server has no viewer directory (lang2manip serve --viewer DIR; the build puts it in build/viewer)");
+    throw ApiError(404, "not_found", "this server has no viewer directory (lang2manip serve --viewer DIR; the build puts it in build/viewer/dist)");
   }
   const fs::path relative = relativePath(urlPath);
   std::error_code error;

@@ -1,0 +1,113 @@
+// What users look at: run --html (one page that opens offline), scene.glb and viewer.json beside
+// every run, and `render` (PNG snapshots through headless Chromium), with their bad inputs.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli/cli_run.hpp"
+#include "test_paths.hpp"
+
+namespace lang2manip {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using ::testing::HasSubstr;
+
+bool chromiumInstalled() { return fs::exists("/usr/bin/chromium"); }
+
+void writeText(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+/// A short run (two moments: start and end) written to `directory`.
+void writeShortRun(const fs::path& directory, bool html) {
+  const test::RunResult result =
+      test::run("run --task \"push the eraser 5 cm to the left\" --out " + directory.string() + (html ? " --html" : ""));
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+}
+
+TEST(RunHtml, ThePaperTaskIsOneSelfContainedPageUnderFiveMegabytes) {
+  const test::TempDirectory temporary;
+  const test::RunResult result = test::run("run --html --out " + temporary.path().string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("run.html"));
+  const fs::path page = temporary.path() / "run.html";
+  ASSERT_TRUE(fs::exists(page));
+  EXPECT_LT(fs::file_size(page), 5U << 20);
+  const std::string html = test::readFileText(page);
+  for (const char* part : {"id=\"lang2manip-run\"", "id=\"lang2manip-glb\"", "lang2manip viewer"}) EXPECT_THAT(html, HasSubstr(part));
+  EXPECT_THAT(html, ::testing::Not(HasSubstr("src=\"http"))) << "nothing is fetched";
+  const json viewer = json::parse(test::readFileText(temporary.path() / "viewer.json"));
+  EXPECT_EQ(viewer["actions"].size(), 4U);
+  std::vector<std::string> labels;
+  for (const json& moment : viewer["moments"]) labels.push_back(moment["label"]);
+  EXPECT_EQ(labels, (std::vector<std::string>{"start", "grasp marker", "release marker", "grasp eraser", "release eraser", "end"}));
+  EXPECT_EQ(test::readFileText(temporary.path() / "scene.glb").substr(0, 4), "glTF");
+}
+
+TEST(RunHtml, WithoutTheViewerTheRunIsRefusedBeforeItStarts) {
+  const test::TempDirectory temporary;
+  const fs::path out = temporary.path() / "out";
+  const test::RunResult result = test::run("run --html --out " + out.string(), true, "LANG2MANIP_VIEWER_DIR=/nonexistent");
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.output, HasSubstr("the web viewer is not built"));
+  EXPECT_FALSE(fs::exists(out)) << "nothing was run";
+}
+
+TEST(RenderCli, BadRunDirectoriesAreClearErrors) {
+  const test::TempDirectory temporary;
+  const fs::path run = temporary.path();
+  const test::RunResult empty = test::run("render " + run.string());
+  EXPECT_EQ(empty.exitCode, 1);
+  EXPECT_THAT(empty.output, HasSubstr("viewer.json: missing"));
+
+  writeText(run / "viewer.json", "{\"format_version\": 1, \"moments\": [{\"time\": 0, \"label\": \"start\"}]}");
+  const test::RunResult noScene = test::run("render " + run.string());
+  EXPECT_THAT(noScene.output, HasSubstr("scene.glb: missing"));
+
+  writeText(run / "scene.glb", "glTF-not-really");
+  const test::RunResult corrupt = test::run("render " + run.string());
+  EXPECT_EQ(corrupt.exitCode, 1);
+  EXPECT_THAT(corrupt.output, HasSubstr("scene.glb: not a glTF binary"));
+
+  std::string truncated = "glTF";
+  for (const std::uint32_t word : {2U, 4096U, 0U, 0U}) truncated.append(reinterpret_cast<const char*>(&word), 4);
+  writeText(run / "scene.glb", truncated);
+  EXPECT_THAT(test::run("render " + run.string()).output, HasSubstr("truncated"));
+
+  writeText(run / "viewer.json", "{\"format_version\": 1, \"moments\": [{\"time\": -1}]}");
+  EXPECT_THAT(test::run("render " + run.string()).output, HasSubstr("moments[0]"));
+  writeText(run / "viewer.json", "{\"format_version\": 1, \"moments\": [");
+  EXPECT_THAT(test::run("render " + run.string()).output, HasSubstr("not valid JSON"));
+  writeText(run / "viewer.json", "[]");
+  EXPECT_THAT(test::run("render " + run.string()).output, HasSubstr("format_version 1"));
+}
+
+TEST(RenderCli, BadOptionsAreClearErrors) {
+  const test::TempDirectory temporary;
+  writeShortRun(temporary.path(), false);
+  EXPECT_THAT(test::run("render " + temporary.path().string() + " --size 10x10").output, HasSubstr("--size 10x10"));
+  EXPECT_THAT(test::run("render " + temporary.path().string() + " --size big").output, HasSubstr("WIDTHxHEIGHT"));
+  EXPECT_THAT(test::run("render " + temporary.path().string() + " --chromium /nonexistent/chromium").output, HasSubstr("not an executable"));
+  EXPECT_EQ(test::run("render").exitCode, 1);
+}
+
+TEST(RenderCli, SnapshotsEveryMomentAndAContactSheet) {
+  if (!chromiumInstalled()) GTEST_SKIP() << "no /usr/bin/chromium (Debian: apt-get install chromium): skipped";
+  const test::TempDirectory temporary;
+  writeShortRun(temporary.path(), false);
+  const test::RunResult result = test::run("render " + temporary.path().string() + " --size 320x240");
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  for (const char* name : {"01-start.png", "02-end.png", "contact-sheet.png"}) {
+    const fs::path png = temporary.path() / "render" / name;
+    ASSERT_TRUE(fs::exists(png)) << name << "\n" << result.output;
+    EXPECT_EQ(test::readFileText(png).substr(1, 3), "PNG") << name;
+  }
+}
+
+}  // namespace
+}  // namespace lang2manip
