@@ -148,6 +148,8 @@ const std::vector<FuzzTarget>& fuzzTargets() {
       {"kautham_controls", feedKauthamControls},
       {"kautham_benchmark", feedKauthamBenchmark},
       {"moveit_problem", feedMoveItProblem},
+      {"api_request", feedApiRequest},
+      {"viewer_document", feedViewerDocument},
       {"mesh_stl", feedStlMesh},
       {"mesh_obj", feedObjMesh},
       {"mesh_dae", feedDaeMesh},

@@ -73,6 +73,12 @@ InputOutcome feedPlyMesh(std::string_view input);
 InputOutcome feedInventorMesh(std::string_view input);
 InputOutcome feedVrmlMesh(std::string_view input);
 
+/// An HTTP request as the server reads it: the first line a URL path and a client id, the rest a
+/// JSON body read by every body-field reader (fuzz_viewer_inputs.cpp).
+InputOutcome feedApiRequest(std::string_view input);
+/// A run directory's viewer inputs: the first line a GLB header, the rest viewer.json.
+InputOutcome feedViewerDocument(std::string_view input);
+
 /// The bytes libFuzzer passes, as text.
 inline std::string_view asText(const std::uint8_t* data, std::size_t size) {
   return {reinterpret_cast<const char*>(data), size};

@@ -26,7 +26,7 @@ fi
 
 dictionary_for() {
   case $1 in
-    plan_text | llm_*) echo json ;;
+    plan_text | llm_* | api_request | viewer_document) echo json ;;
     urdf | srdf | xacro | kautham_* | mesh_dae) echo xml ;;
     moveit_problem) echo yaml ;;
     *) echo "" ;;

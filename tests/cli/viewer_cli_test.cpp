@@ -4,6 +4,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -47,6 +49,33 @@ TEST(RunHtml, ThePaperTaskIsOneSelfContainedPageUnderFiveMegabytes) {
   for (const json& moment : viewer["moments"]) labels.push_back(moment["label"]);
   EXPECT_EQ(labels, (std::vector<std::string>{"start", "grasp marker", "release marker", "grasp eraser", "release eraser", "end"}));
   EXPECT_EQ(test::readFileText(temporary.path() / "scene.glb").substr(0, 4), "glTF");
+}
+
+/// The JSON chunk of a GLB file.
+json glbDocument(const fs::path& file) {
+  const std::string bytes = test::readFileText(file);
+  std::uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  return json::parse(bytes.substr(20, length));
+}
+
+TEST(RunHtml, RecordTreeDrawsTheExplorationGraphsInGreen) {
+  const test::TempDirectory temporary;
+  const test::RunResult result = test::run("run --record-tree --task \"put the marker in the holder\" --out " + temporary.path().string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  const json document = glbDocument(temporary.path() / "scene.glb");
+  std::size_t trees = 0;
+  for (const json& node : document["nodes"]) {
+    const std::string name = node.value("name", "");
+    if (name.rfind("exploration_tree/", 0) != 0) continue;
+    ++trees;
+    const json& primitive = document["meshes"][node["mesh"].get<std::size_t>()]["primitives"][0];
+    EXPECT_EQ(primitive["mode"], 1) << "LINES";
+  }
+  EXPECT_GE(trees, 2U) << "one graph per transit: to the marker, to the holder";
+  const test::TempDirectory other;
+  ASSERT_EQ(test::run("run --task \"put the marker in the holder\" --out " + other.path().string()).exitCode, 0);
+  EXPECT_EQ(glbDocument(other.path() / "scene.glb").dump().find("exploration_tree"), std::string::npos);
 }
 
 TEST(RunHtml, WithoutTheViewerTheRunIsRefusedBeforeItStarts) {

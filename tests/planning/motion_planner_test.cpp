@@ -35,6 +35,23 @@ TEST(MotionPlanner, SolvesSimplifiesAndReturnsAVerifiedTrajectory) {
   EXPECT_EQ(plan.trajectory.jointNames, (std::vector<std::string>{"planar/shoulder", "planar/elbow"}));
 }
 
+TEST(MotionPlanner, RecordsTheExplorationTreeWhenAsked) {
+  MotionPlanner plain(planarArmSpace());
+  EXPECT_TRUE(plain.solve(planarStart(), {planarGoal()}, PlannerSettings{}, StopCondition::never()).tree.vertices.empty());
+  MotionPlanningOptions options;
+  options.recordTreeEdges = 5;
+  MotionPlanner planner(planarArmSpace(), options);
+  const MotionPlan plan = planner.solve(planarStart(), {planarGoal()}, PlannerSettings{}, StopCondition::never());
+  ASSERT_TRUE(plan.solved()) << plan.message;
+  EXPECT_EQ(static_cast<long>(plan.tree.vertices.size()), plan.statistics.vertices);
+  EXPECT_EQ(plan.tree.edges.size() + plan.tree.omittedEdges, static_cast<std::size_t>(plan.statistics.edges));
+  EXPECT_LE(plan.tree.edges.size(), 5U);
+  for (const auto& [from, to] : plan.tree.edges) {
+    EXPECT_LT(static_cast<std::size_t>(std::max(from, to)), plan.tree.vertices.size());
+  }
+  for (const VectorX& vertex : plan.tree.vertices) EXPECT_EQ(vertex.size(), 2);
+}
+
 TEST(MotionPlanner, AcceptsSeveralGoalsAndReachesOneOfThem) {
   MotionPlanner planner(planarArmSpace());
   VectorX other(2);

@@ -18,6 +18,7 @@
 #include "lang2manip/cli/run_page.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/core/json_limits.hpp"
+#include "lang2manip/model/viewer_document.hpp"
 
 extern char** environ;
 
@@ -37,11 +38,6 @@ struct RenderOptions {
   double timeoutSeconds = 120.0;
 };
 
-struct Moment {
-  double time = 0.0;
-  std::string label;
-};
-
 std::string readWhole(const fs::path& file, const std::string& what) {
   std::error_code error;
   if (!fs::is_regular_file(file, error)) throw InputError(file.string() + ": missing (" + what + "; write it with `lang2manip run`)");
@@ -50,38 +46,6 @@ std::string readWhole(const fs::path& file, const std::string& what) {
   text << in.rdbuf();
   if (!in && !in.eof()) throw InputError(file.string() + ": cannot be read");
   return text.str();
-}
-
-/// Throws InputError unless `bytes` is a GLB of glTF 2.0 whose length matches its header.
-void checkGlb(const std::string& bytes, const fs::path& file) {
-  const auto word = [&bytes](std::size_t at) {
-    std::uint32_t value = 0;
-    for (int k = 3; k >= 0; --k) value = (value << 8) | static_cast<unsigned char>(bytes[at + static_cast<std::size_t>(k)]);
-    return value;
-  };
-  if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0) throw InputError(file.string() + ": not a glTF binary (no \"glTF\" header)");
-  if (word(4) != 2) throw InputError(file.string() + ": glTF version " + std::to_string(word(4)) + ", expected 2");
-  if (word(8) != bytes.size()) {
-    throw InputError(file.string() + ": truncated or padded: the header says " + std::to_string(word(8)) + " bytes, the file has " + std::to_string(bytes.size()));
-  }
-}
-
-std::vector<Moment> momentsOf(const json& document, const fs::path& file) {
-  if (!document.is_object() || document.value("format_version", 0) != 1) throw InputError(file.string() + ": not a viewer document of format_version 1");
-  const auto moments = document.find("moments");
-  if (moments == document.end() || !moments->is_array() || moments->empty()) throw InputError(file.string() + ": no \"moments\" to render");
-  std::vector<Moment> list;
-  for (std::size_t i = 0; i < moments->size(); ++i) {
-    const json& moment = (*moments)[i];
-    const auto time = moment.find("time");
-    const auto label = moment.find("label");
-    if (!moment.is_object() || time == moment.end() || !time->is_number() || !std::isfinite(time->get<double>()) || time->get<double>() < 0.0 ||
-        label == moment.end() || !label->is_string()) {
-      throw InputError(file.string() + ": moments[" + std::to_string(i) + "]: expected {\"time\": seconds >= 0, \"label\": text}");
-    }
-    list.push_back({time->get<double>(), label->get<std::string>()});
-  }
-  return list;
 }
 
 std::pair<int, int> sizeOf(const std::string& text) {
@@ -182,9 +146,9 @@ void render(const RenderOptions& options, std::ostream& out) {
   if (options.columns < 1 || options.columns > 8) throw InputError("render: --columns must be 1 to 8");
   const fs::path documentFile = run / "viewer.json";
   const json document = parseJsonWithinLimits(readWhole(documentFile, "the run document"), {}, documentFile.string());
-  const std::vector<Moment> moments = momentsOf(document, documentFile);
+  const std::vector<ViewerMoment> moments = viewerMoments(document, documentFile.string());
   const std::string glb = readWhole(run / "scene.glb", "the scene");
-  checkGlb(glb, run / "scene.glb");
+  checkGlbHeader(glb, (run / "scene.glb").string());
   const std::string chromium = findChromium(options.chromium);
   const fs::path out_ = options.out.empty() ? run / "render" : fs::path(options.out);
   std::error_code error;
@@ -217,7 +181,7 @@ void render(const RenderOptions& options, std::ostream& out) {
   const int cellHeight = (width / columns) * 3 / 4;
   const fs::path sheet = out_ / "contact-sheet.png";
   snapshots.shoot("sheet=" + times + "&labels=" + labels + "&cols=" + std::to_string(columns) + camera, sheet, width,
-                  80 + rows * (cellHeight + 40));
+                  56 + rows * (cellHeight + 36));
   out << "  " << sheet.string() << "  (contact sheet of " << moments.size() << " moments)\n";
 }
 

@@ -110,6 +110,8 @@ void addRunCommand(CLI::App& app, std::ostream& out) {
   command->add_option("--time-limit", options->request.timeLimit, "Seconds one motion query may take")->capture_default_str();
   command->add_option("--ik-timeout", options->request.ikTimeout, "Seconds of IK search per pose")->capture_default_str();
   command->add_option("--out", options->out, "Output directory")->capture_default_str();
+  command->add_flag("--record-tree", options->request.recordTree,
+                    "Keep each transit planner's exploration graph (scene.glb draws it green at the tool frame)");
   command->add_flag("--html", options->html, "Also write run.html: the scene, the motion and the plan in one page that opens offline");
   command->add_flag("--json", options->json, "Print the report (report.json) to standard output instead of the summary");
   command->callback([options, &out] { runCommand(*options, out); });

@@ -13,6 +13,20 @@ namespace {
 using nlohmann::json;
 
 const Vector4 kToolPathColour(0.9, 0.1, 0.1, 1.0);
+const Vector4 kTreeColour(0.1, 0.7, 0.2, 1.0);
+
+/// The exploration graphs of `action`'s transits, projected to the tool frame's position.
+void addTrees(const ActionExecution& action, const ArmContext& arm, GlbBuilder& builder) {
+  for (std::size_t k = 0; k < action.segments.size(); ++k) {
+    const MotionSegment& segment = action.segments[k];
+    if (segment.tree.edges.empty()) continue;
+    std::vector<Vector3> points;
+    for (const VectorX& q : segment.tree.vertices) points.push_back(arm.toolPose(segment.world, q).translation());
+    std::vector<std::pair<Vector3, Vector3>> lines;
+    for (const auto& [from, to] : segment.tree.edges) lines.emplace_back(points[static_cast<std::size_t>(from)], points[static_cast<std::size_t>(to)]);
+    builder.addLines("exploration_tree", "exploration_tree/" + std::to_string(action.index) + "/" + std::to_string(k), lines, kTreeColour);
+  }
+}
 
 /// The world during the motion at `time` (seconds from the start of the action).
 const Scene& worldAt(const ActionExecution& action, double time, const Scene& fallback) {
@@ -119,6 +133,7 @@ std::string runSceneGlb(const Scene& initial, const ArmContext& arm, const Execu
       toolPath.push_back(arm.toolPose(world, point.positions).translation());
     }
     builder.addPolyline("tool_paths", "tool_path/" + std::to_string(action->index), toolPath, kToolPathColour);
+    addTrees(*action, arm, builder);
   }
   if (frames.size() >= 2) {
     std::vector<double> times;

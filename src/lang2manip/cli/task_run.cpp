@@ -18,6 +18,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+/// Edges kept per transit query by --record-tree: enough to see the exploration, small enough
+/// for the page (the paper's task records a few thousand).
+constexpr std::size_t kRecordedTreeEdges = 20000;
+
 void chooseGoals(const std::string& task, const Scene& scene, const std::string& robot, TaskRun& run) {
   try {
     run.goals = understandInstruction(task, describeObjects(scene, robot)).goals;
@@ -37,6 +41,7 @@ ExecutionSettings executionSettings(const RunRequest& request) {
   settings.seed = static_cast<std::uint64_t>(request.seed);
   settings.planningTimeSeconds = request.timeLimit;
   settings.reach.ikTimeoutSeconds = request.ikTimeout;
+  if (request.recordTree) settings.recordTreeEdges = kRecordedTreeEdges;
   return settings;
 }
 

@@ -66,6 +66,8 @@ struct RunRequest {
   long seed = 1;
   double timeLimit = ExecutionSettings{}.planningTimeSeconds;
   double ikTimeout = ExecutionSettings{}.reach.ikTimeoutSeconds;
+  /// Keep the transit planners' exploration graphs (drawn green by the viewer).
+  bool recordTree = false;
 };
 
 /// What a run produced: the contents of the files `run` writes.

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
+
+#include "lang2manip/core/error.hpp"
 
 namespace lang2manip {
 
@@ -52,6 +55,22 @@ Quaternion quaternionFromKauthamUnitCube(double x1, double x2, double x3) {
   return Quaternion(b * std::cos(kPi * x3), a * std::sin(2.0 * kPi * x2),
                     a * std::cos(2.0 * kPi * x2), b * std::sin(kPi * x3))
       .normalized();
+}
+
+Pose kauthamPose(const std::vector<double>& values) {
+  if (values.size() != 7) {
+    throw InputError("a Kautham pose has 7 values (x y z ax ay az angle), got " +
+                     std::to_string(values.size()));
+  }
+  for (const double value : values) {
+    if (!std::isfinite(value)) throw InputError("a Kautham pose has a value that is not finite");
+  }
+  if (values[3] == 0.0 && values[4] == 0.0 && values[5] == 0.0 && values[6] != 0.0) {
+    throw InputError("a Kautham pose has the zero rotation axis (0 0 0) with angle " +
+                     std::to_string(values[6]) + ": give a rotation axis, or angle 0 for no rotation");
+  }
+  return makePose(Vector3(values[0], values[1], values[2]),
+                  quaternionFromKauthamAxisAngle(Vector3(values[3], values[4], values[5]), values[6]));
 }
 
 }  // namespace lang2manip

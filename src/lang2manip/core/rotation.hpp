@@ -2,6 +2,8 @@
 /// @file Orientation conversions. lang2manip's own API uses quaternions; the readers convert the
 /// conventions of the files they read (URDF roll-pitch-yaw, Kautham axis-angle, MoveIt xyzw).
 
+#include <vector>
+
 #include "lang2manip/core/types.hpp"
 
 namespace lang2manip {
@@ -27,5 +29,10 @@ Pose makePose(const Vector3& translation, const Quaternion& rotation);
 /// Kautham's uniform-quaternion map from (X1, X2, X3) in [0,1]^3 to a rotation
 /// (X1 = X2 = X3 = 0 is the identity; with X1 = X2 = 0, X3 is a yaw of 2*pi*X3).
 Quaternion quaternionFromKauthamUnitCube(double x1, double x2, double x3);
+
+/// A pose from Kautham's seven numbers: x y z, then an axis (ax ay az) and an angle in radians.
+/// Throws InputError unless there are seven finite values, and for the zero axis with a non-zero
+/// angle (a problem file's <Home> takes that as no rotation, as Kautham does, with a warning).
+Pose kauthamPose(const std::vector<double>& values);
 
 }  // namespace lang2manip

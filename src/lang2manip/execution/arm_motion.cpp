@@ -165,6 +165,7 @@ MotionResult planDirectTransit(const ArmContext& arm, const Scene& world, const 
   settings.setParameter("_Max Planning Time", std::to_string(arm.settings().planningTimeSeconds));
   MotionPlanningOptions options;
   options.verificationResolution = arm.settings().verificationResolution;
+  options.recordTreeEdges = arm.settings().recordTreeEdges;
   MotionPlanner motion(space, options);
   std::vector<VectorX> goalPoints;
   for (const VectorX& goal : goals) goalPoints.push_back(valuesOf(variables, goal));
@@ -190,6 +191,9 @@ MotionResult planDirectTransit(const ArmContext& arm, const Scene& world, const 
   result.plannerSolved = 1;
   result.collisionChecks = plan.statistics.stateChecks;
   for (const VectorX& x : plan.path) segment.waypoints.push_back(withValues(variables, start, x));
+  for (const VectorX& x : plan.tree.vertices) segment.tree.vertices.push_back(withValues(variables, start, x));
+  segment.tree.edges = std::move(plan.tree.edges);
+  segment.tree.omittedEdges = plan.tree.omittedEdges;
   result.segment = std::move(segment);
   return result;
 }

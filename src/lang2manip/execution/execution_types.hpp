@@ -12,6 +12,7 @@
 #include "lang2manip/grounding/placement.hpp"
 #include "lang2manip/grounding/reachability.hpp"
 #include "lang2manip/model/scene.hpp"
+#include "lang2manip/planning/motion_planner.hpp"
 #include "lang2manip/planning/trajectory.hpp"
 #include "lang2manip/symbolic/action.hpp"
 #include "lang2manip/symbolic/task_planner.hpp"
@@ -49,6 +50,8 @@ struct ExecutionSettings {
   double speedScale = 0.5;
   /// Seed of the planners, IK restarts and placement samples.
   std::uint64_t seed = 1;
+  /// Keep each transit planner's exploration graph (at most this many edges per query; 0: none).
+  std::size_t recordTreeEdges = 0;
   GraspSettings grasp;
   PlacementSettings placement;
   /// IK for grasps, placements and goal poses: more solutions than the grounding modules'
@@ -84,6 +87,9 @@ struct MotionSegment {
   std::string planner;
   /// A gripper motion that closes on an object (kGrasp) or lets it go (kRelease).
   GripperEvent gripperEvent = GripperEvent::kNone;
+  /// The planner's exploration graph when recorded (ExecutionSettings::recordTreeEdges), its
+  /// vertices as full robot configurations.
+  ExplorationTree tree;
 };
 
 /// Work counters, summed over actions and attempts.

@@ -81,6 +81,27 @@ std::string rangeHint(ob::Planner& planner) {
          "Kautham measures Range in its own state space, where the same number may mean a shorter step)";
 }
 
+/// The vertices of `data` as points of a space of `dimension` and at most `maxEdges` of its edges.
+ExplorationTree explorationTree(const ob::PlannerData& data, int dimension, std::size_t maxEdges) {
+  ExplorationTree tree;
+  for (unsigned int v = 0; v < data.numVertices(); ++v) {
+    const double* values = stateValues(data.getVertex(v).getState());
+    tree.vertices.push_back(Eigen::Map<const VectorX>(values, dimension));
+  }
+  std::vector<unsigned int> targets;
+  for (unsigned int v = 0; v < data.numVertices(); ++v) {
+    data.getEdges(v, targets);
+    for (const unsigned int target : targets) {
+      if (tree.edges.size() < maxEdges) {
+        tree.edges.emplace_back(static_cast<int>(v), static_cast<int>(target));
+      } else {
+        ++tree.omittedEdges;
+      }
+    }
+  }
+  return tree;
+}
+
 }  // namespace
 
 void routeOmplMessagesToLog() {
@@ -267,7 +288,8 @@ std::string MotionPlanner::finishPath(og::PathGeometric path, const VectorX& sta
 ompl::base::PlannerStatus MotionPlanner::runPlanner(const ob::ProblemDefinitionPtr& problem,
                                                    const PlannerSettings& settings,
                                                    const StopCondition& limit,
-                                                   MotionPlanStatistics& statistics) {
+                                                   MotionPlan& plan) {
+  MotionPlanStatistics& statistics = plan.statistics;
   ob::Planner& planner = *ompl_->planner;
   planner.setProblemDefinition(problem);
   planner.setup();
@@ -286,6 +308,7 @@ ompl::base::PlannerStatus MotionPlanner::runPlanner(const ob::ProblemDefinitionP
   planner.getPlannerData(data);
   statistics.vertices = static_cast<long>(data.numVertices());
   statistics.edges = static_cast<long>(data.numEdges());
+  if (options_.recordTreeEdges > 0) plan.tree = explorationTree(data, space_->dimension(), options_.recordTreeEdges);
   return status;
 }
 
@@ -309,7 +332,7 @@ MotionPlan MotionPlanner::solve(const VectorX& start, const std::vector<VectorX>
       ompl_->planner.reset();
       preparePlanner(settings);
     }
-    const ob::PlannerStatus status = runPlanner(problem, settings, limit, plan.statistics);
+    const ob::PlannerStatus status = runPlanner(problem, settings, limit, plan);
     const bool exact = status == ob::PlannerStatus::EXACT_SOLUTION && problem->hasExactSolution();
     if (!exact) {
       plan.status = !rejected.empty() ? MotionPlanStatus::kVerificationFailed

@@ -25,6 +25,17 @@ struct MotionPlanningOptions {
   /// Largest joint step when the final path is re-verified.
   double verificationResolution = 0.002;
   TimeParameterizationOptions timing;
+  /// Keep the planner's exploration graph (OMPL's PlannerData) in MotionPlan::tree, at most this
+  /// many edges (0: not kept).
+  std::size_t recordTreeEdges = 0;
+};
+
+/// A planner's exploration graph: vertices in the planning space and edges between them.
+struct ExplorationTree {
+  std::vector<VectorX> vertices;
+  std::vector<std::pair<int, int>> edges;
+  /// Edges left out beyond MotionPlanningOptions::recordTreeEdges.
+  std::size_t omittedEdges = 0;
 };
 
 enum class MotionPlanStatus {
@@ -68,6 +79,8 @@ struct MotionPlan {
   std::vector<VectorX> path;
   JointTrajectory trajectory;
   MotionPlanStatistics statistics;
+  /// The exploration graph of the last attempt, when recorded (MotionPlanningOptions).
+  ExplorationTree tree;
 
   [[nodiscard]] bool solved() const noexcept { return status == MotionPlanStatus::kSolved; }
 };
@@ -103,7 +116,7 @@ class MotionPlanner {
   void preparePlanner(const PlannerSettings& settings);
   ompl::base::PlannerStatus runPlanner(const ompl::base::ProblemDefinitionPtr& problem,
                                        const PlannerSettings& settings, const StopCondition& limit,
-                                       MotionPlanStatistics& statistics);
+                                       MotionPlan& plan);
   void appendExactGoal(ompl::geometric::PathGeometric& path, const std::vector<VectorX>& goals) const;
   [[nodiscard]] std::string finishPath(ompl::geometric::PathGeometric path, const VectorX& start,
                                        const std::vector<VectorX>& goals, const PlannerSettings& settings, const StopCondition& stop,

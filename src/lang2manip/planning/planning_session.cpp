@@ -10,22 +10,6 @@
 
 namespace lang2manip {
 
-Pose kauthamPose(const std::vector<double>& values) {
-  if (values.size() != 7) {
-    throw InputError("a Kautham pose has 7 values (x y z ax ay az angle), got " +
-                     std::to_string(values.size()));
-  }
-  for (const double value : values) {
-    if (!std::isfinite(value)) throw InputError("a Kautham pose has a value that is not finite");
-  }
-  if (values[3] == 0.0 && values[4] == 0.0 && values[5] == 0.0 && values[6] != 0.0) {
-    throw InputError("a Kautham pose has the zero rotation axis (0 0 0) with angle " +
-                     std::to_string(values[6]) + ": give a rotation axis, or angle 0 for no rotation");
-  }
-  return makePose(Vector3(values[0], values[1], values[2]),
-                  quaternionFromKauthamAxisAngle(Vector3(values[3], values[4], values[5]), values[6]));
-}
-
 PlanningSession::PlanningSession(const MotionPlanningOptions& options,
                                  const FclCheckerSettings& checkerSettings)
     : options_(options), checkerSettings_(checkerSettings) {}

@@ -12,16 +12,13 @@
 
 #include "lang2manip/collision/collision_checker.hpp"
 #include "lang2manip/collision/fcl_collision_checker.hpp"
+#include "lang2manip/core/rotation.hpp"
 #include "lang2manip/core/stop_condition.hpp"
 #include "lang2manip/model/kautham_problem.hpp"
 #include "lang2manip/planning/motion_planner.hpp"
 
 namespace lang2manip {
 
-/// A pose from Kautham's seven numbers: x y z, then an axis (ax ay az) and an angle in radians.
-/// Throws InputError unless there are seven finite values, and for the zero axis with a non-zero
-/// angle (a problem file's <Home> takes that as no rotation, as Kautham does, with a warning).
-Pose kauthamPose(const std::vector<double>& values);
 
 class PlanningSession {
  public:

@@ -6,7 +6,6 @@
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/core/json_limits.hpp"
 #include "lang2manip/core/rotation.hpp"
-#include "lang2manip/planning/planning_session.hpp"
 
 namespace lang2manip {
 
@@ -90,6 +89,13 @@ long integer(const json& body, const std::string& field, long fallback, long low
   return number;
 }
 
+bool boolean(const json& body, const std::string& field, bool fallback) {
+  const json* value = find(body, field);
+  if (value == nullptr) return fallback;
+  if (!value->is_boolean()) refuse(field, "true or false", value);
+  return value->get<bool>();
+}
+
 std::vector<double> numbers(const json& body, const std::string& field) {
   const json* value = find(body, field);
   if (value == nullptr) refuse(field, "an array of numbers", nullptr);
@@ -121,6 +127,12 @@ void onlyFields(const json& body, const std::vector<std::string>& known) {
 }
 
 }  // namespace body
+
+void checkClientId(const std::string& client) {
+  const bool valid = !client.empty() && client.size() <= 64 &&
+                     client.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_.-") == std::string::npos;
+  if (!valid) throw ApiError(400, "bad_request", "client id \"" + client.substr(0, 80) + "\": 1 to 64 characters of A-Z a-z 0-9 _ . -");
+}
 
 json poseToJson(const Pose& pose) {
   const Quaternion q(pose.linear());

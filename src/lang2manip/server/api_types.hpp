@@ -70,6 +70,8 @@ std::string string(const nlohmann::json& body, const std::string& field, const s
 double number(const nlohmann::json& body, const std::string& field, double fallback);
 /// An optional integer within [low, high].
 long integer(const nlohmann::json& body, const std::string& field, long fallback, long low, long high);
+/// An optional boolean (`fallback` when absent or null).
+bool boolean(const nlohmann::json& body, const std::string& field, bool fallback);
 /// A required array of finite numbers.
 std::vector<double> numbers(const nlohmann::json& body, const std::string& field);
 /// A required pose: {"position": [x,y,z], "orientation_wxyz": [w,x,y,z]} (orientation optional,
@@ -78,6 +80,9 @@ Pose pose(const nlohmann::json& body, const std::string& field);
 /// Fails unless every field of `body` is one of `known` (typos are errors, not ignored).
 void onlyFields(const nlohmann::json& body, const std::vector<std::string>& known);
 }  // namespace body
+
+/// Throws ApiError 400 unless `client` is 1 to 64 characters of [A-Za-z0-9_.-].
+void checkClientId(const std::string& client);
 
 /// {"position": [x, y, z], "orientation_wxyz": [w, x, y, z]}.
 nlohmann::json poseToJson(const Pose& pose);

@@ -4,12 +4,6 @@
 
 namespace lang2manip {
 
-void checkClientId(const std::string& client) {
-  const bool valid = !client.empty() && client.size() <= 64 &&
-                     client.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_.-") == std::string::npos;
-  if (!valid) throw ApiError(400, "bad_request", "client id \"" + client.substr(0, 80) + "\": 1 to 64 characters of A-Z a-z 0-9 _ . -");
-}
-
 SessionRegistry::SessionRegistry(std::size_t capacity, std::chrono::seconds idleTimeout)
     : capacity_(capacity), idleTimeout_(idleTimeout) {}
 

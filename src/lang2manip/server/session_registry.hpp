@@ -54,7 +54,4 @@ class SessionRegistry {
   std::map<std::string, std::shared_ptr<Entry>> sessions_;
 };
 
-/// Throws ApiError 400 unless `client` is 1 to 64 characters of [A-Za-z0-9_.-].
-void checkClientId(const std::string& client);
-
 }  // namespace lang2manip

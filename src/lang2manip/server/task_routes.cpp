@@ -74,7 +74,7 @@ ApiResponse plan(const ApiRequest& request, const ServerOptions& options) {
 }
 
 RunRequest runRequestOf(const json& request, const ServerOptions& options) {
-  body::onlyFields(request, {"problem", "robot", "task", "llm", "planner", "ik", "arm", "rounds", "seed", "time_limit", "ik_timeout"});
+  body::onlyFields(request, {"problem", "robot", "task", "llm", "planner", "ik", "arm", "rounds", "seed", "time_limit", "ik_timeout", "record_tree"});
   RunRequest run;
   run.problem = servedProblem(options, body::string(request, "problem", options.defaultProblem));
   run.robot = servedRobot(options, body::string(request, "robot", run.robot));
@@ -88,6 +88,7 @@ RunRequest runRequestOf(const json& request, const ServerOptions& options) {
   run.seed = body::integer(request, "seed", run.seed, 0, 2147483647);
   run.timeLimit = body::number(request, "time_limit", run.timeLimit);
   run.ikTimeout = body::number(request, "ik_timeout", run.ikTimeout);
+  run.recordTree = body::boolean(request, "record_tree", false);
   if (!(run.timeLimit > 0.0 && run.timeLimit <= 600.0)) throw ApiError(400, "bad_request", "body field \"time_limit\": expected more than 0 and at most 600 seconds");
   if (!(run.ikTimeout > 0.0 && run.ikTimeout <= 60.0)) throw ApiError(400, "bad_request", "body field \"ik_timeout\": expected more than 0 and at most 60 seconds");
   return run;
