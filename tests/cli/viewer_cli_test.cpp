@@ -87,6 +87,19 @@ TEST(RunHtml, WithoutTheViewerTheRunIsRefusedBeforeItStarts) {
   EXPECT_FALSE(fs::exists(out)) << "nothing was run";
 }
 
+TEST(SolveHtml, TheSolvedQueriesAreOnePage) {
+  const test::TempDirectory temporary;
+  const fs::path page = temporary.path() / "solve.html";
+  const test::RunResult result = test::run("solve --record-tree --html " + page.string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  const std::string html = test::readFileText(page);
+  EXPECT_THAT(html, HasSubstr("\"kind\":\"query\""));
+  EXPECT_THAT(html, HasSubstr("id=\"lang2manip-glb\""));
+  const test::RunResult missing = test::run("solve --html " + page.string(), true, "LANG2MANIP_VIEWER_DIR=/nonexistent");
+  EXPECT_EQ(missing.exitCode, 1);
+  EXPECT_THAT(missing.output, HasSubstr("the web viewer is not built"));
+}
+
 TEST(RenderCli, BadRunDirectoriesAreClearErrors) {
   const test::TempDirectory temporary;
   const fs::path run = temporary.path();

@@ -3,11 +3,16 @@
 /// scene GLB in one HTML file that opens offline from the file system; and where the built
 /// viewer is.
 
+#include <cstddef>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
 namespace lang2manip {
+
+/// Edges of an exploration graph kept per planner query by --record-tree: enough to see the
+/// exploration, few enough for a page of a few megabytes.
+inline constexpr std::size_t kRecordedTreeEdges = 20000;
 
 /// The built viewer's directory (viewer.js, index.html): $LANG2MANIP_VIEWER_DIR when set, else
 /// build/viewer/dist beside a build tree's program or PREFIX/share/lang2manip/viewer beside an

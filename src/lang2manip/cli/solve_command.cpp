@@ -11,6 +11,8 @@
 #include "lang2manip/cli/commands.hpp"
 #include "lang2manip/cli/parameter_assignment.hpp"
 #include "lang2manip/cli/problem_loading.hpp"
+#include "lang2manip/cli/run_page.hpp"
+#include "lang2manip/cli/solve_scene.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/planning/motion_plan_json.hpp"
@@ -33,6 +35,8 @@ struct SolveOptions {
   double resolution = MotionPlanningOptions{}.resolution;
   bool json = false;
   std::string out;
+  std::string html;
+  bool recordTree = false;
 };
 
 void configurePlanner(PlanningSession& session, const SolveOptions& options) {
@@ -134,8 +138,12 @@ void writeOutputs(const std::string& out, const json& report, const std::vector<
 void runSolve(const SolveOptions& options, std::ostream& out) {
   ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(options.seed));
   LoadedProblem loaded = loadProblem(options.problem, options.robot, options.scene);
+  // Before the long work: a missing viewer is an error now, not after solving.
+  const std::string viewer = options.html.empty() ? "" : viewerScript();
   MotionPlanningOptions planningOptions;
   planningOptions.resolution = options.resolution;
+  if (options.recordTree) planningOptions.recordTreeEdges = kRecordedTreeEdges;
+  const KauthamProblem problem = loaded.problem;
   PlanningSession session(planningOptions);
   session.openProblem(std::move(loaded.problem));
   configurePlanner(session, options);
@@ -147,17 +155,20 @@ void runSolve(const SolveOptions& options, std::ostream& out) {
   }
   json report{{"problem", loaded.name}, {"file", loaded.file}, {"queries", json::array()}};
   std::vector<JointTrajectory> trajectories;
+  std::vector<SolvedQuery> solved_;
   for (std::size_t q = 0; q < queries.size(); ++q) {
     if (options.query != 0 && static_cast<int>(q) + 1 != options.query) continue;
     const std::string rejection = queryRejection(loaded, session, q);
     if (!rejection.empty()) {
       report["queries"].push_back(rejectedQueryJson(q, session, rejection));
       trajectories.emplace_back();
+      solved_.push_back({q, "invalid_query", {}, {}});
       continue;
     }
     const MotionPlan& plan = session.solve();
     report["queries"].push_back(queryJson(q, session, plan));
     trajectories.push_back(plan.trajectory);
+    solved_.push_back({q, motionPlanStatusName(plan.status), plan.trajectory, plan.tree});
   }
   bool solved = true;
   for (const json& query : report["queries"]) solved = solved && query["status"] == "solved";
@@ -167,6 +178,11 @@ void runSolve(const SolveOptions& options, std::ostream& out) {
     report["ignored_parameters"].push_back({{"name", ignored.name}, {"value", ignored.value}, {"reason", ignored.reason}});
   }
   if (!options.out.empty()) writeOutputs(options.out, report, trajectories);
+  if (!options.html.empty()) {
+    std::ofstream page(options.html, std::ios::binary);
+    page << runPageHtml(solveViewerDocument(loaded.name, report, solved_), solveSceneGlb(problem, solved_), viewer);
+    if (!page) throw InputError("--html: cannot write " + options.html);
+  }
   if (options.json) {
     out << report.dump(2) << '\n';
   } else {
@@ -203,6 +219,9 @@ void addSolveCommand(CLI::App& app, std::ostream& out) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   command->add_flag("--json", options->json, "Print JSON");
+  command->add_option("--html", options->html, "Also write FILE: the scene and the solved motions in one page that opens offline");
+  command->add_flag("--record-tree", options->recordTree,
+                    "Keep the planner's exploration graph (the --html page draws it green at the first robot's tool)");
   command->add_option("--out", options->out,
                       "Write the result as JSON to FILE and each trajectory as CSV beside it");
   command->callback([options, &out] { runSolve(*options, out); });

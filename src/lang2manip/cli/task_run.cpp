@@ -4,6 +4,7 @@
 
 #include <ompl/util/RandomNumbers.h>
 
+#include "lang2manip/cli/run_page.hpp"
 #include "lang2manip/cli/run_report.hpp"
 #include "lang2manip/cli/run_scene.hpp"
 #include "lang2manip/language/instruction.hpp"
@@ -17,10 +18,6 @@ namespace lang2manip {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-/// Edges kept per transit query by --record-tree: enough to see the exploration, small enough
-/// for the page (the paper's task records a few thousand).
-constexpr std::size_t kRecordedTreeEdges = 20000;
 
 void chooseGoals(const std::string& task, const Scene& scene, const std::string& robot, TaskRun& run) {
   try {
