@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <set>
 
 #include "server/api_test_server.hpp"
+#include "test_paths.hpp"
 
 namespace lang2manip {
 namespace {
@@ -80,6 +82,32 @@ TEST(ApiSessions, OpenSolveGetPathCheckAndEditTheWorld) {
 
   ASSERT_EQ(server.del(base)->status, 200);
   EXPECT_EQ(server.get(base)->status, 404);
+}
+
+TEST(ApiSessions, KauthamMeshScenesAreServedAsGlb) {
+  LANG2MANIP_REQUIRE_SHARED_DATA(shared);
+  ServerOptions options;
+  options.dataRoot = shared / "kautham";
+  ApiTestServer server(options);
+  const std::string base = "/api/sessions/ele";
+  const auto opened = server.postJson(base + "/openProblem", {{"problem", "OMPL_geo_demos/Ele_hole_SE3/OMPL_RRTConnect_ele_hole_SE3.xml"}});
+  ASSERT_EQ(opened->status, 200) << opened->body;
+  const auto glb = server.get(base + "/scene.glb");
+  ASSERT_EQ(glb->status, 200);
+  std::uint32_t length = 0;
+  std::memcpy(&length, glb->body.data() + 12, 4);
+  const json document = json::parse(glb->body.substr(20, length));
+  std::size_t links = 0;
+  std::size_t vertices = 0;
+  for (const json& node : document["nodes"]) links += node.contains("extras") && node["extras"]["kind"] == "link" ? 1 : 0;
+  for (const json& accessor : document["accessors"]) vertices += accessor["type"] == "VEC3" ? accessor["count"].get<std::size_t>() : 0;
+  EXPECT_GE(links, 1U);
+  EXPECT_GT(vertices, 24U) << "the robot ele.iv and the obstacles: Kautham's Inventor meshes, converted";
+  for (const json& node : document["nodes"]) {
+    if (node.contains("extras")) {
+      EXPECT_TRUE(node.contains("children")) << node["name"] << " has no geometry";
+    }
+  }
 }
 
 TEST(ApiSessions, EachClientHasItsOwnSession) {
