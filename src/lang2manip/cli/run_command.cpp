@@ -27,7 +27,7 @@ struct RunOptions {
 
 void checkOptions(const RunOptions& options) {
   const RunRequest& request = options.request;
-  if (request.task.find_first_not_of(" \t\r\n") == std::string::npos) {
+  if (request.planFile.empty() && request.task.find_first_not_of(" \t\r\n") == std::string::npos) {
     throw InputError("run: --task must not be empty (e.g. --task \"" + std::string(kPaperTask) + "\")");
   }
   if (request.rounds < 1) throw InputError("run: --rounds " + std::to_string(request.rounds) + ": must be at least 1");
@@ -97,7 +97,10 @@ void addRunCommand(CLI::App& app, std::ostream& out) {
              "verify it, and write the plan, trajectories and a report");
   command->add_option("PROBLEM", options->request.problem,
                       "Built-in problem name, Kautham problem .xml, or MoveIt scene .yaml (default: " + defaultProblemName() + ")");
-  addTaskOption(*command, options->request.task, "The instruction")->capture_default_str();
+  CLI::Option* task = addTaskOption(*command, options->request.task, "The instruction")->capture_default_str();
+  command->add_option("--plan", options->request.planFile,
+                      "Execute this plan document (the plan.json format) instead of planning the task; the goals checked are "
+                      "the --task's when given, else those the plan implies");
   addTaskPlannerOptions(*command, options->request.planner);
   command->add_option("--planner", options->request.motionPlanner,
                       "Motion planner of the actions that name none (OMPL or Kautham name; default RRTConnect)");
@@ -114,7 +117,10 @@ void addRunCommand(CLI::App& app, std::ostream& out) {
                     "Keep each transit planner's exploration graph (scene.glb draws it green at the tool frame)");
   command->add_flag("--html", options->html, "Also write run.html: the scene, the motion and the plan in one page that opens offline");
   command->add_flag("--json", options->json, "Print the report (report.json) to standard output instead of the summary");
-  command->callback([options, &out] { runCommand(*options, out); });
+  command->callback([options, task, &out] {
+    if (!options->request.planFile.empty() && task->count() == 0) options->request.task.clear();
+    runCommand(*options, out);
+  });
 }
 
 }  // namespace lang2manip

@@ -1,13 +1,18 @@
 #include "lang2manip/cli/task_run.hpp"
 
 #include <chrono>
+#include <fstream>
+#include <sstream>
 
 #include <ompl/util/RandomNumbers.h>
 
 #include "lang2manip/cli/run_page.hpp"
 #include "lang2manip/cli/run_report.hpp"
 #include "lang2manip/cli/run_scene.hpp"
+#include "lang2manip/core/file_checks.hpp"
 #include "lang2manip/language/instruction.hpp"
+#include "lang2manip/symbolic/given_plan_planner.hpp"
+#include "lang2manip/symbolic/plan_parser.hpp"
 #include "lang2manip/language/object_descriptor.hpp"
 #include "lang2manip/symbolic/llm_task_planner.hpp"
 #include "lang2manip/symbolic/observation.hpp"
@@ -21,6 +26,7 @@ using Clock = std::chrono::steady_clock;
 
 void chooseGoals(const std::string& task, const Scene& scene, const std::string& robot, TaskRun& run) {
   try {
+    if (task.empty()) throw PlanningError("no instruction");
     run.goals = understandInstruction(task, describeObjects(scene, robot)).goals;
     run.goalSource = "instruction";
     return;
@@ -56,6 +62,31 @@ void observe(const RunRequest& request, const Scene& scene, const std::string& r
   planning.robot = robot;
   const LlmRequest llm = buildPlanRequest(planning, defaultLlmTaskPlannerOptions());
   documents.prompt = renderPrompt(llm.system, llm.messages);
+}
+
+/// The plan of `file` for `scene`: object and planner names checked. Throws InputError naming
+/// the file and every problem.
+Plan readPlanFile(const std::string& file, const Scene& scene) {
+  requireRegularFile(file, "plan file");
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  PlanParseContext context;
+  for (const SceneObject& object : scene.objects()) context.objects.push_back(object.name);
+  context.planners = defaultLlmTaskPlannerOptions().plannerNames;
+  try {
+    return parsePlanText(text.str(), context);
+  } catch (const PlanParseError& error) {
+    throw InputError("plan file " + file + " is not a plan for this scene:\n" + error.what());
+  }
+}
+
+/// The task planner of `request`: the plan file's plan, or the chosen planner.
+SelectedTaskPlanner taskPlannerFor(const RunRequest& request, const Scene& scene) {
+  if (request.planFile.empty()) return makeTaskPlanner(request.planner);
+  if (!request.planner.offline()) throw InputError("run: --plan executes the given plan; --llm chooses a task planner: give one of them");
+  return SelectedTaskPlanner(nullptr, std::make_unique<GivenPlanTaskPlanner>(readPlanFile(request.planFile, scene), "plan file " + request.planFile),
+                             "plan file " + request.planFile);
 }
 
 /// The accepted plan, else the last one that was parsed.
@@ -94,12 +125,12 @@ RunDocuments runTask(const RunRequest& request, const RunControl& control) {
   const LoadedProblem loaded = loadProblem(request.problem, request.robot, request.scene);
   const Scene& scene = loaded.problem.scene;
   TaskExecutor executor(scene, executionSettings(request));
-  const SelectedTaskPlanner selected = makeTaskPlanner(request.planner);
+  const SelectedTaskPlanner selected = taskPlannerFor(request, scene);
   if (control.seedOmpl) ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(request.seed));
 
   RunOutcome outcome;
   outcome.problem = loaded.name;
-  outcome.task = request.task;
+  outcome.task = request.task.empty() ? "plan file " + request.planFile : request.task;
   outcome.taskPlanner = selected.label();
   outcome.robot = executor.arm().robotName();
   outcome.manipulator = executor.arm().manipulator().name;
@@ -108,7 +139,7 @@ RunDocuments runTask(const RunRequest& request, const RunControl& control) {
   report(control.progress, {ProgressStage::kObserve, 0, -1, "", outcome.robot});
   observe(request, scene, outcome.robot, documents, outcome.observationSeconds);
 
-  TaskRun run = planExecuteAndVerify(selected.planner(), executor, request.task, request.rounds, control);
+  TaskRun run = planExecuteAndVerify(selected.planner(), executor, request.task, request.planFile.empty() ? request.rounds : 1, control);
   outcome.repair = std::move(run.repair);
   outcome.goals = std::move(run.goals);
   outcome.goalSource = std::move(run.goalSource);

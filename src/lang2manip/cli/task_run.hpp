@@ -56,8 +56,11 @@ struct RunRequest {
   SceneOptions scene;
   /// The arm that executes the task; empty = the robot's first.
   std::string arm;
+  /// The instruction; empty with a plan file (the goals are then those the plan implies).
   std::string task = kPaperTask;
   TaskPlannerChoice planner;
+  /// A plan document (the plan.json format) executed instead of asking a task planner; one round.
+  std::string planFile;
   /// Motion planner of actions that name none; empty = the executor's default.
   std::string motionPlanner;
   /// IK solver; empty = the executor's default.
@@ -94,7 +97,8 @@ struct RunDocuments {
 
 /// Loads the problem, plans, executes and verifies the task of `request`. A task that fails is a
 /// result (success false, the report says why). Throws InputError for a bad problem, arm, planner
-/// or solver name, and LlmError for an LLM planner that cannot be set up (no key, bad URL).
+/// or solver name, a plan file that cannot be read or is not a plan for this scene (every problem
+/// with its JSON path), and LlmError for an LLM planner that cannot be set up (no key, bad URL).
 RunDocuments runTask(const RunRequest& request, const RunControl& control = {});
 
 }  // namespace lang2manip
