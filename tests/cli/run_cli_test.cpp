@@ -37,16 +37,26 @@ const std::string kBudgets = " --time-limit 50 --ik-timeout 0.1";
 const std::string kBudgets;
 #endif
 
+double secondsOf(const json& duration) { return duration["sec"].get<double>() + duration["nanosec"].get<double>() * 1e-9; }
+
+/// Within each segment's arm and gripper trajectories times increase strictly from the segment's
+/// start; segments follow each other; the last ends at the duration.
 void expectTimesIncrease(const json& trajectory) {
-  double last = -1.0;
+  double end = 0.0;
   for (const json& segment : trajectory["segments"]) {
-    for (const json& point : segment["points"]) {
-      const double t = point["time_from_start"]["sec"].get<double>() + point["time_from_start"]["nanosec"].get<double>() * 1e-9;
-      EXPECT_GE(t, last - 1e-9);
-      last = t;
+    EXPECT_GE(segment["start_time"].get<double>(), end - 1e-9);
+    for (const char* part : {"arm", "gripper"}) {
+      if (!segment.contains(part)) continue;
+      double last = -1.0;
+      for (const json& point : segment[part]["points"]) {
+        const double t = secondsOf(point["time_from_start"]);
+        EXPECT_GT(t, last) << part;
+        last = t;
+      }
+      end = segment["start_time"].get<double>() + last;
     }
   }
-  EXPECT_NEAR(last, trajectory["duration"].get<double>(), 1e-6);
+  EXPECT_NEAR(end, trajectory["duration"].get<double>(), 1e-6);
 }
 
 TEST(RunCli, ThePaperTaskOfflineSucceedsAndWritesEveryFile) {
@@ -55,7 +65,8 @@ TEST(RunCli, ThePaperTaskOfflineSucceedsAndWritesEveryFile) {
   ASSERT_EQ(result.exitCode, 0) << result.output;
   EXPECT_THAT(result.output, HasSubstr("SUCCESS: \"put the marker and eraser in the holder\" on panda_desk"));
   EXPECT_THAT(result.output, HasSubstr("goal marker in holder: holds"));
-  for (const char* file : {"plan.json", "observation.txt", "observation.json", "prompt.txt", "trajectory.json", "trajectory.csv", "report.json"}) {
+  for (const char* file : {"plan.json", "observation.txt", "observation.json", "prompt.txt", "trajectory.json", "trajectory.csv",
+                           "robot_trajectory.json", "report.json", "scene.glb", "viewer.json"}) {
     EXPECT_TRUE(fs::exists(directory.path() / file)) << file;
   }
   const json report = readJson(directory.path() / "report.json");
@@ -76,11 +87,26 @@ TEST(RunCli, ThePaperTaskOfflineSucceedsAndWritesEveryFile) {
   EXPECT_EQ(report["counts"]["llm_calls"].get<int>(), 0);
   EXPECT_TRUE(report["final_poses"].contains("marker"));
   const json trajectory = readJson(directory.path() / "trajectory.json");
-  EXPECT_EQ(trajectory["joint_names"][0], "panda/panda_joint1");
+  EXPECT_EQ(trajectory["format_version"], 2);
+  EXPECT_EQ(trajectory["robot"], "panda");
   ASSERT_EQ(trajectory["segments"].size(), 4u);
-  EXPECT_EQ(trajectory["segments"][2]["description"], "pick eraser");
+  const json& pick = trajectory["segments"][2];
+  EXPECT_EQ(pick["description"], "pick eraser");
+  EXPECT_EQ(pick["arm"]["joint_names"][0], "panda_joint1") << "the URDF's own joint names";
+  EXPECT_EQ(pick["arm"]["joint_names"].size(), 7u);
+  EXPECT_EQ(pick["gripper"]["joint_names"], json::array({"panda_finger_joint1"}));
   expectTimesIncrease(trajectory);
-  EXPECT_EQ(readFileText(directory.path() / "trajectory.csv").rfind("action,time,panda/panda_joint1,", 0), 0u);
+  EXPECT_EQ(readFileText(directory.path() / "trajectory.csv").rfind("action,time,panda_joint1,", 0), 0u);
+  const json moveit = readJson(directory.path() / "robot_trajectory.json");
+  EXPECT_EQ(moveit["joint_trajectory"]["joint_names"].size(), 8u);
+  EXPECT_EQ(moveit["joint_trajectory"]["header"]["frame_id"], "panda_link0");
+  double last = -1.0;
+  for (const json& point : moveit["joint_trajectory"]["points"]) {
+    EXPECT_GT(secondsOf(point["time_from_start"]), last);
+    last = secondsOf(point["time_from_start"]);
+    EXPECT_EQ(point["positions"].size(), 8u);
+  }
+  EXPECT_NEAR(last, trajectory["duration"].get<double>(), 1e-6);
   EXPECT_EQ(readJson(directory.path() / "plan.json")["actions"].size(), 4u);
   EXPECT_THAT(readFileText(directory.path() / "prompt.txt"), HasSubstr("put the marker and eraser in the holder"));
 }

@@ -65,6 +65,7 @@ void writeDocuments(const fs::path& out, const RunDocuments& documents) {
   if (documents.trajectory) {
     writeFile(out / "trajectory.json", documents.trajectory->dump(2) + "\n");
     writeFile(out / "trajectory.csv", documents.trajectoryCsv);
+    writeFile(out / "robot_trajectory.json", documents.robotTrajectory.dump(1) + "\n");
   }
   writeFile(out / "report.json", documents.report.dump(2) + "\n");
   writeFile(out / "scene.glb", documents.sceneGlb);
@@ -82,7 +83,7 @@ void runCommand(const RunOptions& options, std::ostream& out) {
   if (options.json) {
     out << documents.report.dump(2) << '\n';
   } else {
-    out << documents.summary << "  wrote " << directory.string() << "/ (plan.json, trajectory.json, trajectory.csv, report.json, scene.glb"
+    out << documents.summary << "  wrote " << directory.string() << "/ (plan.json, trajectory.json, trajectory.csv, robot_trajectory.json, report.json, scene.glb"
         << (options.html ? ", run.html" : "") << ")\n";
   }
   if (!documents.success) throw TaskFailedError("run: the task did not succeed; see " + (directory / "report.json").string());

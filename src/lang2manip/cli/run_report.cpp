@@ -161,42 +161,6 @@ json runReportJson(const RunOutcome& outcome) {
   return report;
 }
 
-json runTrajectoryJson(const ExecutionRecord& execution) {
-  json segments = json::array();
-  std::vector<std::string> names;
-  double end = 0.0;
-  for (const auto& [action, trajectory] : timedActions(execution)) {
-    const json points = trajectoryToJson(trajectory);
-    names = trajectory.jointNames;
-    segments.push_back({{"action", action->index + 1},
-                        {"description", describeAction(action->action)},
-                        {"start_time", trajectory.points.empty() ? end : trajectory.points.front().time},
-                        {"points", points["points"]}});
-    end = trajectory.points.empty() ? end : trajectory.points.back().time;
-  }
-  return {{"joint_names", names}, {"duration", end}, {"segments", segments}};
-}
-
-std::string runTrajectoryCsv(const ExecutionRecord& execution) {
-  std::ostringstream csv;
-  bool header = true;
-  for (const auto& [action, trajectory] : timedActions(execution)) {
-    std::istringstream lines(trajectoryToCsv(trajectory));
-    std::string line;
-    bool first = true;
-    while (std::getline(lines, line)) {
-      if (first) {
-        first = false;
-        if (header) csv << "action," << line << '\n';
-        header = false;
-        continue;
-      }
-      csv << action->index + 1 << ',' << line << '\n';
-    }
-  }
-  return csv.str();
-}
-
 std::string runSummary(const RunOutcome& outcome) {
   std::ostringstream out;
   out << (outcome.success() ? "SUCCESS" : "FAILED") << ": \"" << outcome.task << "\" on " << outcome.problem << " ("

@@ -1,7 +1,6 @@
 #pragma once
-/// @file What `lang2manip run` writes: the report (report.json), the trajectory of every action
-/// (trajectory.json in the style of trajectory_msgs/JointTrajectory, one segment per action, and
-/// trajectory.csv), and the short summary it prints.
+/// @file What `lang2manip run` writes: the report (report.json) and the short summary it prints
+/// (the trajectory files: trajectory_outputs.hpp).
 
 #include <nlohmann/json.hpp>
 #include <string>
@@ -42,13 +41,6 @@ std::vector<std::pair<const ActionExecution*, JointTrajectory>> timedActions(con
 /// The report: success, goals and whether each holds, final object poses, per-action status,
 /// timings per stage and counters.
 nlohmann::json runReportJson(const RunOutcome& outcome);
-
-/// {"joint_names", "duration", "segments": [{"action", "description", "start_time", "points"}]};
-/// times from the start of the whole run.
-nlohmann::json runTrajectoryJson(const ExecutionRecord& execution);
-
-/// CSV: action, time, then each joint's position, velocity and acceleration.
-std::string runTrajectoryCsv(const ExecutionRecord& execution);
 
 /// A few lines for people: success, each action with its status, the goals, the times.
 std::string runSummary(const RunOutcome& outcome);

@@ -9,6 +9,7 @@
 #include "lang2manip/cli/run_page.hpp"
 #include "lang2manip/cli/run_report.hpp"
 #include "lang2manip/cli/run_scene.hpp"
+#include "lang2manip/cli/trajectory_outputs.hpp"
 #include "lang2manip/core/file_checks.hpp"
 #include "lang2manip/language/instruction.hpp"
 #include "lang2manip/symbolic/given_plan_planner.hpp"
@@ -150,8 +151,10 @@ RunDocuments runTask(const RunRequest& request, const RunControl& control) {
 
   if (const Plan* plan = planOf(outcome.repair)) documents.plan = toJson(*plan);
   if (outcome.execution != nullptr) {
-    documents.trajectory = runTrajectoryJson(*outcome.execution);
-    documents.trajectoryCsv = runTrajectoryCsv(*outcome.execution);
+    const TrajectoryJoints joints = trajectoryJoints(executor.arm());
+    documents.trajectory = runTrajectoryJson(*outcome.execution, joints);
+    documents.trajectoryCsv = runTrajectoryCsv(*outcome.execution, joints);
+    documents.robotTrajectory = moveItRobotTrajectory(*outcome.execution, joints);
   }
   documents.report = runReportJson(outcome);
   documents.summary = runSummary(outcome);

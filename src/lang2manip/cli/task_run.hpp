@@ -82,9 +82,11 @@ struct RunDocuments {
   std::string prompt;
   /// plan.json: the accepted plan, else the last plan tried; absent when no plan was parsed.
   std::optional<nlohmann::json> plan;
-  /// trajectory.json and trajectory.csv of the last execution; absent when nothing was executed.
+  /// trajectory.json, trajectory.csv and robot_trajectory.json (MoveIt's RobotTrajectory) of the
+  /// last execution (trajectory_outputs.hpp); absent when nothing was executed.
   std::optional<nlohmann::json> trajectory;
   std::string trajectoryCsv;
+  nlohmann::json robotTrajectory;
   /// scene.glb and viewer.json: the scene with the executed motion animated and the tool paths,
   /// and what the viewer lists beside it (run_scene.hpp).
   std::string sceneGlb;

@@ -209,9 +209,9 @@ RunEventBatch RunRegistry::events(const std::string& id, std::size_t from, std::
 
 std::pair<std::string, std::string> RunRegistry::document(const std::string& id, const std::string& name) const {
   static const std::vector<std::string> kNames{"plan.json",        "report.json",     "trajectory.json", "trajectory.csv", "observation.json",
-                                               "observation.txt", "prompt.txt",      "viewer.json",     "scene.glb"};
+                                               "observation.txt", "prompt.txt",      "viewer.json",     "scene.glb",      "robot_trajectory.json"};
   if (std::find(kNames.begin(), kNames.end(), name) == kNames.end()) {
-    throw ApiError(404, "not_found", "no document \"" + name.substr(0, 80) + "\": a run has plan.json, report.json, trajectory.json, trajectory.csv, observation.json, observation.txt, prompt.txt, viewer.json, scene.glb");
+    throw ApiError(404, "not_found", "no document \"" + name.substr(0, 80) + "\": a run has plan.json, report.json, trajectory.json, trajectory.csv, observation.json, observation.txt, prompt.txt, viewer.json, scene.glb, robot_trajectory.json");
   }
   const std::lock_guard lock(mutex_);
   const std::shared_ptr<Run> run = find(id);
@@ -228,6 +228,7 @@ std::pair<std::string, std::string> RunRegistry::document(const std::string& id,
   if (name == "plan.json" && documents.plan) return {"application/json", text(*documents.plan)};
   if (name == "trajectory.json" && documents.trajectory) return {"application/json", text(*documents.trajectory)};
   if (name == "trajectory.csv" && documents.trajectory) return {"text/csv", documents.trajectoryCsv};
+  if (name == "robot_trajectory.json" && documents.trajectory) return {"application/json", text(documents.robotTrajectory)};
   throw ApiError(404, "not_found", "run " + id + " produced no " + name + " (no plan reached that stage)");
 }
 
