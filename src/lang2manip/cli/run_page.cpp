@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/model/xml_document.hpp"
 
 namespace lang2manip {
 namespace {
@@ -29,20 +30,6 @@ std::string scriptSafeJson(const nlohmann::json& value) {
     }
   }
   return safe;
-}
-
-std::string htmlEscaped(const std::string& text) {
-  std::string escaped;
-  for (const char c : text) {
-    switch (c) {
-      case '<': escaped += "&lt;"; break;
-      case '>': escaped += "&gt;"; break;
-      case '&': escaped += "&amp;"; break;
-      case '"': escaped += "&quot;"; break;
-      default: escaped += c;
-    }
-  }
-  return escaped;
 }
 
 }  // namespace
@@ -97,7 +84,7 @@ std::string runPageHtml(const nlohmann::json& runDocument, const std::string& gl
   }
   const std::string title = "lang2manip: " + runDocument.value("task", std::string("run"));
   std::string page = "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-                     "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>" + htmlEscaped(title) +
+                     "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>" + xmlEscaped(title) +
                      "</title>\n<link rel=\"icon\" href=\"data:,\">\n</head>\n<body>\n";
   page += "<script type=\"application/json\" id=\"lang2manip-run\">" + scriptSafeJson(runDocument) + "</script>\n";
   page += "<script type=\"text/plain\" id=\"lang2manip-glb\">" + base64(glb) + "</script>\n";
