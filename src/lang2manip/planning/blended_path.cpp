@@ -1,0 +1,189 @@
+#include "lang2manip/planning/blended_path.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "lang2manip/core/error.hpp"
+
+namespace lang2manip {
+namespace {
+
+// Lines shorter than this (what is left between two arcs that each use half of it) are dropped.
+constexpr double kMinLineLength = 1e-12;
+
+void checkWaypoints(const std::vector<VectorX>& waypoints, double maxDeviation) {
+  if (!(maxDeviation >= 0.0 && std::isfinite(maxDeviation))) {
+    throw InputError("blended path: max deviation must be finite and >= 0 (got " +
+                     std::to_string(maxDeviation) + ")");
+  }
+  if (waypoints.empty()) throw InputError("blended path: the path is empty (no waypoints)");
+  const Eigen::Index size = waypoints.front().size();
+  for (std::size_t i = 0; i < waypoints.size(); ++i) {
+    const VectorX& point = waypoints[i];
+    if (point.size() == 0) throw InputError("blended path: waypoint " + std::to_string(i) + " has no values");
+    if (point.size() != size) {
+      throw InputError("blended path: waypoint " + std::to_string(i) + " has " + std::to_string(point.size()) +
+                       " values; waypoint 0 has " + std::to_string(size));
+    }
+    for (Eigen::Index j = 0; j < point.size(); ++j) {
+      if (!std::isfinite(point[j])) {
+        throw InputError("blended path: waypoint " + std::to_string(i) + " value " + std::to_string(j) +
+                         " is not a finite number");
+      }
+    }
+  }
+}
+
+// The waypoints without those within kMinWaypointDistance of the previous kept one; a repeated
+// last waypoint replaces the point it repeats, so that the path ends exactly on it.
+std::vector<VectorX> keptWaypoints(const std::vector<VectorX>& waypoints) {
+  std::vector<VectorX> kept{waypoints.front()};
+  for (std::size_t i = 1; i < waypoints.size(); ++i) {
+    if ((waypoints[i] - kept.back()).norm() > BlendedPath::kMinWaypointDistance) {
+      kept.push_back(waypoints[i]);
+    } else if (i + 1 == waypoints.size() && kept.size() > 1) {
+      kept.back() = waypoints[i];
+    }
+  }
+  return kept;
+}
+
+}  // namespace
+
+VectorX PathSegment::position(double u) const {
+  if (u >= length) return end;
+  u = std::max(u, 0.0);
+  if (kind == Kind::kLine) return origin + u * axisX;
+  const double angle = u / radius;
+  return origin + radius * (axisX * std::cos(angle) + axisY * std::sin(angle));
+}
+
+VectorX PathSegment::tangent(double u) const {
+  if (kind == Kind::kLine) return axisX;
+  const double angle = std::clamp(u, 0.0, length) / radius;
+  return axisY * std::cos(angle) - axisX * std::sin(angle);
+}
+
+VectorX PathSegment::curvature(double u) const {
+  if (kind == Kind::kLine) return VectorX::Zero(axisX.size());
+  const double angle = std::clamp(u, 0.0, length) / radius;
+  return -(axisX * std::cos(angle) + axisY * std::sin(angle)) / radius;
+}
+
+BlendedPath::BlendedPath(const std::vector<VectorX>& waypoints, double maxDeviation) {
+  checkWaypoints(waypoints, maxDeviation);
+  waypoints_ = keptWaypoints(waypoints);
+  dimension_ = static_cast<int>(waypoints_.front().size());
+  VectorX lineStart = waypoints_.front();
+  for (std::size_t i = 1; i + 1 < waypoints_.size(); ++i) {
+    addCorner(waypoints_[i - 1], waypoints_[i], waypoints_[i + 1], maxDeviation, lineStart);
+  }
+  if (waypoints_.size() > 1) addLine(lineStart, waypoints_.back());
+  starts_.reserve(segments_.size());
+  for (const PathSegment& segment : segments_) starts_.push_back(segment.start);
+  const auto atAnEnd = [this](double s) { return s <= 0.0 || s >= length_; };
+  switching_.erase(std::remove_if(switching_.begin(), switching_.end(), atAnEnd), switching_.end());
+  switching_.erase(std::unique(switching_.begin(), switching_.end()), switching_.end());
+}
+
+void BlendedPath::addLine(const VectorX& from, const VectorX& to) {
+  const double length = (to - from).norm();
+  if (length <= kMinLineLength) return;
+  PathSegment line;
+  line.start = length_;
+  line.length = length;
+  line.origin = from;
+  line.axisX = (to - from) / length;
+  line.end = to;
+  segments_.push_back(std::move(line));
+  length_ += length;
+}
+
+void BlendedPath::addCorner(const VectorX& previous, const VectorX& corner, const VectorX& next,
+                            double maxDeviation, VectorX& lineStart) {
+  const double lengthIn = (corner - previous).norm();
+  const double lengthOut = (next - corner).norm();
+  const VectorX in = (corner - previous) / lengthIn;
+  const VectorX out = (next - corner) / lengthOut;
+  // The turning angle, accurate near 0 and near pi (unlike acos of the dot product).
+  const double angle = 2.0 * std::atan2((out - in).norm(), (out + in).norm());
+  if (angle < kMinBlendAngle) {  // straight on
+    addLine(lineStart, corner);
+    lineStart = corner;
+    return;
+  }
+  if (maxDeviation == 0.0 || angle > std::numbers::pi - kReversalAngle) {
+    addLine(lineStart, corner);
+    stops_.push_back(length_);
+    lineStart = corner;
+    return;
+  }
+  const double half = 0.5 * angle;
+  // Distance from the corner to where the arc leaves each line, so that the arc's middle is
+  // maxDeviation from the corner: l = d sin(a/2) / (1 - cos(a/2)), 1 - cos(x) = 2 sin^2(x/2).
+  const double sinQuarter = std::sin(0.5 * half);
+  const double blend = std::min({0.5 * lengthIn, 0.5 * lengthOut,
+                                 maxDeviation * std::sin(half) / (2.0 * sinQuarter * sinQuarter)});
+  const double radius = blend / std::tan(half);
+  const VectorX arcStart = corner - blend * in;
+  PathSegment arc;
+  arc.kind = PathSegment::Kind::kArc;
+  arc.origin = corner + (out - in).normalized() * (radius / std::cos(half));
+  arc.axisX = (arcStart - arc.origin).normalized();
+  arc.axisY = in;
+  arc.radius = radius;
+  arc.length = angle * radius;
+  arc.end = corner + blend * out;
+  addLine(lineStart, arcStart);
+  arc.start = length_;
+  switching_.push_back(length_);
+  length_ += arc.length;
+  switching_.push_back(length_);
+  lineStart = arc.end;
+  segments_.push_back(std::move(arc));
+}
+
+std::size_t BlendedPath::segmentIndex(double s) const noexcept {
+  const auto after = std::upper_bound(starts_.begin(), starts_.end(), s);
+  if (after == starts_.begin()) return 0;
+  return static_cast<std::size_t>(after - starts_.begin()) - 1;
+}
+
+VectorX BlendedPath::position(double s) const {
+  if (segments_.empty()) return waypoints_.front();
+  if (s >= length_) return segments_.back().end;
+  const PathSegment& segment = segments_[segmentIndex(s)];
+  return segment.position(s - segment.start);
+}
+
+VectorX BlendedPath::tangent(double s) const {
+  if (segments_.empty()) return VectorX::Zero(dimension_);
+  const PathSegment& segment = segments_[segmentIndex(s)];
+  return segment.tangent(s - segment.start);
+}
+
+VectorX BlendedPath::curvature(double s) const {
+  if (segments_.empty()) return VectorX::Zero(dimension_);
+  const PathSegment& segment = segments_[segmentIndex(s)];
+  return segment.curvature(s - segment.start);
+}
+
+std::vector<VectorX> BlendedPath::sample(double resolution) const {
+  if (!(resolution > 0.0 && std::isfinite(resolution))) {
+    throw InputError("blended path: sampling resolution must be positive and finite (got " +
+                     std::to_string(resolution) + ")");
+  }
+  const double count = std::floor(length_ / resolution);
+  if (count > 1e8) throw InputError("blended path: sampling resolution too fine (more than 1e8 samples)");
+  std::vector<VectorX> samples;
+  samples.reserve(static_cast<std::size_t>(count) + 2);
+  for (std::size_t k = 0; static_cast<double>(k) * resolution < length_; ++k) {
+    samples.push_back(position(static_cast<double>(k) * resolution));
+  }
+  samples.push_back(position(length_));
+  return samples;
+}
+
+}  // namespace lang2manip
