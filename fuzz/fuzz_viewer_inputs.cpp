@@ -2,6 +2,7 @@
 // as the server reads them, and run documents as `render` reads them.
 
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include "fuzz_inputs.hpp"
@@ -45,8 +46,10 @@ InputOutcome feedApiRequest(std::string_view input) {
   const std::string path = head.substr(0, space);
   bool accepted = true;
   static const std::filesystem::path viewer = [] {
-    writeScratchFile("viewer/index.html", "<html></html>");
-    return scratchDirectory() / "viewer";
+    const std::filesystem::path directory = scratchDirectory() / "viewer";
+    std::filesystem::create_directories(directory);
+    std::ofstream(directory / "index.html") << "<html></html>";
+    return directory;
   }();
   try {
     (void)readStaticFile(viewer, path);
