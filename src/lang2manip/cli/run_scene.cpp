@@ -13,19 +13,28 @@ namespace {
 using nlohmann::json;
 
 const Vector4 kToolPathColour(0.9, 0.1, 0.1, 1.0);
-const Vector4 kTreeColour(0.1, 0.7, 0.2, 1.0);
 
 /// The exploration graphs of `action`'s transits, projected to the tool frame's position.
 void addTrees(const ActionExecution& action, const ArmContext& arm, GlbBuilder& builder) {
   for (std::size_t k = 0; k < action.segments.size(); ++k) {
     const MotionSegment& segment = action.segments[k];
-    if (segment.tree.edges.empty()) continue;
     std::vector<Vector3> points;
     for (const VectorX& q : segment.tree.vertices) points.push_back(arm.toolPose(segment.world, q).translation());
-    std::vector<std::pair<Vector3, Vector3>> lines;
-    for (const auto& [from, to] : segment.tree.edges) lines.emplace_back(points[static_cast<std::size_t>(from)], points[static_cast<std::size_t>(to)]);
-    builder.addLines("exploration_tree", "exploration_tree/" + std::to_string(action.index) + "/" + std::to_string(k), lines, kTreeColour);
+    addExplorationGraph(builder, "exploration_tree/" + std::to_string(action.index) + "/" + std::to_string(k), points, segment.tree.edges);
   }
+}
+
+/// The push segment of `action` under way at `time` (seconds from the action's start) and how far
+/// it has gone (0 to 1); null when no push is.
+std::pair<const MotionSegment*, double> pushAt(const ActionExecution& action, double time) {
+  for (std::size_t k = 0; k < action.segments.size() && k < action.segmentEndTimes.size(); ++k) {
+    const double begin = k == 0 ? 0.0 : action.segmentEndTimes[k - 1];
+    const double end = action.segmentEndTimes[k];
+    if (!action.segments[k].carried.empty() && time >= begin && time <= end + 1e-9) {
+      return {&action.segments[k], end > begin ? (time - begin) / (end - begin) : 1.0};
+    }
+  }
+  return {nullptr, 0.0};
 }
 
 /// The world during the motion at `time` (seconds from the start of the action).
@@ -91,6 +100,14 @@ void addGripperMoments(const ActionExecution& action, double start, json& moment
 
 }  // namespace
 
+void addExplorationGraph(GlbBuilder& builder, const std::string& name, const std::vector<Vector3>& points,
+                         const std::vector<std::pair<int, int>>& edges) {
+  if (edges.empty()) return;
+  std::vector<std::pair<Vector3, Vector3>> lines;
+  for (const auto& [from, to] : edges) lines.emplace_back(points[static_cast<std::size_t>(from)], points[static_cast<std::size_t>(to)]);
+  builder.addLines("exploration_tree", name, lines, Vector4(0.1, 0.7, 0.2, 1.0));
+}
+
 std::string runSceneGlb(const Scene& initial, const ArmContext& arm, const ExecutionRecord* execution) {
   GlbBuilder builder(GltfGeometry::kBoth, 24);
   const std::vector<int> nodes = addSceneBodies(initial, builder);
@@ -120,15 +137,7 @@ std::string runSceneGlb(const Scene& initial, const ArmContext& arm, const Execu
     for (const TrajectoryPoint& point : trajectory.points) {
       const double local = point.time - start;
       const Scene& world = worldAt(*action, local, initial);
-      const MotionSegment* push = nullptr;
-      double fraction = 0.0;
-      for (std::size_t k = 0; k < action->segments.size() && k < action->segmentEndTimes.size(); ++k) {
-        const double begin = k == 0 ? 0.0 : action->segmentEndTimes[k - 1];
-        if (!action->segments[k].carried.empty() && local >= begin && local <= action->segmentEndTimes[k] + 1e-9) {
-          push = &action->segments[k];
-          fraction = action->segmentEndTimes[k] > begin ? (local - begin) / (action->segmentEndTimes[k] - begin) : 1.0;
-        }
-      }
+      const auto [push, fraction] = pushAt(*action, local);
       if (frames.empty() || point.time > frames.back().time) frames.push_back(animator.frame(point.time, world, point.positions, push, fraction));
       toolPath.push_back(arm.toolPose(world, point.positions).translation());
     }

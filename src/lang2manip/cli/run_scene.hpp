@@ -9,8 +9,14 @@
 
 #include "lang2manip/execution/arm_motion.hpp"
 #include "lang2manip/execution/execution_types.hpp"
+#include "lang2manip/model/glb_builder.hpp"
 
 namespace lang2manip {
+
+/// An exploration graph as green lines "exploration_tree/..." (`points`: its vertices in the
+/// world, `edges`: pairs of their indices); nothing when it has no edge.
+void addExplorationGraph(GlbBuilder& builder, const std::string& name, const std::vector<Vector3>& points,
+                         const std::vector<std::pair<int, int>>& edges);
 
 /// The GLB of a run: `initial` with both geometries of every body, the animation "trajectory"
 /// of `execution` (absent when nothing moved) and the tool paths "tool_path/<action index>".

@@ -135,6 +135,14 @@ void writeOutputs(const std::string& out, const json& report, const std::vector<
   }
 }
 
+/// solve --html: the page of the solved queries.
+void writeSolvePage(const std::string& file, const std::string& name, const KauthamProblem& problem, const json& report,
+                    const std::vector<SolvedQuery>& queries, const std::string& viewer) {
+  std::ofstream page(file, std::ios::binary);
+  page << runPageHtml(solveViewerDocument(name, report, queries), solveSceneGlb(problem, queries), viewer);
+  if (!page) throw InputError("--html: cannot write " + file);
+}
+
 void runSolve(const SolveOptions& options, std::ostream& out) {
   ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(options.seed));
   LoadedProblem loaded = loadProblem(options.problem, options.robot, options.scene);
@@ -178,11 +186,7 @@ void runSolve(const SolveOptions& options, std::ostream& out) {
     report["ignored_parameters"].push_back({{"name", ignored.name}, {"value", ignored.value}, {"reason", ignored.reason}});
   }
   if (!options.out.empty()) writeOutputs(options.out, report, trajectories);
-  if (!options.html.empty()) {
-    std::ofstream page(options.html, std::ios::binary);
-    page << runPageHtml(solveViewerDocument(loaded.name, report, solved_), solveSceneGlb(problem, solved_), viewer);
-    if (!page) throw InputError("--html: cannot write " + options.html);
-  }
+  if (!options.html.empty()) writeSolvePage(options.html, loaded.name, problem, report, solved_, viewer);
   if (options.json) {
     out << report.dump(2) << '\n';
   } else {

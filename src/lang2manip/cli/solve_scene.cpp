@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "lang2manip/cli/run_scene.hpp"
 #include "lang2manip/model/gltf_writer.hpp"
 
 namespace lang2manip {
@@ -47,9 +48,7 @@ void addTree(const KauthamProblem& problem, const SolvedQuery& query, GlbBuilder
     moveRobots(problem, vertex, scene);
     points.push_back(tipPosition(scene));
   }
-  std::vector<std::pair<Vector3, Vector3>> lines;
-  for (const auto& [from, to] : query.tree.edges) lines.emplace_back(points[static_cast<std::size_t>(from)], points[static_cast<std::size_t>(to)]);
-  builder.addLines("exploration_tree", "exploration_tree/" + std::to_string(query.index), lines, Vector4(0.1, 0.7, 0.2, 1.0));
+  addExplorationGraph(builder, "exploration_tree/" + std::to_string(query.index), points, query.tree.edges);
 }
 
 }  // namespace
