@@ -374,6 +374,40 @@ TEST(MeshLoaderErrors, DeepNestingIsRefusedBeforeParsing) {
   EXPECT_THAT(loadError(dae.string()), HasSubstr("nests elements more than 100 levels deep"));
 }
 
+TEST(MeshLoaderErrors, ReplicationBeyondTheWorkBoundIsRefused) {
+  // Array nodes multiply their children: nested ones ask for 10^18 cubes, and an Array of empty
+  // groups for 2.7 * 10^13 visits without a triangle; both stop at the bound instead of hanging.
+  const test::TempDirectory directory;
+  const fs::path cubes = directory.path() / "cubes.iv";
+  std::ofstream(cubes) << "#Inventor V2.1 ascii\nSeparator {\n"
+                       << "Array { numElements1 1000 numElements2 1000 numElements3 1000\n"
+                       << "Array { numElements1 1000 numElements2 1000 numElements3 1000 Cube {} } } }\n";
+  EXPECT_THAT(loadError(cubes.string()), HasSubstr("cubes.iv: the scene is too large"));
+  const fs::path groups = directory.path() / "groups.iv";
+  std::ofstream(groups) << "#Inventor V2.1 ascii\n"
+                        << "Array { numElements1 30000 numElements2 30000 numElements3 30000 Group {} }\n";
+  EXPECT_THAT(loadError(groups.string()), HasSubstr("groups.iv: the scene is too large"));
+  // Each group uses the previous one twice: 2^30 cubes from 30 lines.
+  const fs::path shared = directory.path() / "shared.iv";
+  std::ofstream file(shared);
+  file << "#Inventor V2.1 ascii\nSeparator {\nDEF G0 Group { Cube {} }\n";
+  for (int level = 1; level <= 30; ++level) {
+    file << "DEF G" << level << " Group { USE G" << level - 1 << " USE G" << level - 1 << " }\n";
+  }
+  file << "}\n";
+  file.close();
+  EXPECT_THAT(loadError(shared.string()), HasSubstr("shared.iv: the scene is too large"));
+}
+
+TEST(MeshLoaderErrors, PercentInAFileWithAnIncludeIsRefused) {
+  const test::TempDirectory directory;
+  for (const std::string name : {"\"50%.iv\"", "50%.iv", "# comment 100%\n \"part.iv\""}) {
+    const fs::path inventor = directory.path() / "include.iv";
+    std::ofstream(inventor) << "#Inventor V2.1 ascii\nSeparator { File { name " << name << " } }\n";
+    EXPECT_THAT(loadError(inventor.string()), HasSubstr("must not contain '%'")) << name;
+  }
+}
+
 TEST(MeshLoader, ModerateNestingLoads) {
   const test::TempDirectory directory;
   const fs::path inventor = directory.path() / "nested.iv";
