@@ -123,7 +123,7 @@ TEST(ExecutionFailures, BadSettingsAndRobotsAreInputErrors) {
   settings.planningTimeSeconds = 0.0;
   EXPECT_THROW(TaskExecutor(scene, settings), InputError);
   settings = {};
-  settings.speedScale = 1.5;
+  settings.velocityScaling = 1.5;
   EXPECT_THROW(TaskExecutor(scene, settings), InputError);
   settings = {};
   settings.robot = "r2d2";

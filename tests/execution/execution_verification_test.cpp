@@ -6,6 +6,7 @@
 
 #include "execution_test_support.hpp"
 #include "lang2manip/execution/execution_verification.hpp"
+#include "lang2manip/execution/motion_timing.hpp"
 
 namespace lang2manip::test {
 namespace {
@@ -61,6 +62,10 @@ VectorX configurationInTheDesk(const ArmContext& arm, const Scene& world, Vector
 TEST_F(Verification, AMotionThroughTheDeskIsFound) {
   MotionSegment& transit = record_.actions[1].segments.front();
   transit.waypoints.insert(transit.waypoints.end() - 1, configurationInTheDesk(executor_.arm(), transit.world, transit.waypoints.back()));
+  const ExecutionVerification changed = verifyExecution(executor_.arm(), executor_.initialScene(), record_, {markerInHolder()});
+  EXPECT_FALSE(changed.success);
+  EXPECT_THAT(changed.collision, HasSubstr("the motion was changed after it was timed"));
+  record_.actions[1].runs = timeActionMotions(executor_.arm(), record_.actions[1].segments).runs;
   const ExecutionVerification v = verifyExecution(executor_.arm(), executor_.initialScene(), record_, {markerInHolder()});
   EXPECT_FALSE(v.success);
   EXPECT_THAT(v.collision, HasSubstr("step 2 (place marker in holder)"));

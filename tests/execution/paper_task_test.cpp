@@ -46,6 +46,24 @@ struct RobotArm {
 
 class PaperTask : public ::testing::TestWithParam<RobotArm> {};
 
+/// The arm is at rest (every joint's speed below 1e-6) only where a run of motions begins or ends:
+/// not inside a transit, a Cartesian move, or between the two.
+void expectStopsOnlyWhereRunsEnd(const ExecutionRecord& record) {
+  for (const ActionExecution& action : record.actions) {
+    std::vector<double> runEnds{0.0};
+    for (const TimedRun& run : action.runs) runEnds.push_back(action.segmentEndTimes[run.endSegment - 1]);
+    int stops = 0;
+    for (const TrajectoryPoint& point : action.trajectory.points) {
+      if (point.velocities.cwiseAbs().maxCoeff() > 1e-6) continue;
+      const bool atRunEnd = std::any_of(runEnds.begin(), runEnds.end(), [&](double t) { return std::abs(t - point.time) < 1e-9; });
+      stops += atRunEnd ? 0 : 1;
+      EXPECT_TRUE(atRunEnd) << "step " << action.index + 1 << " stops at " << point.time << " s";
+    }
+    EXPECT_EQ(action.quality.stopsInsideRuns, 0) << "step " << action.index + 1;
+    EXPECT_EQ(stops, 0);
+  }
+}
+
 TEST_P(PaperTask, SucceedsAndIsVerified) {
   TaskExecutor executor(deskScene(GetParam().robot), testSettings(GetParam().arm));
   const TaskRun run = runPaperTask(executor);
@@ -60,6 +78,48 @@ TEST_P(PaperTask, SucceedsAndIsVerified) {
   ASSERT_EQ(record.actions.size(), 4u);
   for (const ActionExecution& action : record.actions) EXPECT_EQ(action.status, ActionStatus::kSucceeded);
   expectContinuousMotion(executor, record);
+  expectStopsOnlyWhereRunsEnd(record);
+  double duration = 0.0;
+  for (const ActionExecution& action : record.actions) duration += action.trajectory.duration();
+  RecordProperty("trajectory_seconds", std::to_string(duration));
+  if (GetParam().robot == "panda") {
+    EXPECT_LE(duration, 12.0);
+  }
+}
+
+TEST(PaperTaskTiming, TimeOptimalIsFasterThanRestToRestEvenWithWideBlends) {
+  ExecutionSettings restToRest = testSettings();
+  restToRest.timing = TrajectoryTiming::kRestToRest;
+  TaskExecutor slow(deskScene("panda"), restToRest);
+  ASSERT_TRUE(runPaperTask(slow).repair.succeeded());
+  double slowDuration = 0.0;
+  for (const ActionExecution& action : slow.lastExecution().actions) {
+    slowDuration += action.trajectory.duration();
+    EXPECT_TRUE(action.runs.empty());
+  }
+  ExecutionSettings wide = testSettings();
+  wide.blendDeviation = 1.0;  // arcs up to 1 rad from their corners where the path allows
+  TaskExecutor fast(deskScene("panda"), wide);
+  const TaskRun run = runPaperTask(fast);
+  ASSERT_TRUE(run.repair.succeeded()) << run.repair.failure;
+  EXPECT_TRUE(run.verification.collision.empty()) << run.verification.collision;
+  double fastDuration = 0.0;
+  for (const ActionExecution& action : fast.lastExecution().actions) fastDuration += action.trajectory.duration();
+  EXPECT_LT(fastDuration, 0.75 * slowDuration);
+  expectContinuousMotion(fast, fast.lastExecution());
+  expectStopsOnlyWhereRunsEnd(fast.lastExecution());
+}
+
+TEST(PaperTaskTiming, ScalingSlowsTheMotionWithinTheScaledLimits) {
+  ExecutionSettings half = testSettings();
+  half.velocityScaling = 0.5;
+  half.accelerationScaling = 0.25;
+  TaskExecutor executor(deskScene("panda"), half);
+  ASSERT_TRUE(runPaperTask(executor).repair.succeeded());
+  expectContinuousMotion(executor, executor.lastExecution());
+  double duration = 0.0;
+  for (const ActionExecution& action : executor.lastExecution().actions) duration += action.trajectory.duration();
+  EXPECT_GT(duration, 15.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltinRobots, PaperTask,

@@ -47,7 +47,10 @@ TEST(TimeParameterization, BadInput) {
   EXPECT_THROW((void)timeParameterize(*space, {}), InputError);
   EXPECT_THROW((void)timeParameterize(*space, {VectorX::Zero(3)}), InputError);
   TimeParameterizationOptions options;
-  options.limitScale = 0.0;
+  options.velocityScaling = 0.0;
+  EXPECT_THROW((void)timeParameterize(*space, {planarStart()}, options), InputError);
+  options.velocityScaling = 1.0;
+  options.accelerationScaling = 1.5;
   EXPECT_THROW((void)timeParameterize(*space, {planarStart()}, options), InputError);
 }
 

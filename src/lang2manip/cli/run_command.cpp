@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "lang2manip/cli/commands.hpp"
@@ -23,10 +24,23 @@ struct RunOptions {
   std::string out = "lang2manip-run";
   bool json = false;
   bool html = false;
+  std::string timing = trajectoryTimingName(ExecutionSettings{}.timing);
 };
 
-void checkOptions(const RunOptions& options) {
-  const RunRequest& request = options.request;
+std::string numberText(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+/// The options' request, checked, with the timing named by --timing.
+RunRequest checkedRequest(const RunOptions& options) {
+  RunRequest request = options.request;
+  try {
+    request.timing = trajectoryTimingNamed(options.timing);
+  } catch (const InputError& error) {
+    throw InputError(std::string("run: --timing: ") + error.what());
+  }
   if (request.planFile.empty() && request.task.find_first_not_of(" \t\r\n") == std::string::npos) {
     throw InputError("run: --task must not be empty (e.g. --task \"" + std::string(kPaperTask) + "\")");
   }
@@ -34,8 +48,15 @@ void checkOptions(const RunOptions& options) {
   if (request.seed < 0) throw InputError("run: --seed " + std::to_string(request.seed) + ": must be >= 0");
   if (!(request.timeLimit > 0.0)) throw InputError("run: --time-limit must be a positive number of seconds");
   if (!(request.ikTimeout > 0.0)) throw InputError("run: --ik-timeout must be a positive number of seconds");
+  for (const auto& [value, flag] : {std::pair{request.velocityScaling, "--velocity-scaling"},
+                                    std::pair{request.accelerationScaling, "--acceleration-scaling"}}) {
+    if (!(value > 0.0 && value <= 1.0)) {
+      throw InputError(std::string("run: ") + flag + " " + numberText(value) + ": must be in (0, 1] (a fraction of the joint limits)");
+    }
+  }
   if (options.out.empty()) throw InputError("run: --out must name a directory");
   if (!request.motionPlanner.empty()) (void)canonicalPlannerName(request.motionPlanner);
+  return request;
 }
 
 /// The output directory, created; an existing file of that name is an error.
@@ -73,11 +94,11 @@ void writeDocuments(const fs::path& out, const RunDocuments& documents) {
 }
 
 void runCommand(const RunOptions& options, std::ostream& out) {
-  checkOptions(options);
+  const RunRequest request = checkedRequest(options);
   // Before the long work: a missing viewer is an error now, not after the run.
   const std::string viewer = options.html ? viewerScript() : "";
   const fs::path directory = prepareOutput(options.out);
-  const RunDocuments documents = runTask(options.request);
+  const RunDocuments documents = runTask(request);
   writeDocuments(directory, documents);
   if (options.html) writeFile(directory / "run.html", runPageHtml(documents.viewerDocument, documents.sceneGlb, viewer));
   if (options.json) {
@@ -114,6 +135,16 @@ void addRunCommand(CLI::App& app, std::ostream& out) {
   command->add_option("--time-limit", options->request.timeLimit, "Seconds one motion query may take")->capture_default_str();
   command->add_option("--ik-timeout", options->request.ikTimeout, "Seconds of IK search per pose")->capture_default_str();
   command->add_option("--out", options->out, "Output directory")->capture_default_str();
+  command->add_option("--velocity-scaling", options->request.velocityScaling,
+                      "Fraction of every joint's velocity limit the trajectories use, in (0, 1]")
+      ->capture_default_str();
+  command->add_option("--acceleration-scaling", options->request.accelerationScaling,
+                      "Fraction of every joint's acceleration limit the trajectories use, in (0, 1]")
+      ->capture_default_str();
+  command->add_option("--timing", options->timing,
+                      "How motions are timed: time-optimal (motions joined and blended, stops only where the gripper "
+                      "acts) or rest-to-rest (a stop at every waypoint)")
+      ->capture_default_str();
   command->add_flag("--record-tree", options->request.recordTree,
                     "Keep each transit planner's exploration graph (scene.glb draws it green at the tool frame)");
   command->add_flag("--html", options->html, "Also write run.html: the scene, the motion and the plan in one page that opens offline");

@@ -23,11 +23,46 @@ JointTrajectory shiftedBy(JointTrajectory trajectory, double seconds) {
   return trajectory;
 }
 
+/// Path lengths (joint space): the transit planners' paths before and after simplification,
+/// and the path the trajectory follows.
+struct PathLengths {
+  double planned = 0.0;
+  double simplified = 0.0;
+  double executed = 0.0;
+
+  PathLengths& operator+=(const PathLengths& other) {
+    planned += other.planned;
+    simplified += other.simplified;
+    executed += other.executed;
+    return *this;
+  }
+  [[nodiscard]] json toJson() const { return {{"transits_planned", planned}, {"transits_simplified", simplified}, {"executed", executed}}; }
+};
+
+PathLengths pathLengths(const ActionExecution& action) {
+  PathLengths lengths;
+  for (const MotionSegment& segment : action.segments) {
+    lengths.planned += segment.plannedLength;
+    lengths.simplified += segment.simplifiedLength;
+  }
+  lengths.executed = action.quality.pathLength;
+  return lengths;
+}
+
+json qualityJson(const TrajectoryQuality& quality) {
+  return {{"stops_inside_runs", quality.stopsInsideRuns}, {"blended_corners", quality.blendedCorners},
+          {"reduced_blends", quality.reducedBlends}, {"rest_to_rest_fallbacks", quality.restToRestFallbacks},
+          {"seconds", quality.seconds}};
+}
+
 json actionJson(const ActionExecution& action) {
   json segments = json::array();
   for (const MotionSegment& segment : action.segments) {
     json entry = {{"label", segment.label}, {"waypoints", segment.waypoints.size()}};
-    if (!segment.planner.empty()) entry["planner"] = segment.planner;
+    if (!segment.planner.empty()) {
+      entry["planner"] = segment.planner;
+      entry["path_length"] = {{"planned", segment.plannedLength}, {"simplified", segment.simplifiedLength}};
+    }
     segments.push_back(entry);
   }
   json entry = {{"step", action.index + 1},
@@ -36,6 +71,9 @@ json actionJson(const ActionExecution& action) {
                 {"status", actionStatusName(action.status)},
                 {"motions", segments},
                 {"duration", action.trajectory.duration()},
+                {"runs", action.runs.size()},
+                {"trajectory", qualityJson(action.quality)},
+                {"path_length", pathLengths(action).toJson()},
                 {"seconds", {{"grasp", action.times.grasp}, {"placement", action.times.placement},
                              {"ik", action.times.ik}, {"motion", action.times.motion}}}};
   if (!action.choice.empty()) entry["choice"] = action.choice;
@@ -130,8 +168,24 @@ json runReportJson(const RunOutcome& outcome) {
     for (const ActionExecution& action : outcome.execution->actions) actions.push_back(actionJson(action));
     report["final_poses"] = finalPosesJson(outcome.execution->finalScene);
     double duration = 0.0;
-    for (const ActionExecution& action : outcome.execution->actions) duration += action.trajectory.duration();
+    TrajectoryQuality quality;
+    PathLengths lengths;
+    for (const ActionExecution& action : outcome.execution->actions) {
+      duration += action.trajectory.duration();
+      quality.stopsInsideRuns += action.quality.stopsInsideRuns;
+      quality.blendedCorners += action.quality.blendedCorners;
+      quality.reducedBlends += action.quality.reducedBlends;
+      quality.restToRestFallbacks += action.quality.restToRestFallbacks;
+      quality.seconds += action.quality.seconds;
+      lengths += pathLengths(action);
+    }
     report["trajectory_duration"] = duration;
+    report["trajectory"] = qualityJson(quality);
+    report["trajectory"]["duration"] = duration;
+    report["trajectory"]["timing"] = outcome.timing;
+    report["trajectory"]["velocity_scaling"] = outcome.velocityScaling;
+    report["trajectory"]["acceleration_scaling"] = outcome.accelerationScaling;
+    report["path_length"] = lengths.toJson();
   }
   report["actions"] = actions;
   report["verification"] = {{"collision_free", outcome.verification.collision.empty()},

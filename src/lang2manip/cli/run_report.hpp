@@ -19,6 +19,10 @@ struct RunOutcome {
   std::string robot;
   std::string manipulator;
   long seed = 1;
+  /// How the trajectories were timed ("time-optimal", "rest-to-rest") and the limit fractions.
+  std::string timing;
+  double velocityScaling = 1.0;
+  double accelerationScaling = 1.0;
   RepairResult repair;
   /// The execution of the last plan tried (the accepted one on success); null when no plan got
   /// as far as execution.

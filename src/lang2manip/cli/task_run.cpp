@@ -46,6 +46,9 @@ ExecutionSettings executionSettings(const RunRequest& request) {
   settings.planningTimeSeconds = request.timeLimit;
   settings.reach.ikTimeoutSeconds = request.ikTimeout;
   if (request.recordTree) settings.recordTreeEdges = kRecordedTreeEdges;
+  settings.timing = request.timing;
+  settings.velocityScaling = request.velocityScaling;
+  settings.accelerationScaling = request.accelerationScaling;
   return settings;
 }
 
@@ -136,6 +139,9 @@ RunDocuments runTask(const RunRequest& request, const RunControl& control) {
   outcome.robot = executor.arm().robotName();
   outcome.manipulator = executor.arm().manipulator().name;
   outcome.seed = request.seed;
+  outcome.timing = trajectoryTimingName(request.timing);
+  outcome.velocityScaling = request.velocityScaling;
+  outcome.accelerationScaling = request.accelerationScaling;
   RunDocuments documents;
   report(control.progress, {ProgressStage::kObserve, 0, -1, "", outcome.robot});
   observe(request, scene, outcome.robot, documents, outcome.observationSeconds);

@@ -71,6 +71,10 @@ struct RunRequest {
   double ikTimeout = ExecutionSettings{}.reach.ikTimeoutSeconds;
   /// Keep the transit planners' exploration graphs (drawn green by the viewer).
   bool recordTree = false;
+  /// How trajectories are timed, and the fractions of the joint limits they use.
+  TrajectoryTiming timing = ExecutionSettings{}.timing;
+  double velocityScaling = ExecutionSettings{}.velocityScaling;
+  double accelerationScaling = ExecutionSettings{}.accelerationScaling;
 };
 
 /// What a run produced: the contents of the files `run` writes.

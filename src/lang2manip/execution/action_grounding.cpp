@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/execution/motion_timing.hpp"
 #include "lang2manip/symbolic/plan_json.hpp"
 
 namespace lang2manip {
@@ -104,23 +105,13 @@ void fail(ActionExecution& record, const std::string& stage, const std::string& 
   record.reason = reason;
 }
 
-/// When each segment ends in `trajectory`, which passes through every waypoint in order: the time
-/// of the segment's last waypoint (a segment without waypoints ends where the previous one did).
-std::vector<double> segmentEndTimes(const JointTrajectory& trajectory, const std::vector<MotionSegment>& segments) {
-  std::vector<double> ends;
-  std::size_t point = 0;
-  double end = 0.0;
-  for (const MotionSegment& segment : segments) {
-    for (std::size_t p = point; !segment.waypoints.empty() && p < trajectory.points.size(); ++p) {
-      if ((trajectory.points[p].positions - segment.waypoints.back()).cwiseAbs().maxCoeff() <= 1e-9) {
-        point = p;
-        end = trajectory.points[p].time;
-        break;
-      }
-    }
-    ends.push_back(end);
-  }
-  return ends;
+/// One point at rest at `q`: the trajectory of an action that had nothing to move.
+JointTrajectory restingTrajectory(const PlanningSpace& space, const VectorX& q) {
+  JointTrajectory trajectory;
+  trajectory.jointNames = space.trajectoryJointNames();
+  const VectorX zero = VectorX::Zero(static_cast<Eigen::Index>(trajectory.jointNames.size()));
+  trajectory.points.push_back({space.trajectoryPositions(q), zero, zero, 0.0});
+  return trajectory;
 }
 
 }  // namespace
@@ -146,13 +137,13 @@ ActionExecution executeAction(const GroundingContext& context, Scene& world, con
     record.status = ActionStatus::kFailed;
     return record;
   }
-  std::vector<VectorX> waypoints;
-  for (const MotionSegment& segment : done->segments) {
-    waypoints.insert(waypoints.end(), segment.waypoints.begin(), segment.waypoints.end());
-  }
-  if (waypoints.empty()) waypoints.push_back(done->q);
-  record.trajectory = context.arm.timeParameterize(waypoints);
-  record.segmentEndTimes = segmentEndTimes(record.trajectory, done->segments);
+  ActionTiming timing = timeActionMotions(context.arm, done->segments);
+  if (timing.trajectory.points.empty()) timing.trajectory = restingTrajectory(context.arm.robotSpace(), done->q);
+  context.counters.collisionChecks += timing.collisionChecks;
+  record.trajectory = std::move(timing.trajectory);
+  record.segmentEndTimes = std::move(timing.segmentEndTimes);
+  record.runs = std::move(timing.runs);
+  record.quality = timing.quality;
   record.segments = std::move(done->segments);
   record.status = ActionStatus::kSucceeded;
   world = std::move(done->world);

@@ -118,16 +118,6 @@ ArmContext::ArmContext(const Scene& scene, ExecutionSettings settings) : setting
 
 VectorX ArmContext::withArm(VectorX q, const VectorX& arm) const { return withValues(armVariables_, std::move(q), arm); }
 
-JointTrajectory ArmContext::timeParameterize(const std::vector<VectorX>& waypoints) const {
-  std::vector<VectorX> path;
-  for (const VectorX& q : waypoints) {
-    if (path.empty() || (q - path.back()).cwiseAbs().maxCoeff() > 1e-9) path.push_back(q);
-  }
-  TimeParameterizationOptions options;
-  options.limitScale = settings_.speedScale;
-  return lang2manip::timeParameterize(*robotSpace_, path, options);
-}
-
 std::shared_ptr<const FclCollisionChecker> ArmContext::checkerFor(const Scene& world) const {
   FclCheckerSettings fcl;
   if (world.robots().size() == matrices_.size()) fcl.precomputedMatrices = matrices_;
@@ -188,6 +178,8 @@ MotionResult planDirectTransit(const ArmContext& arm, const Scene& world, const 
   segment.label = label;
   segment.world = world;
   segment.planner = settings.planner();
+  segment.plannedLength = plan.statistics.lengthBeforeSimplification;
+  segment.simplifiedLength = plan.statistics.lengthAfterSimplification;
   result.plannerSolved = 1;
   result.collisionChecks = plan.statistics.stateChecks;
   for (const VectorX& x : plan.path) segment.waypoints.push_back(withValues(variables, start, x));
@@ -228,6 +220,8 @@ MotionResult planTransitThroughHome(const ArmContext& arm, const Scene& world, c
   waypoints.insert(waypoints.end(), second.segment->waypoints.begin() + 1, second.segment->waypoints.end());
   second.segment->waypoints = std::move(waypoints);
   second.segment->label = label + " (through home)";
+  second.segment->plannedLength += first.segment->plannedLength;
+  second.segment->simplifiedLength += first.segment->simplifiedLength;
   return second;
 }
 
@@ -374,15 +368,26 @@ MotionResult closeGripperOn(const ArmContext& arm, const Scene& world, const Vec
   return result;
 }
 
+SegmentStateChecker::SegmentStateChecker(const ArmContext& arm, const MotionSegment& segment)
+    : segment_(&segment), checker_(arm.checkerFor(robotCheckWorld(segment))),
+      robot_(checker_->robotIndex(arm.robotName())), context_(checker_->makeContext()) {}
+
+std::string SegmentStateChecker::forbiddenContacts(const VectorX& q) {
+  ++checks_;
+  if (checker_->isStateValid(robot_, q, *context_)) return {};
+  return contactsText(lang2manip::forbiddenContacts(*checker_, robot_, q, *segment_, *context_));
+}
+
+std::string carriedSweepCollision(const MotionSegment& segment) {
+  if (segment.carried.empty()) return {};
+  std::string carried = findCarriedCollision(segment);
+  return carried.empty() ? carried : segment.label + ": " + carried;
+}
+
 SegmentCheck checkSegment(const ArmContext& arm, const MotionSegment& segment, double resolution) {
   SegmentCheck result;
-  if (!segment.carried.empty()) {
-    std::string carried = findCarriedCollision(segment);
-    if (!carried.empty()) return {segment.label + ": " + carried, 0};
-  }
-  const auto checker = arm.checkerFor(robotCheckWorld(segment));
-  const int robot = checker->robotIndex(arm.robotName());
-  const auto context = checker->makeContext();
+  if (std::string carried = carriedSweepCollision(segment); !carried.empty()) return {carried, 0};
+  SegmentStateChecker checker(arm, segment);
   for (std::size_t w = 0; w + 1 < segment.waypoints.size() || (w == 0 && segment.waypoints.size() == 1); ++w) {
     const VectorX& q0 = segment.waypoints[w];
     const VectorX& q1 = segment.waypoints[std::min(w + 1, segment.waypoints.size() - 1)];
@@ -390,15 +395,14 @@ SegmentCheck checkSegment(const ArmContext& arm, const MotionSegment& segment, d
     const int steps = std::max(1, static_cast<int>(std::ceil(span / resolution)));
     for (int i = 0; i <= steps; ++i) {
       const VectorX q = q0 + (q1 - q0) * (static_cast<double>(i) / steps);
-      ++result.checks;
-      if (checker->isStateValid(robot, q, *context)) continue;
-      const auto forbidden = forbiddenContacts(*checker, robot, q, segment, *context);
-      if (forbidden.empty()) continue;
-      result.collision = segment.label + ", waypoint " + std::to_string(w) + " " + armPart(armValues(arm, q)) + ": " +
-                         contactsText(forbidden);
+      std::string contacts = checker.forbiddenContacts(q);
+      if (contacts.empty()) continue;
+      result.checks = checker.checks();
+      result.collision = segment.label + ", waypoint " + std::to_string(w) + " " + armPart(armValues(arm, q)) + ": " + contacts;
       return result;
     }
   }
+  result.checks = checker.checks();
   return result;
 }
 

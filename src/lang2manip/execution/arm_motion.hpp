@@ -48,9 +48,8 @@ class ArmContext {
   [[nodiscard]] Pose toolPose(const Scene& world, const VectorX& q) const;
   /// The gripper gap of configuration `q`.
   [[nodiscard]] double gripperWidth(const VectorX& q) const;
-  /// A trajectory through `waypoints` (full robot configurations; repeated points dropped),
-  /// within the settings' fraction of every joint's velocity and acceleration limits.
-  [[nodiscard]] JointTrajectory timeParameterize(const std::vector<VectorX>& waypoints) const;
+  /// The robot's full configuration space (every variable; the trajectories' joints and limits).
+  [[nodiscard]] const PlanningSpace& robotSpace() const noexcept { return *robotSpace_; }
 
  private:
   std::string robot_;
@@ -137,6 +136,29 @@ struct SegmentCheck {
   /// Robot states checked.
   long checks = 0;
 };
+
+/// Checks configurations of the arm's robot against one segment's world and allowed contacts
+/// (the robot's part of checkSegment: a carried object is left out), with one checker for all.
+class SegmentStateChecker {
+ public:
+  SegmentStateChecker(const ArmContext& arm, const MotionSegment& segment);
+  /// Empty when the robot at `q` touches nothing, or only what the segment allows; otherwise
+  /// the contacts ("a - b, c - d").
+  [[nodiscard]] std::string forbiddenContacts(const VectorX& q);
+  /// Configurations checked so far.
+  [[nodiscard]] long checks() const noexcept { return checks_; }
+
+ private:
+  const MotionSegment* segment_;
+  std::shared_ptr<const FclCollisionChecker> checker_;
+  int robot_ = 0;
+  std::unique_ptr<CollisionContext> context_;
+  long checks_ = 0;
+};
+
+/// Empty when a push segment's carried object sweeps free of the other objects (or nothing is
+/// carried); otherwise says what it would hit and where.
+std::string carriedSweepCollision(const MotionSegment& segment);
 
 /// Checks `segment` in its world at `resolution` (but for its allowed contacts; a carried
 /// object's sweep is checked against the other objects).

@@ -61,11 +61,26 @@ void checkExecutionSettings(const ExecutionSettings& s) {
   if (s.maxGraspAttempts < 1) throw InputError("execution settings: maxGraspAttempts must be >= 1");
   if (s.maxPlacementAttempts < 1) throw InputError("execution settings: maxPlacementAttempts must be >= 1");
   if (s.reach.ikSolutions < 1) throw InputError("execution settings: reach.ikSolutions must be >= 1");
-  if (!(s.speedScale > 0.0 && s.speedScale <= 1.0)) {
-    throw InputError("execution settings: speedScale must be in (0, 1] (got " + std::to_string(s.speedScale) + ")");
+  for (const auto& [value, name] : {std::pair{s.velocityScaling, "velocityScaling"}, std::pair{s.accelerationScaling, "accelerationScaling"}}) {
+    if (!(value > 0.0 && value <= 1.0)) {
+      throw InputError(std::string("execution settings: ") + name + " must be in (0, 1] (got " + std::to_string(value) + ")");
+    }
   }
+  checkLength(s.blendDeviation, "blendDeviation");
+  checkPositive(s.cartesianDeviation, "cartesianDeviation");
   checkGraspSettings(s.grasp);
   checkPlacementSettings(s.placement);
+}
+
+std::string trajectoryTimingName(TrajectoryTiming timing) {
+  return timing == TrajectoryTiming::kTimeOptimal ? "time-optimal" : "rest-to-rest";
+}
+
+TrajectoryTiming trajectoryTimingNamed(const std::string& name) {
+  for (const TrajectoryTiming timing : {TrajectoryTiming::kTimeOptimal, TrajectoryTiming::kRestToRest}) {
+    if (trajectoryTimingName(timing) == name) return timing;
+  }
+  throw InputError("unknown trajectory timing \"" + name + "\" (known: time-optimal, rest-to-rest)");
 }
 
 }  // namespace lang2manip

@@ -19,6 +19,21 @@
 
 namespace lang2manip {
 
+/// How the motions of an action are timed.
+enum class TrajectoryTiming {
+  /// One time-optimal trajectory per run of arm motions (transits and Cartesian moves joined,
+  /// corners blended): stops only where the gripper acts, a push starts or ends, or a corner
+  /// cannot be blended.
+  kTimeOptimal,
+  /// A trapezoid from rest to rest between every two waypoints (the older, slower timing).
+  kRestToRest,
+};
+
+/// "time-optimal", "rest-to-rest".
+std::string trajectoryTimingName(TrajectoryTiming timing);
+/// The timing named `name`; throws InputError listing the names otherwise.
+TrajectoryTiming trajectoryTimingNamed(const std::string& name);
+
 /// Tuning of plan execution (lengths in metres, angles in radians, times in seconds).
 struct ExecutionSettings {
   /// The robot and arm that execute the plan; empty = the scene's first robot, its first arm.
@@ -46,8 +61,19 @@ struct ExecutionSettings {
   double pushApproachHeight = 0.08;
   double pushStandoff = 0.01;
   double pushRetreat = 0.08;
-  /// Fraction of the velocity and acceleration limits the trajectories use.
-  double speedScale = 0.5;
+  /// How each action's motions become a trajectory (see motion_timing.hpp).
+  TrajectoryTiming timing = TrajectoryTiming::kTimeOptimal;
+  /// Fractions of every joint's velocity and acceleration limits the trajectories use, in (0, 1]
+  /// (MoveIt's velocity and acceleration scaling factors).
+  double velocityScaling = 1.0;
+  double accelerationScaling = 1.0;
+  /// Time-optimal timing: the largest distance (rad, Euclidean in joint space) between a corner
+  /// of a motion and the arc that replaces it. Arcs that would collide, or take the tool further
+  /// than cartesianDeviation (m) from a Cartesian move's straight line, are made smaller, down to
+  /// a stop at that corner. Where a transit joins a Cartesian move, the tool may leave the line
+  /// within one cartesianStep of the junction (a blend zone).
+  double blendDeviation = 0.1;
+  double cartesianDeviation = 0.001;
   /// Seed of the planners, IK restarts and placement samples.
   std::uint64_t seed = 1;
   /// Keep each transit planner's exploration graph (at most this many edges per query; 0: none).
@@ -85,6 +111,10 @@ struct MotionSegment {
   Vector3 carriedDisplacement = Vector3::Zero();
   /// Motion planner that produced it (empty for Cartesian and gripper motions).
   std::string planner;
+  /// Transit: the planner's path length and the length after simplification (joint space,
+  /// Euclidean; 0 for other motions).
+  double plannedLength = 0.0;
+  double simplifiedLength = 0.0;
   /// A gripper motion that closes on an object (kGrasp) or lets it go (kRelease).
   GripperEvent gripperEvent = GripperEvent::kNone;
   /// The planner's exploration graph when recorded (ExecutionSettings::recordTreeEdges), its
@@ -120,6 +150,32 @@ enum class ActionStatus { kSucceeded, kFailed, kNotRun };
 /// "succeeded", "failed", "not run".
 std::string actionStatusName(ActionStatus status);
 
+/// Consecutive segments of an action timed as one motion from rest to rest (motion_timing.hpp).
+struct TimedRun {
+  /// Segments [firstSegment, endSegment) of the action.
+  std::size_t firstSegment = 0;
+  std::size_t endSegment = 0;
+  /// The blend bound at each waypoint of the run (runWaypoints()): 0 leaves a sharp corner where
+  /// the trajectory stops; the first and last entries are unused.
+  std::vector<double> cornerDeviations;
+};
+
+/// How an action's trajectory came out.
+struct TrajectoryQuality {
+  /// Where the arm is at rest inside a run: corners left sharp (reversals, blends refused).
+  int stopsInsideRuns = 0;
+  /// Corners blended, and those whose first blend had to be made smaller.
+  int blendedCorners = 0;
+  int reducedBlends = 0;
+  /// Runs whose time-optimal trajectory broke a limit on its samples and were timed rest to
+  /// rest instead (a numerical failure, reported rather than hidden).
+  int restToRestFallbacks = 0;
+  /// Length of the path the trajectory follows (joint space, Euclidean; blends included).
+  double pathLength = 0.0;
+  /// Seconds spent timing (blend checks and parameterization).
+  double seconds = 0.0;
+};
+
 struct ActionExecution {
   std::size_t index = 0;
   SymbolicAction action;
@@ -134,8 +190,12 @@ struct ActionExecution {
   /// The action's motion, time from the start of the action (empty unless it succeeded).
   JointTrajectory trajectory;
   /// When each of `segments` ends in `trajectory` (seconds from the start of the action): which
-  /// world (attachments) holds at each moment of the motion.
+  /// world (attachments) holds at each moment of the motion. Exact at run ends (rest); inside a
+  /// run, the trajectory point nearest the segment's last waypoint.
   std::vector<double> segmentEndTimes;
+  /// How the segments were joined and blended (time-optimal timing; empty otherwise).
+  std::vector<TimedRun> runs;
+  TrajectoryQuality quality;
   StageTimes times;
 };
 

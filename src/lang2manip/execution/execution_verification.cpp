@@ -7,6 +7,7 @@
 #include <set>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/execution/motion_timing.hpp"
 #include "lang2manip/symbolic/plan_json.hpp"
 #include "lang2manip/symbolic/spatial_relations.hpp"
 
@@ -20,13 +21,11 @@ constexpr double kRotationTolerance = 1e-2;
 
 std::string firstCollision(const ArmContext& arm, const ExecutionRecord& record, ExecutionVerification& result) {
   for (const ActionExecution& action : record.actions) {
-    for (const MotionSegment& segment : action.segments) {
-      ++result.segmentsChecked;
-      const SegmentCheck check = checkSegment(arm, segment, arm.settings().verificationResolution);
-      result.collisionChecks += check.checks;
-      if (!check.collision.empty()) {
-        return "step " + std::to_string(action.index + 1) + " (" + describeAction(action.action) + "): " + check.collision;
-      }
+    result.segmentsChecked += static_cast<int>(action.segments.size());
+    const SegmentCheck check = checkTimedAction(arm, action, arm.settings().verificationResolution);
+    result.collisionChecks += check.checks;
+    if (!check.collision.empty()) {
+      return "step " + std::to_string(action.index + 1) + " (" + describeAction(action.action) + "): " + check.collision;
     }
   }
   return {};

@@ -13,11 +13,13 @@ namespace {
 // Lines shorter than this (what is left between two arcs that each use half of it) are dropped.
 constexpr double kMinLineLength = 1e-12;
 
-void checkWaypoints(const std::vector<VectorX>& waypoints, double maxDeviation) {
-  if (!(maxDeviation >= 0.0 && std::isfinite(maxDeviation))) {
-    throw InputError("blended path: max deviation must be finite and >= 0 (got " +
-                     std::to_string(maxDeviation) + ")");
+void checkDeviation(double deviation, const std::string& which) {
+  if (!(deviation >= 0.0 && std::isfinite(deviation))) {
+    throw InputError("blended path: " + which + " must be finite and >= 0 (got " + std::to_string(deviation) + ")");
   }
+}
+
+void checkWaypoints(const std::vector<VectorX>& waypoints) {
   if (waypoints.empty()) throw InputError("blended path: the path is empty (no waypoints)");
   const Eigen::Index size = waypoints.front().size();
   for (std::size_t i = 0; i < waypoints.size(); ++i) {
@@ -36,18 +38,24 @@ void checkWaypoints(const std::vector<VectorX>& waypoints, double maxDeviation) 
   }
 }
 
-// The waypoints without those within kMinWaypointDistance of the previous kept one; a repeated
-// last waypoint replaces the point it repeats, so that the path ends exactly on it.
-std::vector<VectorX> keptWaypoints(const std::vector<VectorX>& waypoints) {
-  std::vector<VectorX> kept{waypoints.front()};
+// The indices of the waypoints kept: not those within kMinWaypointDistance of the previous kept
+// one, except that a repeated last waypoint replaces the point it repeats, so that the path ends
+// exactly on it.
+std::vector<std::size_t> keptWaypoints(const std::vector<VectorX>& waypoints) {
+  std::vector<std::size_t> kept{0};
   for (std::size_t i = 1; i < waypoints.size(); ++i) {
-    if ((waypoints[i] - kept.back()).norm() > BlendedPath::kMinWaypointDistance) {
-      kept.push_back(waypoints[i]);
+    if ((waypoints[i] - waypoints[kept.back()]).norm() > BlendedPath::kMinWaypointDistance) {
+      kept.push_back(i);
     } else if (i + 1 == waypoints.size() && kept.size() > 1) {
-      kept.back() = waypoints[i];
+      kept.back() = i;
     }
   }
   return kept;
+}
+
+std::vector<double> everyCorner(std::size_t waypoints, double maxDeviation) {
+  checkDeviation(maxDeviation, "max deviation");
+  return std::vector<double>(waypoints, maxDeviation);
 }
 
 }  // namespace
@@ -72,15 +80,26 @@ VectorX PathSegment::curvature(double u) const {
   return -(axisX * std::cos(angle) + axisY * std::sin(angle)) / radius;
 }
 
-BlendedPath::BlendedPath(const std::vector<VectorX>& waypoints, double maxDeviation) {
-  checkWaypoints(waypoints, maxDeviation);
-  waypoints_ = keptWaypoints(waypoints);
+BlendedPath::BlendedPath(const std::vector<VectorX>& waypoints, double maxDeviation)
+    : BlendedPath(waypoints, everyCorner(waypoints.size(), maxDeviation)) {}
+
+BlendedPath::BlendedPath(const std::vector<VectorX>& waypoints, const std::vector<double>& cornerDeviations) {
+  checkWaypoints(waypoints);
+  if (cornerDeviations.size() != waypoints.size()) {
+    throw InputError("blended path: " + std::to_string(cornerDeviations.size()) + " corner deviations for " +
+                     std::to_string(waypoints.size()) + " waypoints");
+  }
+  for (std::size_t i = 0; i < cornerDeviations.size(); ++i) {
+    checkDeviation(cornerDeviations[i], "deviation at waypoint " + std::to_string(i));
+  }
+  const std::vector<std::size_t> kept = keptWaypoints(waypoints);
+  for (const std::size_t i : kept) waypoints_.push_back(waypoints[i]);
   dimension_ = static_cast<int>(waypoints_.front().size());
   VectorX lineStart = waypoints_.front();
   for (std::size_t i = 1; i + 1 < waypoints_.size(); ++i) {
-    addCorner(waypoints_[i - 1], waypoints_[i], waypoints_[i + 1], maxDeviation, lineStart);
+    addCorner(i, cornerDeviations[kept[i]], lineStart);
   }
-  if (waypoints_.size() > 1) addLine(lineStart, waypoints_.back());
+  if (waypoints_.size() > 1) addLine(lineStart, waypoints_.back(), waypoints_.size() - 2);
   starts_.reserve(segments_.size());
   for (const PathSegment& segment : segments_) starts_.push_back(segment.start);
   const auto atAnEnd = [this](double s) { return s <= 0.0 || s >= length_; };
@@ -88,10 +107,11 @@ BlendedPath::BlendedPath(const std::vector<VectorX>& waypoints, double maxDeviat
   switching_.erase(std::unique(switching_.begin(), switching_.end()), switching_.end());
 }
 
-void BlendedPath::addLine(const VectorX& from, const VectorX& to) {
+void BlendedPath::addLine(const VectorX& from, const VectorX& to, std::size_t waypoint) {
   const double length = (to - from).norm();
   if (length <= kMinLineLength) return;
   PathSegment line;
+  line.waypoint = waypoint;
   line.start = length_;
   line.length = length;
   line.origin = from;
@@ -101,8 +121,10 @@ void BlendedPath::addLine(const VectorX& from, const VectorX& to) {
   length_ += length;
 }
 
-void BlendedPath::addCorner(const VectorX& previous, const VectorX& corner, const VectorX& next,
-                            double maxDeviation, VectorX& lineStart) {
+void BlendedPath::addCorner(std::size_t index, double maxDeviation, VectorX& lineStart) {
+  const VectorX& previous = waypoints_[index - 1];
+  const VectorX& corner = waypoints_[index];
+  const VectorX& next = waypoints_[index + 1];
   const double lengthIn = (corner - previous).norm();
   const double lengthOut = (next - corner).norm();
   const VectorX in = (corner - previous) / lengthIn;
@@ -110,12 +132,12 @@ void BlendedPath::addCorner(const VectorX& previous, const VectorX& corner, cons
   // The turning angle, accurate near 0 and near pi (unlike acos of the dot product).
   const double angle = 2.0 * std::atan2((out - in).norm(), (out + in).norm());
   if (angle < kMinBlendAngle) {  // straight on
-    addLine(lineStart, corner);
+    addLine(lineStart, corner, index - 1);
     lineStart = corner;
     return;
   }
   if (maxDeviation == 0.0 || angle > std::numbers::pi - kReversalAngle) {
-    addLine(lineStart, corner);
+    addLine(lineStart, corner, index - 1);
     stops_.push_back(length_);
     lineStart = corner;
     return;
@@ -130,13 +152,14 @@ void BlendedPath::addCorner(const VectorX& previous, const VectorX& corner, cons
   const VectorX arcStart = corner - blend * in;
   PathSegment arc;
   arc.kind = PathSegment::Kind::kArc;
+  arc.waypoint = index;
   arc.origin = corner + (out - in).normalized() * (radius / std::cos(half));
   arc.axisX = (arcStart - arc.origin).normalized();
   arc.axisY = in;
   arc.radius = radius;
   arc.length = angle * radius;
   arc.end = corner + blend * out;
-  addLine(lineStart, arcStart);
+  addLine(lineStart, arcStart, index - 1);
   arc.start = length_;
   switching_.push_back(length_);
   length_ += arc.length;

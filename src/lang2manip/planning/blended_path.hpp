@@ -31,6 +31,9 @@ struct PathSegment {
   double radius = 0.0;
   /// The end point, returned exactly at u = length (a waypoint, for a line ending on one).
   VectorX end;
+  /// Where it comes from, as an index into BlendedPath::waypoints(): a line lies on the straight
+  /// segment from this waypoint to the next; an arc replaces the corner at this waypoint.
+  std::size_t waypoint = 0;
 
   /// Position, first and second derivative with respect to arc length at local u (clamped).
   [[nodiscard]] VectorX position(double u) const;
@@ -51,6 +54,13 @@ class BlendedPath {
   /// Throws InputError (naming the waypoint index) for an empty list, points of different sizes
   /// or of size 0, values that are not finite, or a negative or non-finite maxDeviation.
   BlendedPath(const std::vector<VectorX>& waypoints, double maxDeviation);
+
+  /// The same with a deviation bound per waypoint: cornerDeviations[i] bounds the arc at
+  /// waypoints[i] (0 leaves that corner sharp: a stop point); the first and last entries are
+  /// unused. A dropped repeated waypoint takes its deviation with it.
+  /// Throws InputError as above, and when the sizes differ or a deviation is negative or not
+  /// finite.
+  BlendedPath(const std::vector<VectorX>& waypoints, const std::vector<double>& cornerDeviations);
 
   /// Waypoints closer than this (Euclidean) to the previous one are dropped.
   static constexpr double kMinWaypointDistance = 1e-9;
@@ -93,9 +103,8 @@ class BlendedPath {
   [[nodiscard]] std::vector<VectorX> sample(double resolution) const;
 
  private:
-  void addLine(const VectorX& from, const VectorX& to);
-  void addCorner(const VectorX& previous, const VectorX& corner, const VectorX& next,
-                 double maxDeviation, VectorX& lineStart);
+  void addLine(const VectorX& from, const VectorX& to, std::size_t waypoint);
+  void addCorner(std::size_t index, double maxDeviation, VectorX& lineStart);
 
   int dimension_ = 0;
   double length_ = 0.0;

@@ -141,10 +141,9 @@ void TrajectorySampler::addEnd(const VectorX& position) {
   out_.points.push_back(std::move(point));
 }
 
-JointTrajectory parameterize(const std::vector<VectorX>& path, const VectorX& maxVelocity,
+JointTrajectory parameterize(const BlendedPath& blended, const VectorX& maxVelocity,
                              const VectorX& maxAcceleration, const TimeOptimalOptions& options,
                              const JointMap& map) {
-  const BlendedPath blended(path, options.maxDeviation);
   checkLimits(maxVelocity, map.names, "velocity");
   checkLimits(maxAcceleration, map.names, "acceleration");
   JointTrajectory trajectory;
@@ -180,7 +179,7 @@ JointTrajectory timeOptimalParameterize(const std::vector<VectorX>& path, const 
   if (path.empty()) throw badInput("the path is empty (no waypoints)");
   JointMap map;
   for (Eigen::Index i = 0; i < path.front().size(); ++i) map.names.push_back("joint_" + std::to_string(i));
-  return parameterize(path, maxVelocity, maxAcceleration, options, map);
+  return parameterize(BlendedPath(path, options.maxDeviation), maxVelocity, maxAcceleration, options, map);
 }
 
 JointTrajectory timeOptimalParameterize(const PlanningSpace& space, const std::vector<VectorX>& path,
@@ -188,6 +187,16 @@ JointTrajectory timeOptimalParameterize(const PlanningSpace& space, const std::v
   checkOptions(options);
   if (path.empty()) throw badInput("the path is empty (no waypoints)");
   for (std::size_t i = 0; i < path.size(); ++i) space.checkPoint(path[i], "path point " + std::to_string(i));
+  return timeOptimalParameterize(space, BlendedPath(path, options.maxDeviation), options);
+}
+
+JointTrajectory timeOptimalParameterize(const PlanningSpace& space, const BlendedPath& path,
+                                        const TimeOptimalOptions& options) {
+  checkOptions(options);
+  if (path.dimension() != space.dimension()) {
+    throw badInput("the path has " + std::to_string(path.dimension()) + " coordinates; the space has " +
+                   std::to_string(space.dimension()));
+  }
   JointMap map;
   map.jacobian = &space.trajectoryJacobian();
   map.space = &space;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "lang2manip/core/types.hpp"
+#include "lang2manip/planning/blended_path.hpp"
 #include "lang2manip/planning/planning_space.hpp"
 #include "lang2manip/planning/trajectory.hpp"
 
@@ -51,6 +52,13 @@ JointTrajectory timeOptimalParameterize(const std::vector<VectorX>& path, const 
 /// trajectoryJointNames(), as timeParameterize() gives them.
 /// Throws InputError as above, and for points outside the space's bounds.
 JointTrajectory timeOptimalParameterize(const PlanningSpace& space, const std::vector<VectorX>& path,
+                                        const TimeOptimalOptions& options = {});
+
+/// The same along a path already blended (for example with a deviation per corner); the
+/// options' maxDeviation is not used. The path's points must be points of `space` (the caller
+/// built it from such points: arcs stay within the convex hull of their corner's neighbours).
+/// Throws InputError as above, and when the path's dimension is not the space's.
+JointTrajectory timeOptimalParameterize(const PlanningSpace& space, const BlendedPath& path,
                                         const TimeOptimalOptions& options = {});
 
 }  // namespace lang2manip

@@ -56,8 +56,13 @@ void appendPoint(const PlanningSpace& space, const VectorX& x, const VectorX& dx
 JointTrajectory timeParameterize(const PlanningSpace& space, const std::vector<VectorX>& path,
                                  const TimeParameterizationOptions& options) {
   if (path.empty()) throw InputError("time parameterization: the path is empty");
-  if (!(options.limitScale > 0.0 && options.limitScale <= 1.0)) {
-    throw InputError("time parameterization: limit scale must be in (0, 1]");
+  if (!(options.velocityScaling > 0.0 && options.velocityScaling <= 1.0)) {
+    throw InputError("time parameterization: velocity scaling must be in (0, 1] (got " +
+                     std::to_string(options.velocityScaling) + ")");
+  }
+  if (!(options.accelerationScaling > 0.0 && options.accelerationScaling <= 1.0)) {
+    throw InputError("time parameterization: acceleration scaling must be in (0, 1] (got " +
+                     std::to_string(options.accelerationScaling) + ")");
   }
   if (!(options.sampleInterval > 0.0 && std::isfinite(options.sampleInterval))) {
     throw InputError("time parameterization: sample interval must be positive");
@@ -69,8 +74,8 @@ JointTrajectory timeParameterize(const PlanningSpace& space, const std::vector<V
   trajectory.jointNames = space.trajectoryJointNames();
   const VectorX zero = VectorX::Zero(space.dimension());
   appendPoint(space, path.front(), zero, Vector3::Zero(), 0.0, trajectory);
-  const VectorX velocityLimits = space.jointVelocityLimits() * options.limitScale;
-  const VectorX accelerationLimits = space.jointAccelerationLimits() * options.limitScale;
+  const VectorX velocityLimits = space.jointVelocityLimits() * options.velocityScaling;
+  const VectorX accelerationLimits = space.jointAccelerationLimits() * options.accelerationScaling;
   double start = 0.0;
   for (std::size_t i = 1; i < path.size(); ++i) {
     const VectorX dx = path[i] - path[i - 1];
@@ -97,9 +102,9 @@ JointTrajectory timeParameterize(const PlanningSpace& space, const std::vector<V
 }
 
 std::string checkTrajectoryLimits(const PlanningSpace& space, const JointTrajectory& trajectory,
-                                  double tolerance) {
-  const VectorX& velocity = space.jointVelocityLimits();
-  const VectorX& acceleration = space.jointAccelerationLimits();
+                                  double tolerance, double velocityScaling, double accelerationScaling) {
+  const VectorX velocity = space.jointVelocityLimits() * velocityScaling;
+  const VectorX acceleration = space.jointAccelerationLimits() * accelerationScaling;
   double previousTime = -1.0;
   for (std::size_t p = 0; p < trajectory.points.size(); ++p) {
     const TrajectoryPoint& point = trajectory.points[p];

@@ -28,8 +28,9 @@ struct JointTrajectory {
 };
 
 struct TimeParameterizationOptions {
-  /// Fraction of the velocity and acceleration limits used (0, 1].
-  double limitScale = 1.0;
+  /// Fractions of the velocity and of the acceleration limits used, in (0, 1].
+  double velocityScaling = 1.0;
+  double accelerationScaling = 1.0;
   /// Time between samples inside a segment, seconds (waypoints are always samples).
   double sampleInterval = 0.02;
 };
@@ -41,10 +42,11 @@ JointTrajectory timeParameterize(const PlanningSpace& space, const std::vector<V
                                  const TimeParameterizationOptions& options = {});
 
 /// Empty when every point of `trajectory` is within the space's velocity and acceleration
-/// limits (with `tolerance` relative slack) and times increase; otherwise says
-/// which joint, point and limit is violated.
+/// limits times the scalings (with `tolerance` relative slack) and times increase; otherwise
+/// says which joint, point and limit is violated.
 std::string checkTrajectoryLimits(const PlanningSpace& space, const JointTrajectory& trajectory,
-                                  double tolerance = 1e-6);
+                                  double tolerance = 1e-6, double velocityScaling = 1.0,
+                                  double accelerationScaling = 1.0);
 
 /// {"joint_names": [...], "points": [{"positions", "velocities", "accelerations",
 /// "time_from_start": {"sec", "nanosec"}}]}.
