@@ -99,6 +99,15 @@ TEST(ApiRuns, BadRunRequestsAreRefusedBeforeQueueing) {
   EXPECT_THAT(errorOf(llm), HasSubstr("nosuch"));
   const auto field = server.postJson("/api/runs", {{"llm_base_url", "http://169.254.169.254/"}});
   EXPECT_EQ(field->status, 400);
+  const auto scaling = server.postJson("/api/runs", {{"velocity_scaling", 1.5}});
+  EXPECT_EQ(scaling->status, 400);
+  EXPECT_THAT(errorOf(scaling), HasSubstr("\"velocity_scaling\""));
+  const auto acceleration = server.postJson("/api/runs", {{"acceleration_scaling", 0}});
+  EXPECT_EQ(acceleration->status, 400);
+  EXPECT_THAT(errorOf(acceleration), HasSubstr("\"acceleration_scaling\""));
+  const auto timing = server.postJson("/api/runs", {{"timing", "fastest"}});
+  EXPECT_EQ(timing->status, 400);
+  EXPECT_THAT(errorOf(timing), HasSubstr("rest-to-rest"));
   ASSERT_EQ(server.postJson("/api/runs", json::object())->status, 202);
   const auto full = server.postJson("/api/runs", json::object());
   EXPECT_EQ(full->status, 429);

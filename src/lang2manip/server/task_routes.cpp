@@ -74,7 +74,8 @@ ApiResponse plan(const ApiRequest& request, const ServerOptions& options) {
 }
 
 RunRequest runRequestOf(const json& request, const ServerOptions& options) {
-  body::onlyFields(request, {"problem", "robot", "task", "llm", "planner", "ik", "arm", "rounds", "seed", "time_limit", "ik_timeout", "record_tree"});
+  body::onlyFields(request, {"problem", "robot", "task", "llm", "planner", "ik", "arm", "rounds", "seed", "time_limit", "ik_timeout", "record_tree",
+                              "timing", "velocity_scaling", "acceleration_scaling"});
   RunRequest run;
   run.problem = servedProblem(options, body::string(request, "problem", options.defaultProblem));
   run.robot = servedRobot(options, body::string(request, "robot", run.robot));
@@ -91,6 +92,17 @@ RunRequest runRequestOf(const json& request, const ServerOptions& options) {
   run.recordTree = body::boolean(request, "record_tree", false);
   if (!(run.timeLimit > 0.0 && run.timeLimit <= 600.0)) throw ApiError(400, "bad_request", "body field \"time_limit\": expected more than 0 and at most 600 seconds");
   if (!(run.ikTimeout > 0.0 && run.ikTimeout <= 60.0)) throw ApiError(400, "bad_request", "body field \"ik_timeout\": expected more than 0 and at most 60 seconds");
+  try {
+    run.timing = trajectoryTimingNamed(body::string(request, "timing", trajectoryTimingName(run.timing)));
+  } catch (const InputError& error) {
+    throw ApiError(400, "bad_request", std::string("body field \"timing\": ") + error.what());
+  }
+  for (const auto& [field, value] : {std::pair{"velocity_scaling", &run.velocityScaling}, std::pair{"acceleration_scaling", &run.accelerationScaling}}) {
+    *value = body::number(request, field, *value);
+    if (!(*value > 0.0 && *value <= 1.0)) {
+      throw ApiError(400, "bad_request", std::string("body field \"") + field + "\": expected more than 0 and at most 1 (a fraction of the joint limits)");
+    }
+  }
   return run;
 }
 
