@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "lang2manip/core/log.hpp"
+#include "lang2manip/model/builtin_data.hpp"
+#include "lang2manip/model/kautham_problem.hpp"
 #include "lang2manip/model/urdf_reader.hpp"
 #include "model_test_support.hpp"
 #include "test_paths.hpp"
@@ -338,6 +340,35 @@ TEST(JointLimitsDiscovery, AJointWithoutVelocityLimitIsWarnedOnceWhenTheModelIsR
   const WarningLog log;
   EXPECT_EQ(readUrdfFile(urdf)->velocityLimits()[2], 2.0);
   EXPECT_TRUE(log.warnings.empty());
+}
+
+/// The acceleration limits of `joints` of `model` (-1 for unknown).
+std::vector<double> accelerations(const RobotModel& model, const std::vector<std::string>& joints) {
+  std::vector<double> result;
+  for (const std::string& joint : joints) result.push_back(model.accelerationLimit(model.variableIndex(joint)).value_or(-1.0));
+  return result;
+}
+
+TEST(JointLimitsBuiltinRobots, PandaAndIiwaHaveTheirPublishedAccelerationsAndTheOthersNone) {
+  const RobotModelPtr panda = readUrdfFile(builtinRobotUrdf("panda"));
+  EXPECT_THAT(accelerations(*panda, {"panda_joint1", "panda_joint2", "panda_joint3", "panda_joint4", "panda_joint5",
+                                     "panda_joint6", "panda_joint7", "panda_finger_joint1"}),
+              ElementsAre(15, 7.5, 10, 12.5, 15, 20, 20, -1));
+  EXPECT_EQ(panda->velocityLimits()[panda->variableIndex("panda_finger_joint1")], 0.2);
+  const RobotModelPtr iiwa = readUrdfFile(builtinRobotUrdf("iiwa14"));
+  EXPECT_THAT(accelerations(*iiwa, {"iiwa_joint_1", "iiwa_joint_2", "iiwa_joint_3", "iiwa_joint_4", "iiwa_joint_5",
+                                    "iiwa_joint_6", "iiwa_joint_7", "gripper_finger_joint"}),
+              ElementsAre(8.57, 8.57, 8.74, 11.36, 12.23, 15.72, 15.72, -1));
+  for (const char* robot : {"ur5", "tx90", "yumi"}) {
+    const RobotModelPtr model = readUrdfFile(builtinRobotUrdf(robot));
+    for (int v = 0; v < model->variableCount(); ++v) EXPECT_FALSE(model->accelerationLimit(v)) << robot << " " << v;
+  }
+}
+
+TEST(JointLimitsBuiltinRobots, BuiltinProblemsReadTheirRobotsLimits) {
+  const KauthamProblem problem = readKauthamProblem(resolveProblem("panda_desk"));
+  const RobotModel& panda = *problem.scene.robots().front().model;
+  EXPECT_EQ(panda.accelerationLimit(panda.variableIndex("panda_joint2")), 7.5);
 }
 
 // ur_description's joint_limits.yaml files are keyed by its xacro's short names: read as a
