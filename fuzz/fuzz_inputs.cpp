@@ -144,6 +144,7 @@ const std::vector<FuzzTarget>& fuzzTargets() {
       {"urdf", feedUrdf},
       {"srdf", feedSrdf},
       {"xacro", feedXacro},
+      {"joint_limits", feedJointLimits},
       {"kautham_problem", feedKauthamProblem},
       {"kautham_controls", feedKauthamControls},
       {"kautham_benchmark", feedKauthamBenchmark},

@@ -51,6 +51,10 @@ InputOutcome feedXacro(std::string_view input);
 /// SRDF text for the built-in Panda.
 InputOutcome feedSrdf(std::string_view input);
 
+/// A MoveIt joint_limits.yaml, applied to a copy of the built-in Panda; the limits that result
+/// must be valid (positive accelerations and jerks, each range within the URDF's).
+InputOutcome feedJointLimits(std::string_view input);
+
 /// A Kautham problem XML; model and control references resolve in the built-in data
 /// (data/models and data/problems/desk).
 InputOutcome feedKauthamProblem(std::string_view input);

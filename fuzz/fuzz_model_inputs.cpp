@@ -1,10 +1,12 @@
-// The model readers: URDF, SRDF, Kautham problems and controls, MoveIt YAML, meshes.
+// The model readers: URDF, SRDF, joint limits, Kautham problems and controls, MoveIt YAML, meshes.
 
+#include <cmath>
 #include <stdexcept>
 
 #include "fuzz_inputs.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/model/builtin_data.hpp"
+#include "lang2manip/model/joint_limits_reader.hpp"
 #include "lang2manip/model/kautham_benchmark.hpp"
 #include "lang2manip/model/kautham_controls.hpp"
 #include "lang2manip/model/kautham_problem.hpp"
@@ -80,6 +82,33 @@ InputOutcome feedXacro(std::string_view input) {
 InputOutcome feedSrdf(std::string_view input) {
   static const RobotModelData panda = builtinPandaData();
   return outcomeOf([&] { (void)readSrdfString(std::string(input), "fuzz.srdf", panda); });
+}
+
+/// Throws std::logic_error unless `model`'s limits are valid and within `original`'s ranges.
+void requireValidLimits(const RobotModel& model, const RobotModel& original) {
+  for (int v = 0; v < model.variableCount(); ++v) {
+    for (const std::optional<double> limit : {model.accelerationLimit(v), model.jerkLimit(v)}) {
+      if (limit && !(std::isfinite(*limit) && *limit > 0.0)) {
+        throw std::logic_error("an accepted joint limits file set a limit that is not positive and finite");
+      }
+    }
+    if (!(model.lowerLimits()[v] <= model.upperLimits()[v] && model.lowerLimits()[v] >= original.lowerLimits()[v] &&
+          model.upperLimits()[v] <= original.upperLimits()[v])) {
+      throw std::logic_error("an accepted joint limits file widened or emptied a joint's range");
+    }
+    if (!(std::isfinite(model.velocityLimits()[v]) && model.velocityLimits()[v] > 0.0)) {
+      throw std::logic_error("an accepted joint limits file set a velocity limit that is not positive and finite");
+    }
+  }
+}
+
+InputOutcome feedJointLimits(std::string_view input) {
+  const std::filesystem::path file = writeScratchFile("robot.joint_limits.yaml", input);
+  return outcomeOf([&] {
+    RobotModel panda = *builtinPanda();
+    applyJointLimits(readJointLimitsFile(file), panda);
+    requireValidLimits(panda, *builtinPanda());
+  });
 }
 
 InputOutcome feedKauthamProblem(std::string_view input) {

@@ -28,7 +28,7 @@ dictionary_for() {
   case $1 in
     plan_text | llm_* | api_request | viewer_document) echo json ;;
     urdf | srdf | xacro | kautham_* | mesh_dae) echo xml ;;
-    moveit_problem) echo yaml ;;
+    moveit_problem | joint_limits) echo yaml ;;
     *) echo "" ;;
   esac
 }

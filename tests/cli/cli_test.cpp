@@ -81,6 +81,9 @@ TEST(Cli, ShowJsonHasRobotsObjectsAndQueries) {
   const nlohmann::json report = nlohmann::json::parse(result.output);
   EXPECT_EQ(report["robots"][0]["dofs"].get<int>(), 8);
   EXPECT_EQ(report["robots"][0]["joints"][0]["name"], "panda_joint1");
+  // Accelerations from panda.joint_limits.yaml; the finger has none (null).
+  EXPECT_EQ(report["robots"][0]["joints"][0]["acceleration"], 15.0);
+  EXPECT_TRUE(report["robots"][0]["joints"][7]["acceleration"].is_null());
   EXPECT_FALSE(report["objects"].empty());
   ASSERT_FALSE(report["queries"].empty());
   EXPECT_EQ(report["queries"][0]["robots"][0]["start"].size(), 8U);

@@ -34,7 +34,8 @@ inline std::string armUrdf(const std::string& name = "arm") {
     <origin xyz="0 0 0.1"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" velocity="1" effort="1"/></joint>
   <joint name="elbow" type="revolute"><parent link="upper"/><child link="fore"/>
     <origin xyz="0.5 0 0"/><axis xyz="0 1 0"/><limit lower="-2" upper="3" velocity="1" effort="1"/></joint>
-  <joint name="spin" type="continuous"><parent link="fore"/><child link="wheel"/><axis xyz="1 0 0"/></joint>
+  <joint name="spin" type="continuous"><parent link="fore"/><child link="wheel"/><axis xyz="1 0 0"/>
+    <limit velocity="1" effort="1"/></joint>
   <joint name="slide" type="prismatic"><parent link="fore"/><child link="slider"/><axis xyz="1 0 0"/>
     <limit lower="0" upper="0.4" velocity="1" effort="1"/></joint>
 </robot>

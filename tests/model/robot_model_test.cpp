@@ -3,6 +3,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <limits>
+#include <numbers>
+
 #include "model_test_support.hpp"
 
 namespace lang2manip {
@@ -114,6 +117,53 @@ TEST(RobotModelTest, ContinuousJointsSpanOneTurn) {
   data.joints[1].type = JointType::kContinuous;
   const RobotModel model(std::move(data));
   EXPECT_NEAR(model.upperLimits()[0] - model.lowerLimits()[0], 2 * std::numbers::pi, 1e-12);
+}
+
+TEST(RobotModelTest, AccelerationAndJerkLimitsAreUnknownUnlessGivenAndMustBePositive) {
+  RobotModelData data = chainData();
+  data.joints[1].limits.acceleration = 4.0;  // j1 (the joints are listed child first)
+  const RobotModel model(data);
+  EXPECT_EQ(model.accelerationLimit(model.variableIndex("j1")), 4.0);
+  EXPECT_FALSE(model.accelerationLimit(model.variableIndex("j2")));
+  EXPECT_FALSE(model.jerkLimit(model.variableIndex("j1")));
+  data.joints[1].limits.acceleration = 0.0;
+  EXPECT_EQ(errorMessage([&] { RobotModel{data}; }),
+            "chain.urdf: joint \"j1\" acceleration limit must be a positive finite number, got 0.000000");
+  data.joints[1].limits.acceleration.reset();
+  data.joints[1].limits.jerk = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(errorMessage([&] { RobotModel{data}; }),
+            "chain.urdf: joint \"j1\" jerk limit must be a positive finite number, got inf");
+}
+
+TEST(RobotModelTest, SetJointLimitsChecksAndUpdatesTheVariableLimits) {
+  RobotModelData data = chainData();
+  data.joints[0].type = JointType::kContinuous;  // j2
+  RobotModel model(std::move(data));
+  const int j1 = model.jointIndex("j1");
+  JointLimits limits = model.joints()[static_cast<std::size_t>(j1)].limits;
+  limits.lower = -0.5;
+  limits.velocity = 3.0;
+  limits.acceleration = 6.0;
+  limits.jerk = 60.0;
+  model.setJointLimits(j1, limits);
+  const int v1 = model.variableIndex("j1");
+  EXPECT_EQ(model.lowerLimits()[v1], -0.5);
+  EXPECT_EQ(model.velocityLimits()[v1], 3.0);
+  EXPECT_EQ(model.accelerationLimit(v1), 6.0);
+  EXPECT_EQ(model.jerkLimit(v1), 60.0);
+  // A continuous joint keeps its turn whatever the limits say.
+  const int j2 = model.jointIndex("j2");
+  model.setJointLimits(j2, limits);
+  EXPECT_NEAR(model.lowerLimits()[model.variableIndex("j2")], -std::numbers::pi, 1e-12);
+  // Bad limits are refused and change nothing.
+  limits.lower = 2.0;
+  EXPECT_THAT(errorMessage([&] { model.setJointLimits(j1, limits); }),
+              HasSubstr("chain.urdf: joint \"j1\" has lower limit 2.000000 above upper limit 1.000000"));
+  limits.lower = -0.5;
+  limits.acceleration = -1.0;
+  EXPECT_THAT(errorMessage([&] { model.setJointLimits(j1, limits); }), HasSubstr("acceleration limit must be a positive"));
+  EXPECT_EQ(model.accelerationLimit(v1), 6.0);
+  EXPECT_EQ(model.lowerLimits()[v1], -0.5);
 }
 
 }  // namespace

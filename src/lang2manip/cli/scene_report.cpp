@@ -24,10 +24,12 @@ json robotJson(const SceneRobot& robot) {
   json joints = json::array();
   for (int v = 0; v < model.variableCount(); ++v) {
     const Joint& joint = model.joints()[static_cast<std::size_t>(model.variableJoints()[static_cast<std::size_t>(v)])];
+    const std::optional<double> acceleration = model.accelerationLimit(v);
     joints.push_back({{"name", joint.name}, {"type", jointTypeName(joint.type)},
                       {"lower", model.lowerLimits()[v]}, {"upper", model.upperLimits()[v]},
-                      {"velocity", model.velocityLimits()[v]}, {"soft_limits", joint.limits.soft},
-                      {"value", robot.configuration[v]}});
+                      {"velocity", model.velocityLimits()[v]},
+                      {"acceleration", acceleration ? json(*acceleration) : json(nullptr)},
+                      {"soft_limits", joint.limits.soft}, {"value", robot.configuration[v]}});
   }
   json manipulators = json::array();
   for (const Manipulator& arm : model.semantics().manipulators) {

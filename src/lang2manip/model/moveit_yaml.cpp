@@ -64,9 +64,12 @@ YAML::Node loadYaml(const std::filesystem::path& file, const std::string& name) 
 }  // namespace
 
 YamlValue::YamlValue(YAML::Node node, std::string path, const std::string& file)
-    : node_(std::move(node)), path_(std::move(path)), file_(&file) {}
+    : node_(std::move(node)), mark_(node_.Mark()), path_(std::move(path)), file_(&file) {}
 
-SourceLocation YamlValue::where() const { return {*file_, lineOf(node_.Mark())}; }
+YamlValue::YamlValue(YAML::Node node, std::string path, const std::string& file, const YAML::Mark& mark)
+    : node_(std::move(node)), mark_(mark), path_(std::move(path)), file_(&file) {}
+
+SourceLocation YamlValue::where() const { return {*file_, lineOf(mark_)}; }
 
 void YamlValue::fail(const std::string& problem) const {
   throw InputError(where(), path_.empty() ? problem : path_ + ": " + problem);
@@ -90,6 +93,21 @@ std::vector<YamlValue> YamlValue::items() const {
   std::vector<YamlValue> result;
   for (std::size_t i = 0; i < node_.size(); ++i) {
     result.emplace_back(node_[i], path_ + "[" + std::to_string(i) + "]", *file_);
+  }
+  return result;
+}
+
+std::vector<std::pair<YamlValue, YamlValue>> YamlValue::entries() const {
+  if (!node_.IsMap()) fail("expected a map, got " + kindName());
+  std::vector<std::pair<YamlValue, YamlValue>> result;
+  for (const auto& entry : node_) {
+    if (!entry.first.IsScalar()) {
+      const YamlValue key(entry.first, path_, *file_);
+      key.fail("expected a name as a key, got " + key.kindName());
+    }
+    const std::string path = path_.empty() ? entry.first.Scalar() : path_ + "." + entry.first.Scalar();
+    const YAML::Mark mark = entry.second.IsNull() ? entry.first.Mark() : entry.second.Mark();
+    result.emplace_back(YamlValue(entry.first, path, *file_), YamlValue(entry.second, path, *file_, mark));
   }
   return result;
 }

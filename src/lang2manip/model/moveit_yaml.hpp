@@ -1,6 +1,7 @@
 #pragma once
-/// @file Internal to the MoveIt YAML reader (not part of the public API): yaml-cpp nodes that
-/// know their file and YAML path, so every error says "file:line: path: problem".
+/// @file Internal to the MoveIt YAML readers (scenes and requests, joint_limits.yaml; not part of
+/// the public API): yaml-cpp nodes that know their file and YAML path, so every error says
+/// "file:line: path: problem".
 
 #include <yaml-cpp/yaml.h>
 
@@ -9,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "lang2manip/core/error.hpp"
@@ -35,6 +37,15 @@ class YamlValue {
   [[nodiscard]] YamlValue child(const std::string& key) const;
   /// The items of a list.
   [[nodiscard]] std::vector<YamlValue> items() const;
+  /// The entries of a map in file order: each key (a scalar, at its own line) and its value (a
+  /// null value included, placed at its key's line), both with the path of the entry. Fails
+  /// unless the keys are scalars.
+  [[nodiscard]] std::vector<std::pair<YamlValue, YamlValue>> entries() const;
+  /// The node's YAML tag: "!degrees" for `!degrees 90`, "?" for a plain scalar, "!" for a
+  /// quoted one.
+  [[nodiscard]] const std::string& tag() const { return node_.Tag(); }
+  /// The YAML path that leads to the node ("" at the top level).
+  [[nodiscard]] const std::string& path() const { return path_; }
   /// A scalar as text (`what` names what was expected in the message).
   [[nodiscard]] std::string text(const std::string& what) const;
   /// A finite number (YAML's .nan and .inf are rejected).
@@ -43,9 +54,12 @@ class YamlValue {
   [[nodiscard]] bool flag() const;
 
  private:
+  /// A value at `mark` (a null value has no place of its own: its key's is used).
+  YamlValue(YAML::Node node, std::string path, const std::string& file, const YAML::Mark& mark);
   [[nodiscard]] std::string kindName() const;
 
   YAML::Node node_;
+  YAML::Mark mark_;
   std::string path_;
   const std::string* file_;
 };

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <deque>
 #include <numbers>
+#include <utility>
 
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/core/text_parsing.hpp"
@@ -67,6 +68,11 @@ void checkJoint(Joint& joint, const SourceLocation& where) {
   const JointLimits& limits = joint.limits;
   for (const double value : {limits.lower, limits.upper, limits.velocity, limits.effort}) {
     requireFinite(value, what + " limit", where);
+  }
+  for (const auto& [bound, name] : {std::pair{&limits.acceleration, "acceleration"}, std::pair{&limits.jerk, "jerk"}}) {
+    if (*bound && !(std::isfinite(**bound) && **bound > 0.0)) {
+      throw InputError(where, what + " " + name + " limit must be a positive finite number, got " + std::to_string(**bound));
+    }
   }
   if (joint.type == JointType::kPrismatic) {
     requirePositionInRange(Vector3(limits.lower, limits.upper, 0.0), what + " limits (lower, upper, 0)", where);
@@ -213,6 +219,26 @@ void RobotModel::indexVariables() {
     upper_[v] = limits.upper;
     velocity_[v] = limits.velocity;
   }
+}
+
+std::optional<double> RobotModel::accelerationLimit(int variable) const {
+  return data_.joints[static_cast<std::size_t>(variables_.at(static_cast<std::size_t>(variable)))].limits.acceleration;
+}
+
+std::optional<double> RobotModel::jerkLimit(int variable) const {
+  return data_.joints[static_cast<std::size_t>(variables_.at(static_cast<std::size_t>(variable)))].limits.jerk;
+}
+
+void RobotModel::setJointLimits(int joint, const JointLimits& limits) {
+  Joint changed = data_.joints.at(static_cast<std::size_t>(joint));
+  changed.limits = limits;
+  checkJoint(changed, SourceLocation{data_.source, 0});
+  data_.joints[static_cast<std::size_t>(joint)].limits = changed.limits;
+  const int variable = variableOfJoint_[static_cast<std::size_t>(joint)];
+  if (variable < 0) return;
+  lower_[variable] = changed.limits.lower;
+  upper_[variable] = changed.limits.upper;
+  velocity_[variable] = changed.limits.velocity;
 }
 
 std::optional<int> RobotModel::findLink(const std::string& name) const {

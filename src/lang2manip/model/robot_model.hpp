@@ -20,13 +20,24 @@ enum class JointType { kRevolute, kContinuous, kPrismatic, kFixed, kFloating, kP
 /// "revolute", "continuous", ...
 std::string jointTypeName(JointType type);
 
+/// The velocity limit trajectories are timed with for a joint whose URDF velocity limit is zero or
+/// absent (rad/s, or m/s for prismatic joints). The URDF reader warns once per such joint.
+inline constexpr double kDefaultJointVelocityLimit = 1.0;
+
+/// A joint's limits in SI units (rad or m; per second, per second squared, ...).
 struct JointLimits {
   double lower = 0.0;
   double upper = 0.0;
+  /// 0 when the URDF gives none (see kDefaultJointVelocityLimit).
   double velocity = 0.0;
   double effort = 0.0;
   /// True when lower/upper come from a URDF safety_controller (soft limits).
   bool soft = false;
+  /// Maximum acceleration; nullopt = unknown (URDF has no such field: it comes from a
+  /// joint_limits.yaml, see joint_limits_reader.hpp). Positive and finite when set.
+  std::optional<double> acceleration = std::nullopt;
+  /// Maximum jerk; nullopt = unknown. Positive and finite when set.
+  std::optional<double> jerk = std::nullopt;
 };
 
 /// q_this = multiplier * q_source + offset.
@@ -76,7 +87,8 @@ class RobotModel {
  public:
   /// Validates and orders `data`. Throws InputError (naming `data.source`) on duplicate names,
   /// joints that reference unknown links, a link with two parents, a cycle, several roots,
-  /// non-finite numbers, lower > upper limits, a zero axis, or a mimic of an unknown joint.
+  /// non-finite numbers, lower > upper limits, an acceleration or jerk limit that is not
+  /// positive, a zero axis, or a mimic of an unknown joint.
   explicit RobotModel(RobotModelData data);
 
   [[nodiscard]] const std::string& name() const noexcept { return data_.name; }
@@ -119,7 +131,20 @@ class RobotModel {
   [[nodiscard]] int variableIndex(const std::string& name) const;
   [[nodiscard]] const VectorX& lowerLimits() const noexcept { return lower_; }
   [[nodiscard]] const VectorX& upperLimits() const noexcept { return upper_; }
+  /// The URDF's velocity limit of each variable (or a joint_limits.yaml's); 0 where none is given.
   [[nodiscard]] const VectorX& velocityLimits() const noexcept { return velocity_; }
+  /// The acceleration limit of variable `variable`; nullopt when unknown (no joint limits file
+  /// gave one; planning then uses its default, see JointLimitDefaults).
+  [[nodiscard]] std::optional<double> accelerationLimit(int variable) const;
+  /// The jerk limit of variable `variable`; nullopt when unknown.
+  [[nodiscard]] std::optional<double> jerkLimit(int variable) const;
+
+  /// Replaces the limits of joint `joint` (an index of joints()), checked as the constructor
+  /// checks them; a continuous joint keeps its [-pi, pi] range. Throws InputError (naming
+  /// source()) when they are invalid; the model is then unchanged. For readers completing a model
+  /// before it is shared (joint_limits_reader.hpp): not thread-safe, and a shared model
+  /// (RobotModelPtr points to const) cannot be changed.
+  void setJointLimits(int joint, const JointLimits& limits);
 
   /// Value of joint `joint` for configuration `q` (mimics applied; 0 for fixed joints).
   [[nodiscard]] double jointValue(int joint, const VectorX& q) const noexcept;

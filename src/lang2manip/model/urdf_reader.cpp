@@ -1,6 +1,7 @@
 #include "lang2manip/model/urdf_reader.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <mutex>
 #include <sstream>
@@ -12,6 +13,7 @@
 #include "lang2manip/core/log.hpp"
 #include "lang2manip/core/rotation.hpp"
 #include "lang2manip/core/text_parsing.hpp"
+#include "lang2manip/model/joint_limits_reader.hpp"
 #include "lang2manip/model/mesh_loader.hpp"
 #include "lang2manip/model/srdf_reader.hpp"
 #include "lang2manip/model/urdf_structure_check.hpp"
@@ -264,8 +266,54 @@ void applyApproachAxes(const std::map<std::string, Vector3>& axes, RobotModelDat
   }
 }
 
+/// "<description without extension>.joint_limits.yaml": "robot.urdf", "robot.urdf.xacro" and
+/// "robot.xacro" give "robot.joint_limits.yaml".
+std::filesystem::path siblingJointLimitsFile(const std::filesystem::path& description) {
+  std::filesystem::path base = description;
+  if (!isXacroFile(base)) return base.replace_extension(".joint_limits.yaml");
+  base.replace_extension();
+  if (base.extension() == ".urdf") base.replace_extension();
+  return base += ".joint_limits.yaml";
+}
+
+/// The joint limits file to apply: the option's, else the description's sibling if it exists.
+std::optional<std::filesystem::path> jointLimitsFileFor(const std::filesystem::path& description,
+                                                        const UrdfReadOptions& options) {
+  if (!options.jointLimits.empty()) return options.jointLimits;
+  if (description.empty()) return std::nullopt;
+  const std::filesystem::path sibling = siblingJointLimitsFile(description);
+  std::error_code error;
+  if (std::filesystem::is_regular_file(sibling, error)) return sibling;
+  return std::nullopt;
+}
+
+/// Said once per model read, not at each planner query.
+void warnAboutDefaultVelocities(const RobotModel& model) {
+  for (int v = 0; v < model.variableCount(); ++v) {
+    if (model.velocityLimits()[v] > 0.0) continue;
+    const Joint& joint = model.joints()[static_cast<std::size_t>(model.variableJoints()[static_cast<std::size_t>(v)])];
+    char text[160];
+    std::snprintf(text, sizeof text, "velocity limit %g (zero or absent in the URDF) is no limit; trajectories move it at most at %g %s",
+                  model.velocityLimits()[v], kDefaultJointVelocityLimit, joint.type == JointType::kPrismatic ? "m/s" : "rad/s");
+    logWarning(model.source() + ": robot \"" + model.name() + "\", joint \"" + joint.name + "\": " + text);
+  }
+}
+
+/// The model of `data` with its joint limits file applied (`description` is the file read, empty
+/// for text).
+RobotModelPtr completedModel(RobotModelData data, const std::filesystem::path& description,
+                             const UrdfReadOptions& options) {
+  auto model = std::make_shared<RobotModel>(std::move(data));
+  if (const auto limits = jointLimitsFileFor(description, options)) {
+    applyJointLimits(readJointLimitsFile(*limits), *model, options.scale);
+  }
+  warnAboutDefaultVelocities(*model);
+  return model;
+}
+
 RobotModelPtr readUrdf(const XmlDocument& document, const std::filesystem::path& urdfPath,
-                       const std::filesystem::path& directory, const UrdfReadOptions& options) {
+                       const std::filesystem::path& description, const std::filesystem::path& directory,
+                       const UrdfReadOptions& options) {
   requireFinite(options.scale, "URDF scale", SourceLocation{document.sourceName(), 0});
   if (options.scale <= 0.0) {
     throw InputError(SourceLocation{document.sourceName(), 0}, "URDF scale must be positive");
@@ -291,7 +339,7 @@ RobotModelPtr readUrdf(const XmlDocument& document, const std::filesystem::path&
   data.semantics = semanticsFor(data, urdfPath, options);
   applyApproachAxes(options.approachAxes, data);
   if (options.ignoreMimic) decoupleMimics(data);
-  return std::make_shared<const RobotModel>(std::move(data));
+  return completedModel(std::move(data), description, options);
 }
 
 }  // namespace
@@ -349,17 +397,17 @@ RobotModelPtr readUrdfFile(const std::filesystem::path& path, const UrdfReadOpti
     const XmlDocument document = XmlDocument::loadString(
         expandXacroFile(path, XacroOptions{options.xacroArguments, options.packagePaths}),
         path.string() + " (expanded)", "URDF expanded from xacro");
-    return readUrdf(document, {}, path.parent_path(), options);
+    return readUrdf(document, {}, path, path.parent_path(), options);
   }
   const XmlDocument document = XmlDocument::loadFile(path, "URDF file");
-  return readUrdf(document, path, path.parent_path(), options);
+  return readUrdf(document, path, path, path.parent_path(), options);
 }
 
 RobotModelPtr readUrdfString(const std::string& xml, const std::string& sourceName,
                              const std::filesystem::path& baseDirectory,
                              const UrdfReadOptions& options) {
   const XmlDocument document = XmlDocument::loadString(xml, sourceName, "URDF");
-  return readUrdf(document, {}, baseDirectory, options);
+  return readUrdf(document, {}, {}, baseDirectory, options);
 }
 
 }  // namespace lang2manip

@@ -20,6 +20,12 @@ struct UrdfReadOptions {
   /// SRDF file to read; when empty, "<urdf without extension>.srdf" is used if it exists, and
   /// otherwise the semantics are inferred from the tree.
   std::filesystem::path srdf;
+  /// MoveIt joint_limits.yaml to apply (joint_limits_reader.hpp: accelerations, jerks, velocity,
+  /// position and effort limits over the URDF's); when empty, "<urdf without extension>
+  /// .joint_limits.yaml" beside the file read is applied if it exists ("robot.urdf" and
+  /// "robot.urdf.xacro" -> "robot.joint_limits.yaml", "robot.xacro" -> the same), and otherwise the
+  /// URDF's limits stand alone (no acceleration limits: planning's default applies).
+  std::filesystem::path jointLimits;
   /// <mimic> tags are ignored, so every movable joint is its own variable (Kautham couples joints
   /// through its control files instead; the Kautham reader uses this when a control drives a
   /// joint the URDF marks as a mimic). The semantics are resolved with the mimics first, so a
@@ -35,13 +41,15 @@ struct UrdfReadOptions {
 };
 
 /// Reads a URDF file, or a xacro file (name ending in .xacro) expanded first with
-/// options.xacroArguments. Throws InputError naming the file (and the line where known) for a
-/// missing or unreadable file, malformed XML or URDF, a xacro error, a cycle or several roots,
-/// non-finite numbers, or a mesh reference that resolves nowhere / cannot be loaded.
+/// options.xacroArguments, and applies its joint limits file (UrdfReadOptions::jointLimits).
+/// Throws InputError naming the file (and the line where known) for a missing or unreadable
+/// file, malformed XML or URDF, a xacro error, a cycle or several roots, non-finite numbers, a
+/// mesh reference that resolves nowhere / cannot be loaded, or a bad joint limits file. Logs a
+/// warning for each joint variable left without a velocity limit (kDefaultJointVelocityLimit).
 RobotModelPtr readUrdfFile(const std::filesystem::path& path, const UrdfReadOptions& options = {});
 
 /// Reads URDF text; `sourceName` names it in messages and `baseDirectory` resolves relative mesh
-/// paths.
+/// paths. A joint limits file is applied only when options.jointLimits names one.
 RobotModelPtr readUrdfString(const std::string& xml, const std::string& sourceName,
                              const std::filesystem::path& baseDirectory,
                              const UrdfReadOptions& options = {});

@@ -17,6 +17,7 @@ JointPlanningSpace::JointPlanningSpace(std::shared_ptr<const CollisionChecker> c
   std::vector<double> lower;
   std::vector<double> upper;
   std::vector<double> velocity;
+  std::vector<double> acceleration;
   for (std::size_t r = 0; r < robots.size(); ++r) {
     const int robot = this->checker().robotIndex(robots[r]);
     robots_.push_back(robot);
@@ -34,8 +35,8 @@ JointPlanningSpace::JointPlanningSpace(std::shared_ptr<const CollisionChecker> c
       dofNames_.push_back(robots[r] + "/" + name);
       lower.push_back(model.lowerLimits()[variable]);
       upper.push_back(model.upperLimits()[variable]);
-      const double limit = model.velocityLimits()[variable];
-      velocity.push_back(limit > 0.0 ? limit : 1.0);
+      velocity.push_back(defaults.velocityLimit(model, variable));
+      acceleration.push_back(defaults.accelerationLimit(model, variable));
     }
   }
   const auto n = static_cast<Eigen::Index>(planned_.size());
@@ -44,7 +45,7 @@ JointPlanningSpace::JointPlanningSpace(std::shared_ptr<const CollisionChecker> c
   trajectoryJointNames_ = dofNames_;
   jacobian_ = MatrixX::Identity(n, n);
   velocityLimits_ = Eigen::Map<VectorX>(velocity.data(), n);
-  accelerationLimits_ = velocityLimits_ * defaults.accelerationPerVelocity;
+  accelerationLimits_ = Eigen::Map<VectorX>(acceleration.data(), n);
 }
 
 VectorX JointPlanningSpace::trajectoryPositions(const VectorX& x) const { return x; }

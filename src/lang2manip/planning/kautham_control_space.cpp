@@ -27,9 +27,8 @@ DofRange jointRange(const RobotModel& model, int variable, const JointLimitDefau
   range.name = description.name;
   range.low = continuous ? -kTwoPi : model.lowerLimits()[variable];
   range.high = continuous ? kTwoPi : model.upperLimits()[variable];
-  const double velocity = model.velocityLimits()[variable];
-  range.velocity = velocity > 0.0 ? velocity : 1.0;
-  range.acceleration = range.velocity * defaults.accelerationPerVelocity;
+  range.velocity = defaults.velocityLimit(model, variable);
+  range.acceleration = defaults.accelerationLimit(model, variable);
   return range;
 }
 

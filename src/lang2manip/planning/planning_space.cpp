@@ -17,6 +17,15 @@ std::string formatNumber(double value) {
 
 }  // namespace
 
+double JointLimitDefaults::velocityLimit(const RobotModel& model, int variable) const {
+  const double limit = model.velocityLimits()[variable];
+  return limit > 0.0 ? limit : kDefaultJointVelocityLimit;
+}
+
+double JointLimitDefaults::accelerationLimit(const RobotModel& model, int variable) const {
+  return model.accelerationLimit(variable).value_or(accelerationPerVelocity * velocityLimit(model, variable));
+}
+
 PlanningSpace::PlanningSpace(std::shared_ptr<const CollisionChecker> checker)
     : checker_(std::move(checker)) {
   if (!checker_) throw InputError("planning space: no collision checker given");

@@ -107,12 +107,22 @@ class PlanningSpace {
   mutable std::unordered_map<std::thread::id, std::unique_ptr<SpaceWorkspace>> workspaces_;
 };
 
-/// Acceleration limits when a model has none: `ratio` times the velocity limit per second.
+/// The limits trajectories are timed with where a robot model gives none. A joint's velocity
+/// limit is its model's when positive, else kDefaultJointVelocityLimit (robot_model.hpp; the URDF
+/// reader warns once per model). Its acceleration limit is its model's when known (a joint
+/// limits file gave one, see joint_limits_reader.hpp), else accelerationPerVelocity times the
+/// velocity limit.
 struct JointLimitDefaults {
+  /// Per second: an acceleration limit of 2 x the velocity limit reaches full speed in 0.5 s.
   double accelerationPerVelocity = 2.0;
   /// Velocity and acceleration limits of base axes (m/s, m/s^2; unit-cube rotation units/s).
   double baseVelocity = 0.5;
   double baseAcceleration = 1.0;
+
+  /// The velocity limit of variable `variable` of `model` (see the struct comment).
+  [[nodiscard]] double velocityLimit(const RobotModel& model, int variable) const;
+  /// The acceleration limit of variable `variable` of `model` (see the struct comment).
+  [[nodiscard]] double accelerationLimit(const RobotModel& model, int variable) const;
 };
 
 /// The controlled joints of one or several robots. Each robot's other variables stay at their
@@ -120,7 +130,8 @@ struct JointLimitDefaults {
 class JointPlanningSpace final : public PlanningSpace {
  public:
   /// Plans `variables[i]` (variable names) of robot `robots[i]`; an empty list means every
-  /// variable of that robot. Throws InputError for unknown robots or joints (listing the valid
+  /// variable of that robot. The joints' velocity and acceleration limits are the models' where
+  /// known, else `defaults`'. Throws InputError for unknown robots or joints (listing the valid
   /// names) or a joint with an empty range.
   JointPlanningSpace(std::shared_ptr<const CollisionChecker> checker,
                      const std::vector<std::string>& robots,
