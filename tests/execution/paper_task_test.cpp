@@ -132,11 +132,15 @@ INSTANTIATE_TEST_SUITE_P(BuiltinRobots, PaperTask,
 /// Planners whose every query runs to the time limit (they only stop there), or that need a
 /// goal sampler a joint goal set does not give; they still run, with a shorter limit.
 bool plansUntilItsLimit(const std::string& planner) {
-  for (const char* name : {"PRMstar", "LazyPRMstar", "SPARS", "SPARStwo", "FMT", "BFMT", "AITstar", "ABITstar", "BITstar"}) {
+  for (const char* name : {"PRMstar", "LazyPRMstar", "SPARS", "SPARStwo", "AITstar", "ABITstar", "BITstar"}) {
     if (planner == name) return true;
   }
   return false;
 }
+
+/// Batch planners: a query ends when its batch of samples is processed, which a loaded 2-core
+/// machine may not finish in 0.5 s; they get 3 s and stop as soon as they are done.
+bool plansInABatch(const std::string& planner) { return planner == "FMT" || planner == "BFMT"; }
 
 TEST(PaperTaskPlanners, EveryRegisteredGeometricPlannerSucceedsOnThePanda) {
   std::vector<std::string> planners = plannerNames();
@@ -145,6 +149,7 @@ TEST(PaperTaskPlanners, EveryRegisteredGeometricPlannerSucceedsOnThePanda) {
     ExecutionSettings settings = testSettings();
     settings.defaultPlanner = planner;
     if (plansUntilItsLimit(planner)) settings.planningTimeSeconds = 0.5;
+    if (plansInABatch(planner)) settings.planningTimeSeconds = 3.0;
     TaskExecutor executor(deskScene("panda"), settings);
     const TaskRun run = runPaperTask(executor);
     EXPECT_TRUE(run.repair.succeeded() && run.verification.success) << planner << ": " << run.repair.failure;

@@ -176,18 +176,24 @@ std::vector<double> chooseBlends(const ArmContext& arm, const RunPath& path, Run
   std::vector<double> deviations(path.waypoints.size(), settings.blendDeviation);
   if (path.waypoints.size() < 3 || settings.blendDeviation == 0.0) return deviations;
   std::set<std::size_t> reduced;
+  std::set<std::size_t> shrunk;  // the corners made smaller by the last attempt
   for (int attempt = 0; attempt < kMaxBlendAttempts; ++attempt) {
+    // An arc depends only on its corner's deviation: after the first pass, only the arcs made
+    // smaller are checked again.
     const BlendedPath blended(path.waypoints, deviations);
     std::vector<std::size_t> failing;
     for (const PathSegment& piece : blended.segments()) {
-      if (piece.kind == PathSegment::Kind::kArc &&
+      const bool changed = attempt == 0 || shrunk.count(piece.waypoint) != 0;
+      if (piece.kind == PathSegment::Kind::kArc && changed &&
           !arcIsAcceptable(piece, path, settings.verificationResolution, checker)) {
         failing.push_back(piece.waypoint);
       }
     }
     if (failing.empty()) break;
+    shrunk.clear();
     for (const std::size_t corner : failing) {
       reduced.insert(corner);
+      shrunk.insert(corner);
       const double smaller = deviations[corner] * kBlendShrink;
       deviations[corner] = attempt + 1 == kMaxBlendAttempts || smaller < kSmallestBlend ? 0.0 : smaller;
     }
