@@ -22,6 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 json readJson(const fs::path& file) { return json::parse(readFileText(file), nullptr, false); }
 
@@ -117,6 +118,18 @@ TEST(RunCli, ThePaperTaskOfflineSucceedsAndWritesEveryFile) {
   EXPECT_NEAR(last, trajectory["duration"].get<double>(), 1e-6);
   EXPECT_EQ(readJson(directory.path() / "plan.json")["actions"].size(), 4u);
   EXPECT_THAT(readFileText(directory.path() / "prompt.txt"), HasSubstr("put the marker and eraser in the holder"));
+}
+
+TEST(RunCli, StepsALaterStepUndoesAreNotGoals) {
+  // Holding the marker is a step on the way to putting it in the holder, not a goal that fails.
+  for (const char* task : {"pick up the marker and then put it in the holder", "grab the eraser, then drop it on the desk"}) {
+    const TempDirectory directory;
+    const RunResult result = run(std::string("run --task \"") + task + "\"" + kBudgets + " --out " + directory.path().string());
+    EXPECT_EQ(result.exitCode, 0) << result.output;
+    const json report = readJson(directory.path() / "report.json");
+    ASSERT_EQ(report["goals"].size(), 1u) << report["goals"].dump();
+    EXPECT_THAT(report["goals"][0]["goal"].get<std::string>(), Not(HasSubstr("holding")));
+  }
 }
 
 TEST(RunCli, TheSameSeedGivesTheSameTrajectory) {

@@ -67,8 +67,8 @@ const CorpusEntry kCorpus[] = {
     {D, "grasp the eraser from the front", "holding eraser | grasp eraser=front"},
     {D, "pick up the marker with a top-down grasp", "holding marker | grasp marker=top"},
     // Sequences and pronouns.
-    {D, "pick up the marker and put it in the holder", "holding marker; marker in holder"},
-    {D, "grab the eraser, then place it in the holder", "holding eraser; eraser in holder"},
+    {D, "pick up the marker and put it in the holder", "marker in holder"},
+    {D, "grab the eraser, then place it in the holder", "eraser in holder"},
     {D, "put the marker in the holder, then the eraser", "marker in holder; eraser in holder"},
     {D, "first put the eraser in the holder, then put the marker in it",
      "eraser in holder; marker in holder"},
@@ -80,12 +80,12 @@ const CorpusEntry kCorpus[] = {
      "marker in holder; eraser on desk"},
     {D, "put the marker into the holder, and the eraser too", "marker in holder; eraser in holder"},
     {D, "could you grab the marker, put it in the holder, and then go home",
-     "holding marker; marker in holder; at home"},
+     "marker in holder; at home"},
     {D, "put the eraser in the holder and after that put the marker in the holder",
      "eraser in holder; marker in holder"},
     {D, "put the marker in the holder and finally go home", "marker in holder; at home"},
     {D, "take the eraser out of the holder and put it on the desk",
-     "holding eraser; eraser on desk"},
+     "eraser on desk"},
     {D, "move the eraser from the desk into the holder", "eraser in holder"},
     {D, "place the marker to the right of the holder and the eraser to the left of it",
      "marker right_of holder; eraser left_of holder"},
@@ -134,7 +134,7 @@ const CorpusEntry kCorpus[] = {
     // Refinements and planners.
     {D, "put the marker in the holder with a side grasp", "marker in holder | grasp marker=side"},
     {D, "pick up the eraser from the top and put it next to the holder",
-     "holding eraser; eraser next_to holder | grasp eraser=top"},
+     "eraser next_to holder | grasp eraser=top"},
     {D, "put the eraser in the holder grasping it from the side",
      "eraser in holder | grasp eraser=side"},
     {D, "put the marker in the holder using RRT*", "marker in holder | planner marker=RRTstar"},
@@ -206,7 +206,7 @@ const CorpusEntry kCorpus[] = {
     {W, "put everything in the box",
      "red_block in box; blue_block in box; green_block in box; white_cup in box; yellow_cup in box; "
      "marker_1 in box; marker_2 in box"},
-    {W, "take the yellow cup and place it on the table", "holding yellow_cup; yellow_cup on table"},
+    {W, "take the yellow cup and place it on the table", "yellow_cup on table"},
     {W, "put all the cups in the box", "white_cup in box; yellow_cup in box"},
     {W, "put all the cups into the white cup", "yellow_cup in white_cup"},
     {W, "put the blue block in the yellow cup and the red block in the white cup",
@@ -221,10 +221,10 @@ const CorpusEntry kCorpus[] = {
     {D, "Put both the marker and the eraser into the holder", "marker in holder; eraser in holder"},
     {D, "put the marker in the holder first, then put the eraser in",
      "marker in holder; eraser in holder"},
-    {D, "put the eraser on the desk next to the holder", "eraser on desk; eraser next_to holder"},
+    {D, "put the eraser on the desk next to the holder", "eraser next_to holder"},
     {D, "Place the marker as well as the eraser in the holder", "marker in holder; eraser in holder"},
     {D, "grab the marker from the side and drop it into the holder",
-     "holding marker; marker in holder | grasp marker=side"},
+     "marker in holder | grasp marker=side"},
     {D, "put the marker in the holder, after that push the eraser 3 cm forward",
      "marker in holder; eraser displaced by (0.03, 0, 0)"},
     {W, "put one marker in the box", "marker_1 in box"},
@@ -236,7 +236,7 @@ const CorpusEntry kCorpus[] = {
     {D, "push the eraser away 3 cm", "eraser displaced by (0.03, 0, 0)"},
     {D, "put the marker back in the holder", "marker in holder"},
     {D, "pick the marker up and put it down next to the eraser",
-     "holding marker; marker next_to eraser"},
+     "marker next_to eraser"},
     {D, "put the marker into the holder and do the same with the eraser",
      "marker in holder; eraser in holder"},
     {D, "put the eraser next to the holder. Same for the marker.",
@@ -287,6 +287,47 @@ TEST(InstructionCorpusTest, EveryInstructionGetsAValidPlan) {
       EXPECT_EQ(test::checkPlan(plan, state, specification), "");
     } catch (const PlanningError& error) {
       ADD_FAILURE() << "no plan: " << error.what();
+    }
+  }
+}
+
+/// Steps a later step undoes (holding what is then put down, a placement followed by another)
+/// are not goals: the goals are the final state (issue class "intermediate steps").
+const std::pair<const char*, const char*> kIntermediateSteps[] = {
+    {"pick up the marker and put it in the holder", "marker in holder"},
+    {"pick up the marker, then put it in the holder", "marker in holder"},
+    {"grab the eraser and then drop it into the holder", "eraser in holder"},
+    {"take the marker and place it next to the eraser", "marker next_to eraser"},
+    {"lift the eraser, then set it down on the desk", "eraser on desk"},
+    {"pick the eraser up and put it in the holder", "eraser in holder"},
+    {"first pick up the marker, then put it into the holder", "marker in holder"},
+    {"grasp the marker and insert it into the holder", "marker in holder"},
+    {"get the eraser, then put it beside the holder", "eraser next_to holder"},
+    {"hold the marker and then put it in the holder", "marker in holder"},
+    {"pick up the eraser and place it on the desk next to the marker", "eraser next_to marker"},
+    {"grab the marker, put it in the holder, and then go home", "marker in holder; at home"},
+    {"put the eraser on the desk, then put it in the holder", "eraser in holder"},
+    {"put the marker in the holder, then pick it up", "holding marker"},
+    {"go home, then pick up the eraser and put it in the holder", "eraser in holder"},
+    {"pick up the marker and put it in the holder, then pick up the eraser and put it in too",
+     "marker in holder; eraser in holder"},
+};
+
+TEST(InstructionCorpusTest, IntermediateStepsAreNotGoalsOnEveryBuiltInDesk) {
+  for (const BuiltinProblem& problem : builtinProblems()) {
+    SCOPED_TRACE(problem.shortName);
+    const Scene scene = readKauthamProblem(problem.file).scene;
+    const SymbolicState state = observeSymbolicState(scene);
+    for (const auto& [instruction, expected] : kIntermediateSteps) {
+      SCOPED_TRACE(instruction);
+      try {
+        const TaskSpecification specification = understandInstruction(instruction, describeObjects(scene));
+        EXPECT_EQ(test::summarize(specification), expected);
+        const Plan plan = sequenceGoals(specification, state, sequencingOptionsFor(scene));
+        EXPECT_EQ(test::checkPlan(plan, state, specification), "");
+      } catch (const PlanningError& error) {
+        ADD_FAILURE() << "refused: " << error.what();
+      }
     }
   }
 }

@@ -69,7 +69,8 @@ TEST(InstructionRobustnessTest, OddCharactersAndLongInputs) {
   std::string longTask;
   for (int i = 0; i < 200; ++i) longTask += "put the marker in the holder, then ";
   longTask += "go home";
-  EXPECT_EQ(understandInstruction(longTask, objects).goals.size(), 201u);
+  // 200 placements of the same object are one final state, then home.
+  EXPECT_EQ(understandInstruction(longTask, objects).goals.size(), 2u);
   EXPECT_THROW((void)understandInstruction("put the marker in the holder", {}), PlanningError);
 }
 

@@ -106,6 +106,33 @@ void checkHoldingGoals(const TaskSpecification& specification) {
   }
 }
 
+/// Whether `later` says what becomes of `earlier`'s subject, so that `earlier` is a step on the
+/// way rather than part of the final state: what is held is later put somewhere (or held
+/// again), an object placed somewhere is later placed elsewhere or picked up again, the arm
+/// goes to a configuration and later does anything else.
+bool supersedes(const Goal& later, const Goal& earlier) {
+  switch (earlier.kind) {
+    case GoalKind::kHolding: return involves(later, earlier.object);
+    case GoalKind::kRelation:
+      return involves(later, earlier.object) && (later.kind == GoalKind::kRelation || later.kind == GoalKind::kHolding);
+    case GoalKind::kAtConfiguration: return true;
+    case GoalKind::kDisplaced: return false;
+  }
+  return false;
+}
+
+/// The goals that describe the final state the instruction asks for: those no later goal
+/// supersedes, in order ("pick up the marker and put it in the holder": marker in holder).
+std::vector<Goal> finalStateGoals(const std::vector<Goal>& goals) {
+  std::vector<Goal> kept;
+  for (std::size_t i = 0; i < goals.size(); ++i) {
+    const bool isStep = std::any_of(goals.begin() + static_cast<std::ptrdiff_t>(i) + 1, goals.end(),
+                                    [&](const Goal& later) { return supersedes(later, goals[i]); });
+    if (!isStep) kept.push_back(goals[i]);
+  }
+  return kept;
+}
+
 }  // namespace
 
 TaskSpecification understandInstruction(const std::string& text,
@@ -123,6 +150,8 @@ TaskSpecification understandInstruction(const std::string& text,
     throwGroundingError(text, "it asks for nothing the robot could do");
   }
   checkHoldingGoals(specification);
+  specification.steps = specification.goals;
+  specification.goals = finalStateGoals(specification.steps);
   return specification;
 }
 

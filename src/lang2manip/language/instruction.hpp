@@ -15,8 +15,14 @@ namespace lang2manip {
 
 /// What an instruction asks for.
 struct TaskSpecification {
-  /// In the order the instruction gives them.
+  /// The final state the instruction asks for, in the order it gives it. A step that a later
+  /// one undoes is not a goal: "pick up the marker and put it in the holder" gives "marker in
+  /// holder" only (holding is superseded by where the object goes; a placement by a later
+  /// placement or pick of the same object; a configuration by anything the arm does after).
   std::vector<Goal> goals;
+  /// Every step the instruction states, in its order (goals plus the steps later ones undo:
+  /// holding the marker, going home first): what the plan goes through. Empty = the goals.
+  std::vector<Goal> steps;
   /// object -> the grasp the instruction asks for ("with a side grasp", "from the top").
   std::map<std::string, GraspDirection> grasps;
   /// object -> the motion planner for the actions on it ("using RRT*" -> "RRTstar"); the key ""

@@ -32,7 +32,8 @@ class Sequencer {
  public:
   Sequencer(const TaskSpecification& specification, const SymbolicState& state,
             const SequencingOptions& options)
-      : specification_(specification), goals_(specification.goals), initial_(state),
+      : specification_(specification),
+        goals_(specification.steps.empty() ? specification.goals : specification.steps), initial_(state),
         options_(options) {}
 
   Plan run() {

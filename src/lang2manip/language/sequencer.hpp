@@ -22,7 +22,8 @@ struct SequencingOptions {
   int maxOrdersTried = 5000;
 };
 
-/// A plan achieving `specification.goals` from `state`, in the instruction's order when that
+/// A plan going through `specification.steps` (the goals when there are no steps) from `state`,
+/// in the instruction's order when that
 /// works, else in the first order (in lexicographic order of goal indices) that does. A goal
 /// already true is skipped; a goal later undone by the instruction itself (holding the marker,
 /// then putting it in the holder; going home, then moving on) only has to hold when it is
