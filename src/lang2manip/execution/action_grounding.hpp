@@ -42,6 +42,9 @@ struct GroundingContext {
   const ArmContext& arm;
   ExecutionCounters& counters;
   const StopCondition& stop;
+  /// The plan being executed (placements leave room for what it puts in the same place later);
+  /// null when actions are executed on their own.
+  const Plan* plan = nullptr;
 };
 
 /// Moves the tool in a straight line from the end of `attempt` to the first of `targets` that

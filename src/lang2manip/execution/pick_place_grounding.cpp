@@ -141,6 +141,24 @@ std::optional<GroundingAttempt> groundPick(const GroundingContext& c, const Scen
   return std::nullopt;
 }
 
+namespace {
+
+/// The objects `plan` places in the same relation to the same target after action `index`.
+std::vector<std::string> placedAfter(const Plan* plan, std::size_t index, const SymbolicAction& action) {
+  std::vector<std::string> later;
+  if (plan == nullptr || !action.params.relation) return later;
+  for (std::size_t i = index + 1; i < plan->actions.size(); ++i) {
+    const SymbolicAction& next = plan->actions[i];
+    if (next.type == ActionType::kPlace && next.params.relation == action.params.relation &&
+        next.params.target == action.params.target && next.object != action.object) {
+      later.push_back(next.object);
+    }
+  }
+  return later;
+}
+
+}  // namespace
+
 std::optional<GroundingAttempt> groundPlace(const GroundingContext& c, const Scene& world, const SymbolicAction& action,
                                             ActionExecution& record) {
   const ArmContext& arm = c.arm;
@@ -156,6 +174,7 @@ std::optional<GroundingAttempt> groundPlace(const GroundingContext& c, const Sce
     request.object = object.name;
     request.target = placementTargetFromParams(action.params);
     request.seed = seed;
+    request.placedAfter = placedAfter(c.plan, record.index, action);
     request.settings = arm.settings().placement;
     request.settings.seed = arm.settings().seed;
     const PlacementPlan places = planPlacement(reach, request);

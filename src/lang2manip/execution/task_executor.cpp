@@ -12,7 +12,7 @@ TaskExecutor::TaskExecutor(Scene initial, ExecutionSettings settings)
 std::optional<GroundingFailure> TaskExecutor::execute(const Plan& plan, const StopCondition& stop) {
   ExecutionRecord record;
   Scene world = initial_;
-  const GroundingContext context{arm_, record.counters, stop};
+  const GroundingContext context{arm_, record.counters, stop, &plan};
   for (std::size_t i = 0; i < plan.actions.size(); ++i) {
     if (record.failure) {
       ActionExecution skipped;

@@ -92,6 +92,9 @@ struct PlacementRequest {
   std::vector<Pose> grasps;
   /// Start of the IK searches; empty = the robot's current configuration.
   VectorX seed;
+  /// Objects the plan puts at the same target after this one (several objects into one
+  /// container): candidates that leave each of them a free position there come first.
+  std::vector<std::string> placedAfter;
   PlacementSettings settings;
 };
 

@@ -167,6 +167,38 @@ PlacementPlan noPlacement(PlacementPlan plan, const std::string& what) {
   return failed(std::move(plan), PlacementFailure::kUnreachable, what + ": no placement found");
 }
 
+/// Whether `later` still has a free position at `target` once `object` rests at X_WO.
+bool leavesRoomFor(const Scene& scene, const std::string& object, const Pose& X_WO, const std::string& later,
+                   const PlacementTarget& target, const PlacementSettings& settings, const Pose& robotBase) {
+  Scene after = scene;
+  if (after.findAttachment(object) != nullptr) {
+    after.detach(object, X_WO);
+  } else {
+    after.object(object).pose = X_WO;
+  }
+  const SceneObject* laterObject = after.findObject(later);
+  if (laterObject == nullptr || after.findAttachment(later) != nullptr) return true;
+  const Pose current = currentObjectPose(after, later);
+  const PoseSamplingInput input{&after, laterObject, Quaternion(current.linear()), current.translation(), robotBase};
+  const PoseSampling sampling = samplePlacementPoses(input, target, settings);
+  const ObjectCollisionWorld world(after, later);
+  return std::any_of(sampling.poses.begin(), sampling.poses.end(),
+                     [&](const PoseCandidate& pose) { return world.collisions(pose.pose).empty(); });
+}
+
+/// Puts first the poses after which every object of `request.placedAfter` still has a free
+/// position at the target (several objects into one container: the first must not take the
+/// middle that the next one needs).
+void leaveRoomForLaterObjects(const Scene& scene, const PlacementRequest& request, const Pose& robotBase,
+                              std::vector<PoseCandidate>& poses) {
+  if (request.placedAfter.empty()) return;
+  std::stable_partition(poses.begin(), poses.end(), [&](const PoseCandidate& pose) {
+    return std::all_of(request.placedAfter.begin(), request.placedAfter.end(), [&](const std::string& later) {
+      return leavesRoomFor(scene, request.object, pose.pose, later, request.target, request.settings, robotBase);
+    });
+  });
+}
+
 }  // namespace
 
 void checkPlacementSettings(const PlacementSettings& s) {
@@ -205,6 +237,7 @@ PlacementPlan planPlacement(const ReachabilityChecker& reach, const PlacementReq
   PoseSampling sampling = samplePlacementPoses(input, request.target, request.settings);
   PlacementPlan plan;
   if (sampling.poses.empty()) return failed(std::move(plan), sampling.failure, what + ": " + sampling.reason);
+  leaveRoomForLaterObjects(scene, request, reach.robot().basePose, sampling.poses);
 
   const ObjectCollisionWorld world(scene, object.name);
   HeldObjectReach heldReach(reach, object.name, held);
