@@ -167,34 +167,38 @@ PlacementPlan noPlacement(PlacementPlan plan, const std::string& what) {
   return failed(std::move(plan), PlacementFailure::kUnreachable, what + ": no placement found");
 }
 
-/// Whether `later` still has a free position at `target` once `object` rests at X_WO.
-bool leavesRoomFor(const Scene& scene, const std::string& object, const Pose& X_WO, const std::string& later,
-                   const PlacementTarget& target, const PlacementSettings& settings, const Pose& robotBase) {
-  Scene after = scene;
-  if (after.findAttachment(object) != nullptr) {
-    after.detach(object, X_WO);
-  } else {
-    after.object(object).pose = X_WO;
+/// Where an object the plan places later could go at the target: the world boxes of its poses
+/// that are free of the scene's other objects (the object being placed now is held, so it is
+/// not among them).
+std::vector<AlignedBox3> laterObjectRoom(const Scene& scene, const std::string& later, const PlacementRequest& request,
+                                         const Pose& robotBase) {
+  const SceneObject* object = scene.findObject(later);
+  if (object == nullptr || scene.findAttachment(later) != nullptr) return {};
+  const Pose current = currentObjectPose(scene, later);
+  const PoseSamplingInput input{&scene, object, Quaternion(current.linear()), current.translation(), robotBase};
+  const PoseSampling sampling = samplePlacementPoses(input, request.target, request.settings);
+  const ObjectCollisionWorld world(scene, later);
+  std::vector<AlignedBox3> room;
+  for (const PoseCandidate& pose : sampling.poses) {
+    if (world.collisions(pose.pose).empty()) room.push_back(boundsAtPose(*object, pose.pose));
   }
-  const SceneObject* laterObject = after.findObject(later);
-  if (laterObject == nullptr || after.findAttachment(later) != nullptr) return true;
-  const Pose current = currentObjectPose(after, later);
-  const PoseSamplingInput input{&after, laterObject, Quaternion(current.linear()), current.translation(), robotBase};
-  const PoseSampling sampling = samplePlacementPoses(input, target, settings);
-  const ObjectCollisionWorld world(after, later);
-  return std::any_of(sampling.poses.begin(), sampling.poses.end(),
-                     [&](const PoseCandidate& pose) { return world.collisions(pose.pose).empty(); });
+  return room;
 }
 
 /// Puts first the poses after which every object of `request.placedAfter` still has a free
 /// position at the target (several objects into one container: the first must not take the
-/// middle that the next one needs).
-void leaveRoomForLaterObjects(const Scene& scene, const PlacementRequest& request, const Pose& robotBase,
-                              std::vector<PoseCandidate>& poses) {
-  if (request.placedAfter.empty()) return;
+/// middle that the next one needs). Boxes are compared, which is conservative: it only orders.
+void leaveRoomForLaterObjects(const Scene& scene, const PlacementRequest& request, const SceneObject& object,
+                              const Pose& robotBase, std::vector<PoseCandidate>& poses) {
+  std::vector<std::vector<AlignedBox3>> rooms;
+  for (const std::string& later : request.placedAfter) {
+    if (later != object.name) rooms.push_back(laterObjectRoom(scene, later, request, robotBase));
+  }
+  if (rooms.empty()) return;
   std::stable_partition(poses.begin(), poses.end(), [&](const PoseCandidate& pose) {
-    return std::all_of(request.placedAfter.begin(), request.placedAfter.end(), [&](const std::string& later) {
-      return leavesRoomFor(scene, request.object, pose.pose, later, request.target, request.settings, robotBase);
+    const AlignedBox3 taken = boundsAtPose(object, pose.pose);
+    return std::all_of(rooms.begin(), rooms.end(), [&](const std::vector<AlignedBox3>& room) {
+      return std::any_of(room.begin(), room.end(), [&](const AlignedBox3& box) { return !box.intersects(taken); });
     });
   });
 }
@@ -237,7 +241,7 @@ PlacementPlan planPlacement(const ReachabilityChecker& reach, const PlacementReq
   PoseSampling sampling = samplePlacementPoses(input, request.target, request.settings);
   PlacementPlan plan;
   if (sampling.poses.empty()) return failed(std::move(plan), sampling.failure, what + ": " + sampling.reason);
-  leaveRoomForLaterObjects(scene, request, reach.robot().basePose, sampling.poses);
+  leaveRoomForLaterObjects(scene, request, object, reach.robot().basePose, sampling.poses);
 
   const ObjectCollisionWorld world(scene, object.name);
   HeldObjectReach heldReach(reach, object.name, held);
