@@ -172,11 +172,7 @@ json runReportJson(const RunOutcome& outcome) {
     PathLengths lengths;
     for (const ActionExecution& action : outcome.execution->actions) {
       duration += action.trajectory.duration();
-      quality.stopsInsideRuns += action.quality.stopsInsideRuns;
-      quality.blendedCorners += action.quality.blendedCorners;
-      quality.reducedBlends += action.quality.reducedBlends;
-      quality.restToRestFallbacks += action.quality.restToRestFallbacks;
-      quality.seconds += action.quality.seconds;
+      quality += action.quality;
       lengths += pathLengths(action);
     }
     report["trajectory_duration"] = duration;

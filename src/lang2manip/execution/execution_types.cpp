@@ -72,6 +72,16 @@ void checkExecutionSettings(const ExecutionSettings& s) {
   checkPlacementSettings(s.placement);
 }
 
+TrajectoryQuality& TrajectoryQuality::operator+=(const TrajectoryQuality& other) {
+  stopsInsideRuns += other.stopsInsideRuns;
+  blendedCorners += other.blendedCorners;
+  reducedBlends += other.reducedBlends;
+  restToRestFallbacks += other.restToRestFallbacks;
+  pathLength += other.pathLength;
+  seconds += other.seconds;
+  return *this;
+}
+
 std::string trajectoryTimingName(TrajectoryTiming timing) {
   return timing == TrajectoryTiming::kTimeOptimal ? "time-optimal" : "rest-to-rest";
 }

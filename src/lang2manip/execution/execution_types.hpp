@@ -174,6 +174,8 @@ struct TrajectoryQuality {
   double pathLength = 0.0;
   /// Seconds spent timing (blend checks and parameterization).
   double seconds = 0.0;
+
+  TrajectoryQuality& operator+=(const TrajectoryQuality& other);
 };
 
 struct ActionExecution {
