@@ -108,7 +108,11 @@ TEST(KauthamDemos, PrmDemosSolveWithTheirOwnKauthamParameters) {
     session.setPlannerParameter("_Max Planning Time", std::to_string(timeLimit));
     for (const KauthamQuery& query : session.problem().queries) {
       session.setQuery(query.init, query.goal);
-      const MotionPlan& plan = session.solve();
+      // PRM builds its roadmap until its time limit, so a machine under load gets a smaller one:
+      // a narrow passage (the elephant through the hole) may take a second roadmap. A path that
+      // fails verification is not retried.
+      MotionPlan plan = session.solve();
+      if (plan.status == MotionPlanStatus::kNoPath) plan = session.solve();
       EXPECT_TRUE(plan.solved()) << plan.message;
     }
   }

@@ -35,6 +35,37 @@ TEST(MotionPlanner, SolvesSimplifiesAndReturnsAVerifiedTrajectory) {
   EXPECT_EQ(plan.trajectory.jointNames, (std::vector<std::string>{"planar/shoulder", "planar/elbow"}));
 }
 
+TEST(MotionPlanner, SegmentsThatFailTheFineCheckArePlannedAgainNotThePath) {
+  // Checked in steps of 3 rad while planning, the straight motion through the post looks free:
+  // verification at the fine resolution finds the collision and that segment is planned again.
+  MotionPlanningOptions options;
+  options.resolution = 3.0;
+  MotionPlanner planner(planarArmSpace(), options);
+  PlannerSettings settings;
+  settings.setParameter("_Simplify Solution", "0");
+  const MotionPlan plan = planner.solve(planarStart(), {planarGoal()}, settings, StopCondition::never());
+  ASSERT_TRUE(plan.solved()) << plan.message;
+  EXPECT_GE(plan.statistics.repairedSegments, 1);
+  EXPECT_EQ(plan.statistics.rejectedPaths, 0);
+  EXPECT_GT(plan.path.size(), 2u);
+  EXPECT_EQ(planner.verifyPath(plan.path), "");
+  EXPECT_TRUE(plan.path.front().isApprox(planarStart()));
+  EXPECT_TRUE(plan.path.back().isApprox(planarGoal()));
+  EXPECT_GT(plan.statistics.lengthAfterSimplification, plan.statistics.lengthBeforeSimplification);
+}
+
+TEST(MotionPlanner, EveryValidStateSamplerSolves) {
+  for (const char* sampler : {"uniform", "gaussian", "obstacle_based", "bridge_test"}) {
+    MotionPlanner planner(planarArmSpace());
+    PlannerSettings settings;
+    settings.setPlanner("PRM");
+    settings.setParameter("_Max Planning Time", "0.5");
+    settings.setParameter("_Valid State Sampler", sampler);
+    const MotionPlan plan = planner.solve(planarStart(), {planarGoal()}, settings, StopCondition::never());
+    EXPECT_TRUE(plan.solved()) << sampler << ": " << plan.message;
+  }
+}
+
 TEST(MotionPlanner, RecordsTheExplorationTreeWhenAsked) {
   MotionPlanner plain(planarArmSpace());
   EXPECT_TRUE(plain.solve(planarStart(), {planarGoal()}, PlannerSettings{}, StopCondition::never()).tree.vertices.empty());

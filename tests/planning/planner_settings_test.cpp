@@ -98,6 +98,35 @@ TEST(PlannerSettings, KauthamOnlyParametersSetTheirOmplCounterpartOrSayTheyHaveN
   EXPECT_EQ(star.ignoredParameters().size(), 1u);
 }
 
+TEST(PlannerSettings, ValidStateSamplerByNameOrByKauthamsSamplerNumber) {
+  PlannerSettings settings;
+  EXPECT_EQ(settings.validStateSampler(), ValidStateSampler::kUniform);
+  settings.setParameter("_Valid State Sampler", "obstacle_based");
+  EXPECT_EQ(settings.validStateSampler(), ValidStateSampler::kObstacleBased);
+  settings.setParameter("_Valid State Sampler", "bridge_test");
+  EXPECT_EQ(validStateSamplerName(settings.validStateSampler()), "bridge_test");
+  try {
+    settings.setParameter("_Valid State Sampler", "halton");
+    ADD_FAILURE() << "accepted an unknown sampler";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("uniform, gaussian, obstacle_based, bridge_test"), std::string::npos)
+        << error.what();
+  }
+  PlannerSettings prm;
+  prm.setPlanner("omplPRM");
+  prm.setParameter("Sampler 0(r) 1(h) 2(sdk) 3(g)", "3");  // Kautham's Gaussian sampler
+  EXPECT_EQ(prm.validStateSampler(), ValidStateSampler::kGaussian);
+  EXPECT_TRUE(prm.ignoredParameters().empty());
+  prm.setParameter("Sampler 0(r) 1(h) 2(sdk) 3(g) 4(gl)", "4");
+  EXPECT_EQ(prm.validStateSampler(), ValidStateSampler::kGaussian);
+  prm.setParameter("Sampler 0(r) 1(h) 2(sdk) 3(g)", "0");
+  EXPECT_EQ(prm.validStateSampler(), ValidStateSampler::kUniform);
+  prm.setParameter("Sampler 0(r) 1(h) 2(sdk) 3(g)", "2");  // SDK: not implemented, said so
+  EXPECT_EQ(prm.validStateSampler(), ValidStateSampler::kUniform);
+  ASSERT_EQ(prm.ignoredParameters().size(), 1u);
+  EXPECT_NE(prm.ignoredParameters()[0].reason.find("SDK"), std::string::npos);
+}
+
 TEST(PlannerSettings, CommonParametersUnderKauthamNames) {
   PlannerSettings settings;
   settings.setPlanner("omplRRTConnect");

@@ -29,9 +29,9 @@ const std::vector<Entry>& entries() {
       {"PRM", "BounceDistanceThreshold", "", "the roadmap's random bounce walks are not bounded by a distance"},
       {"PRM", "BounceSteps", "", "Kautham's PRM ignores it too (it always bounces 5 steps)"},
       {"PRM", "Sampler 0(r) 1(h) 2(sdk) 3(g)", "",
-       "samples are uniform random (Kautham's Halton, SDK and Gaussian samplers are not implemented)"},
+       "samples are uniform random (Kautham's Halton and SDK samplers are not implemented)"},
       {"PRM", "Sampler 0(r) 1(h) 2(sdk) 3(g) 4(gl)", "",
-       "samples are uniform random (Kautham's Halton, SDK and Gaussian samplers are not implemented)"},
+       "samples are uniform random (Kautham's Halton and SDK samplers are not implemented)"},
       {"KPIECE1", "maxNumSteps", "", "Kautham's multi-step growth is not part of OMPL's KPIECE1"},
       {"KPIECE1", "failedExpansionScoreFactor", "failed_expansion_score_factor", ""},
       {"KPIECE1", "Cell Size", "", "the projection keeps OMPL's default cell sizes"},
@@ -101,11 +101,16 @@ std::optional<KauthamParameterMeaning> kauthamPlannerParameter(const std::string
     return entry.planner == canonicalPlanner && key(entry.name) == wanted;
   });
   if (found == entries().end()) return std::nullopt;
-  KauthamParameterMeaning meaning{found->omplName, found->noEffect};
+  KauthamParameterMeaning meaning{found->omplName, found->noEffect, ""};
   const std::optional<double> number = numberOf(value);
-  const bool defaultChoice = number && ((wanted.rfind("sampler", 0) == 0 && *number == 0.0) ||
+  const bool sampler = wanted.rfind("sampler", 0) == 0;
+  const bool defaultChoice = number && ((sampler && *number == 0.0) ||
                                         (wanted.rfind("optimize", 0) == 0 && *number == 1.0));
   if (defaultChoice) meaning.noEffect.clear();
+  if (sampler && number && (*number == 0.0 || *number == 3.0 || *number == 4.0)) {
+    meaning.noEffect.clear();
+    meaning.validStateSampler = *number == 0.0 ? "uniform" : "gaussian";
+  }
   return meaning;
 }
 

@@ -15,12 +15,15 @@ struct KauthamParameterMeaning {
   std::string omplName;
   /// Why it has no effect ("" when it has one, or when its value is the one lang2manip does).
   std::string noEffect;
+  /// The valid state sampler it selects (validStateSamplerName(); "" when it selects none).
+  std::string validStateSampler;
 };
 
 /// The meaning of Kautham parameter `name` (any case, leading underscores ignored) with `value`
 /// for planner `canonicalPlanner` (see planner_registry.hpp), or nullopt when Kautham gives that
-/// planner no such parameter. Value-dependent: Kautham's PRM "Sampler ..." 0 (uniform random) and
-/// RRT* "Optimize ..." 1 (path length) are what lang2manip does; other values have no effect.
+/// planner no such parameter. Value-dependent: Kautham's PRM "Sampler ..." 0 (uniform random)
+/// and 3/4 (Gaussian, Gaussian-like) select a valid state sampler, 1 and 2 (Halton, SDK) have no
+/// effect; RRT* "Optimize ..." 1 (path length) is what lang2manip does, other values have none.
 std::optional<KauthamParameterMeaning> kauthamPlannerParameter(const std::string& canonicalPlanner,
                                                                const std::string& name,
                                                                const std::string& value);

@@ -14,7 +14,9 @@ nlohmann::json motionPlanStatisticsToJson(const MotionPlanStatistics& statistics
           {"motion_checks", statistics.motionChecks},
           {"length_before_simplification", statistics.lengthBeforeSimplification},
           {"length_after_simplification", statistics.lengthAfterSimplification},
-          {"rejected_paths", statistics.rejectedPaths}};
+          {"rejected_paths", statistics.rejectedPaths},
+          {"repaired_segments", statistics.repairedSegments},
+          {"repair_seconds", statistics.repairSeconds}};
 }
 
 nlohmann::json pathToJson(const std::vector<VectorX>& path) {

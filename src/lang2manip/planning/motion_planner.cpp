@@ -13,6 +13,10 @@
 #include <ompl/base/goals/GoalState.h>
 #include <ompl/base/goals/GoalStates.h>
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
+#include <ompl/base/samplers/BridgeTestValidStateSampler.h>
+#include <ompl/base/samplers/GaussianValidStateSampler.h>
+#include <ompl/base/samplers/ObstacleBasedValidStateSampler.h>
+#include <ompl/base/samplers/UniformValidStateSampler.h>
 #include <ompl/geometric/PathSimplifier.h>
 #include <ompl/util/Console.h>
 
@@ -20,6 +24,7 @@
 #include "lang2manip/core/log.hpp"
 #include "lang2manip/planning/ompl_bridge.hpp"
 #include "lang2manip/planning/planner_registry.hpp"
+#include "lang2manip/planning/segment_repair.hpp"
 
 namespace lang2manip {
 namespace {
@@ -100,6 +105,16 @@ ExplorationTree explorationTree(const ob::PlannerData& data, int dimension, std:
     }
   }
   return tree;
+}
+
+ob::ValidStateSamplerPtr allocValidStateSampler(ValidStateSampler sampler, const ob::SpaceInformation* si) {
+  switch (sampler) {
+    case ValidStateSampler::kGaussian: return std::make_shared<ob::GaussianValidStateSampler>(si);
+    case ValidStateSampler::kObstacleBased: return std::make_shared<ob::ObstacleBasedValidStateSampler>(si);
+    case ValidStateSampler::kBridgeTest: return std::make_shared<ob::BridgeTestValidStateSampler>(si);
+    case ValidStateSampler::kUniform: break;
+  }
+  return std::make_shared<ob::UniformValidStateSampler>(si);
 }
 
 }  // namespace
@@ -212,13 +227,16 @@ ompl::base::ProblemDefinitionPtr MotionPlanner::makeProblem(const VectorX& start
 }
 
 void MotionPlanner::preparePlanner(const PlannerSettings& settings) {
-  std::string key = settings.planner();
+  std::string key = settings.planner() + ";" + validStateSamplerName(settings.validStateSampler());
   for (const auto& [name, value] : settings.omplParameters()) key += ";" + name + "=" + value;
   if (settings.incremental() && ompl_->planner && key == ompl_->plannerKey) {
     ompl_->planner->clearQuery();
     return;
   }
   if (ompl_->planner) ompl_->planner->clear();
+  ompl_->si->setValidStateSamplerAllocator([sampler = settings.validStateSampler()](const ob::SpaceInformation* si) {
+    return allocValidStateSampler(sampler, si);
+  });
   ompl_->planner = createOmplPlanner(settings.planner(), ompl_->si);
   const bool rangeGiven = std::any_of(settings.omplParameters().begin(), settings.omplParameters().end(),
                                       [](const auto& parameter) { return parameter.first == "range"; });
@@ -248,6 +266,31 @@ void MotionPlanner::appendExactGoal(og::PathGeometric& path, const std::vector<V
   ompl_->si->freeState(state);
 }
 
+// A path that grazes an obstacle between the planner's coarser checks: its colliding segments
+// are planned again at the verification resolution, in the simplified path, else in the
+// planner's own path.
+bool MotionPlanner::mendPath(const StopCondition& stop, MotionPlan& plan) const {
+  const auto repairStart = Clock::now();
+  std::vector<std::vector<VectorX>> candidates = {plan.path};
+  if (plan.rawPath != plan.path) candidates.push_back(plan.rawPath);
+  std::optional<RepairedPath> repaired;
+  for (std::size_t c = 0; c < candidates.size() && !repaired && !stop.shouldStop(); ++c) {
+    repaired = repairCollidingSegments(*space_, candidates[c], options_.verificationResolution, stop, ompl_->counters);
+  }
+  plan.statistics.repairSeconds += secondsSince(repairStart);
+  if (!repaired) return false;
+  const auto verificationStart = Clock::now();
+  const bool verified = verifyPath(repaired->points).empty();
+  plan.statistics.verificationSeconds += secondsSince(verificationStart);
+  if (!verified) return false;
+  plan.path = std::move(repaired->points);
+  plan.statistics.repairedSegments += repaired->repairedSegments;
+  double length = 0.0;
+  for (std::size_t i = 1; i < plan.path.size(); ++i) length += (plan.path[i] - plan.path[i - 1]).norm();  // OMPL's RealVector metric
+  plan.statistics.lengthAfterSimplification = length;
+  return true;
+}
+
 std::string MotionPlanner::finishPath(og::PathGeometric path, const VectorX& start,
                                       const std::vector<VectorX>& goals, const PlannerSettings& settings, const StopCondition& stop,
                                       MotionPlan& plan) const {
@@ -269,15 +312,9 @@ std::string MotionPlanner::finishPath(og::PathGeometric path, const VectorX& sta
   plan.path = pathPoints(path, space_->dimension());
   plan.path.front() = start;
   const auto verificationStart = Clock::now();
-  std::string failure = verifyPath(plan.path);
-  if (!failure.empty() && settings.simplifyLevel() != SimplifyLevel::kNone) {
-    // The simplified path grazes an obstacle between checks: keep the planner's own path.
-    plan.path = plan.rawPath;
-    plan.statistics.lengthAfterSimplification = plan.statistics.lengthBeforeSimplification;
-    failure = verifyPath(plan.path);
-  }
+  const std::string failure = verifyPath(plan.path);
   plan.statistics.verificationSeconds += secondsSince(verificationStart);
-  if (!failure.empty()) return failure;
+  if (!failure.empty() && !mendPath(stop, plan)) return failure;
   const auto timingStart = Clock::now();
   plan.trajectory = timeParameterize(*space_, plan.path, options_.timing);
   plan.statistics.parameterizationSeconds += secondsSince(timingStart);

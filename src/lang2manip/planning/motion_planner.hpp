@@ -1,7 +1,8 @@
 #pragma once
 /// @file Solving a motion query with an OMPL planner chosen by name: plan under a stop
 /// condition, simplify, time-parameterize, and re-verify the result with the exact checker at
-/// a fine resolution. A trajectory that fails verification is never returned as solved.
+/// a fine resolution, planning again only the segments that fail it. A trajectory that fails
+/// verification is never returned as solved.
 
 #include <memory>
 #include <string>
@@ -68,6 +69,9 @@ struct MotionPlanStatistics {
   double lengthAfterSimplification = 0.0;
   /// Solutions rejected by verification (each followed by planning again in the time left).
   int rejectedPaths = 0;
+  /// Segments that collided at the verification resolution and were planned again at it.
+  int repairedSegments = 0;
+  double repairSeconds = 0.0;
 };
 
 struct MotionPlan {
@@ -118,6 +122,7 @@ class MotionPlanner {
                                        const PlannerSettings& settings, const StopCondition& limit,
                                        MotionPlan& plan);
   void appendExactGoal(ompl::geometric::PathGeometric& path, const std::vector<VectorX>& goals) const;
+  [[nodiscard]] bool mendPath(const StopCondition& stop, MotionPlan& plan) const;
   [[nodiscard]] std::string finishPath(ompl::geometric::PathGeometric path, const VectorX& start,
                                        const std::vector<VectorX>& goals, const PlannerSettings& settings, const StopCondition& stop,
                                        MotionPlan& plan) const;

@@ -48,7 +48,7 @@ std::string omplStyleName(const std::string& name) {
 const std::vector<std::string>& commonParameterNames() {
   static const std::vector<std::string> names = {
       "_Max Planning Time", "_Simplify Solution", "_Optimize (0/1)", "_Incremental (0/1)",
-      "_Speed Factor",      "_Cspace Drawn",      "_Path Drawn (0/1)"};
+      "_Speed Factor",      "_Cspace Drawn",      "_Path Drawn (0/1)", "_Valid State Sampler"};
   return names;
 }
 
@@ -104,7 +104,29 @@ void checkAgainstRange(const std::string& name, const std::string& value, const 
   }
 }
 
+constexpr ValidStateSampler kValidStateSamplers[] = {ValidStateSampler::kUniform, ValidStateSampler::kGaussian,
+                                                     ValidStateSampler::kObstacleBased, ValidStateSampler::kBridgeTest};
+
+ValidStateSampler parseValidStateSampler(const std::string& value, const std::string& what) {
+  std::string names;
+  for (const ValidStateSampler sampler : kValidStateSamplers) {
+    if (value == validStateSamplerName(sampler)) return sampler;
+    names += (names.empty() ? "" : ", ") + validStateSamplerName(sampler);
+  }
+  throw InputError(what + " must be one of " + names + ", got \"" + value + "\"");
+}
+
 }  // namespace
+
+std::string validStateSamplerName(ValidStateSampler sampler) {
+  switch (sampler) {
+    case ValidStateSampler::kUniform: return "uniform";
+    case ValidStateSampler::kGaussian: return "gaussian";
+    case ValidStateSampler::kObstacleBased: return "obstacle_based";
+    case ValidStateSampler::kBridgeTest: return "bridge_test";
+  }
+  return "unknown";
+}
 
 PlannerSettings::PlannerSettings() : planner_("RRTConnect") {}
 
@@ -126,6 +148,10 @@ void PlannerSettings::setParameter(const std::string& name, const std::string& v
   if (setCommonParameter(key, name, text)) return;
   if (const auto meaning = kauthamPlannerParameter(planner_, name, text)) {
     parseFiniteNumber(text, "parameter \"" + name + "\" of " + planner_, {});  // Kautham's values are numbers
+    if (!meaning->validStateSampler.empty()) {
+      validStateSampler_ = parseValidStateSampler(meaning->validStateSampler, name);
+      return;
+    }
     if (!meaning->omplName.empty()) {
       setOmplParameter(meaning->omplName, text);
       return;
@@ -159,6 +185,8 @@ bool PlannerSettings::setCommonParameter(const std::string& key, const std::stri
   } else if (key == "speed factor") {
     speedFactor_ = parseFiniteNumber(value, what, {});
     if (speedFactor_ <= 0.0) throw InputError(what + " must be positive, got " + value);
+  } else if (key == "valid state sampler") {
+    validStateSampler_ = parseValidStateSampler(value, what);
   } else if (key == "cspace drawn" || key == "path drawn") {
     parseFlag(value, what, {});
   } else {

@@ -16,6 +16,13 @@ struct IgnoredParameter {
   std::string reason;
 };
 
+/// How sampling planners draw valid states (OMPL's valid state samplers). Gaussian, obstacle-
+/// based and bridge-test samplers put more samples near obstacles, where narrow passages are.
+enum class ValidStateSampler { kUniform, kGaussian, kObstacleBased, kBridgeTest };
+
+/// "uniform", "gaussian", "obstacle_based", "bridge_test".
+std::string validStateSamplerName(ValidStateSampler sampler);
+
 /// Path simplification, as Kautham's `_Simplify Solution`.
 enum class SimplifyLevel { kNone = 0, kSmooth = 1, kShortcutAndSmooth = 2 };
 
@@ -33,7 +40,9 @@ class PlannerSettings {
   /// `_Simplify Solution` (0, 1, 2), `_Optimize` (0/1: optimizing planners refine until the time
   /// limit instead of stopping at their first solution), `_Incremental` (0/1: keep the planner's
   /// graph between queries), and Kautham's display options `_Speed Factor`, `_Cspace Drawn`,
-  /// `_Path Drawn` (accepted and kept; they do not change planning). Planner parameters by OMPL's
+  /// `_Path Drawn` (accepted and kept; they do not change planning), `_Valid State Sampler`
+  /// (validStateSamplerName(); Kautham's PRM `Sampler` 3 (Gaussian) and 4 (Gaussian-like) set it
+  /// to gaussian). Planner parameters by OMPL's
   /// name or Kautham's ("Goal Bias" = goal_bias). Throws InputError for an unknown name (listing
   /// the valid ones), a value of the wrong type or outside the published range. Kautham's own
   /// planner parameters (kautham_planner_parameters.hpp: omplPRM's DistanceThreshold, ...) set
@@ -52,6 +61,7 @@ class PlannerSettings {
   [[nodiscard]] bool optimize() const noexcept { return optimize_; }
   [[nodiscard]] bool incremental() const noexcept { return incremental_; }
   [[nodiscard]] double speedFactor() const noexcept { return speedFactor_; }
+  [[nodiscard]] ValidStateSampler validStateSampler() const noexcept { return validStateSampler_; }
   /// The planner-specific parameters by OMPL name, in the order they were set.
   [[nodiscard]] const std::vector<std::pair<std::string, std::string>>& omplParameters() const noexcept {
     return omplParameters_;
@@ -67,6 +77,7 @@ class PlannerSettings {
   bool optimize_ = false;
   bool incremental_ = false;
   double speedFactor_ = 1.0;
+  ValidStateSampler validStateSampler_ = ValidStateSampler::kUniform;
   std::vector<std::pair<std::string, std::string>> omplParameters_;
   std::vector<IgnoredParameter> ignored_;
 };
