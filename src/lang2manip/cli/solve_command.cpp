@@ -185,12 +185,16 @@ void runSolve(const SolveOptions& options, std::ostream& out) {
   for (const IgnoredParameter& ignored : session.plannerSettings().ignoredParameters()) {
     report["ignored_parameters"].push_back({{"name", ignored.name}, {"value", ignored.value}, {"reason", ignored.reason}});
   }
+  report["valid_state_sampler"] = validStateSamplerName(session.plannerSettings().validStateSampler());
   if (!options.out.empty()) writeOutputs(options.out, report, trajectories);
   if (!options.html.empty()) writeSolvePage(options.html, loaded.name, problem, report, solved_, viewer);
   if (options.json) {
     out << report.dump(2) << '\n';
   } else {
     out << "problem " << loaded.name << " (" << loaded.file << ")\n";
+    if (session.plannerSettings().validStateSampler() != ValidStateSampler::kUniform) {
+      out << "valid state sampler: " << report["valid_state_sampler"].get<std::string>() << "\n";
+    }
     for (const json& ignored : report["ignored_parameters"]) {
       out << "parameter \"" << ignored["name"].get<std::string>() << "\" = " << ignored["value"].get<std::string>()
           << " has no effect: " << ignored["reason"].get<std::string>() << "\n";
