@@ -77,6 +77,7 @@ TEST(ExecutionFailures, BlockedPlacementNamesTheBlocker) {
   const Failed f = executeExpectingFailure(scene, planOf({pickAction("eraser"), place}));
   EXPECT_EQ(f.failure.stage, "placement");
   EXPECT_THAT(f.failure.reason, HasSubstr("blocked by stand"));
+  EXPECT_EQ(f.failure.blockingObjects, std::vector<std::string>{"stand"});  // as data for the task planners
 }
 
 TEST(ExecutionFailures, PushIntoAnObstacleFailsAtThePushStage) {

@@ -166,6 +166,7 @@ TEST(Placement, BlockedExplicitPoseAndMidAirAreRefused) {
   const PlacementPlan blocked = place(reach, "eraser", onMarker);
   EXPECT_EQ(blocked.failure, PlacementFailure::kBlocked);
   EXPECT_THAT(blocked.reason, HasSubstr("blocked by marker"));
+  EXPECT_EQ(blocked.blockers, std::vector<std::string>{"marker"});
   PlacementTarget midAir;
   midAir.position = base.inverse() * Vector3(0.2, -0.1, 1.2);
   const PlacementPlan air = place(reach, "eraser", midAir);

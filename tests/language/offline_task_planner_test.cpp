@@ -27,9 +27,23 @@ std::string planningErrorOf(OfflineTaskPlanner& planner, const PlanningRequest& 
   return "no error";
 }
 
-PlanAttempt graspFailure(const std::string& object) {
-  return {"{\"actions\":[]}", "action 2 (pick " + object + "): no collision-free grasp of " +
-                                  object + " found"};
+/// A round as the repair loop reports it: `plan` was tried and its first action on `object`
+/// failed at `stage`. The words name nothing: the offline planner reads the data.
+PlanAttempt groundingFailure(const Plan& plan, const std::string& object, const std::string& stage = "grasp",
+                             const std::vector<std::string>& blockers = {}) {
+  PlanAttempt attempt;
+  attempt.answer = "{}";
+  attempt.failure = "words the planner does not read";
+  attempt.plan = plan;
+  std::size_t index = 0;
+  while (index < plan.actions.size() && plan.actions[index].object != object) ++index;
+  attempt.grounding = GroundingFailure{index, stage, object, "the reason in words", blockers};
+  return attempt;
+}
+
+Plan firstPlan(OfflineTaskPlanner& planner, const PlanningRequest& request) {
+  PlanningStatistics statistics;
+  return planner.plan(request, StopCondition::never(), statistics);
 }
 
 TEST(OfflineTaskPlannerTest, PlansThePaperTaskOnEveryBuiltInDesk) {
@@ -92,14 +106,17 @@ TEST(OfflineTaskPlannerTest, GraspFailuresLeadToOtherGraspDirections) {
   PlanningRequest request = requestFor(scene, "put the marker and eraser in the holder");
   PlanningStatistics statistics;
   const std::vector<GraspDirection> order = graspRetryOrder();
+  Plan tried = firstPlan(planner, request);
   for (std::size_t failures = 1; failures < order.size(); ++failures) {
-    request.earlierAttempts.push_back(graspFailure("eraser"));
+    // Failures at any stage of an action on a picked object: another grasp may fix them.
+    request.earlierAttempts.push_back(groundingFailure(tried, "eraser", failures == 2 ? "motion" : "grasp"));
     const Plan plan = planner.plan(request, StopCondition::never(), statistics);
     ASSERT_EQ(plan.actions.size(), 4u);
     EXPECT_EQ(plan.actions[0].refinements.grasp, GraspDirection::kAuto);
     EXPECT_EQ(plan.actions[2].refinements.grasp, order[failures]) << failures;
+    tried = plan;
   }
-  request.earlierAttempts.push_back(graspFailure("eraser"));
+  request.earlierAttempts.push_back(groundingFailure(tried, "eraser"));
   EXPECT_NE(planningErrorOf(planner, request)
                 .find("nothing new to try: every grasp direction of eraser has failed"),
             std::string::npos);
@@ -109,7 +126,7 @@ TEST(OfflineTaskPlannerTest, RequestedGraspIsNotOverridden) {
   OfflineTaskPlanner planner;
   const Scene scene = test::deskScene();
   PlanningRequest request = requestFor(scene, "put the marker in the holder with a side grasp");
-  request.earlierAttempts.push_back(graspFailure("marker"));
+  request.earlierAttempts.push_back(groundingFailure(firstPlan(planner, request), "marker"));
   EXPECT_NE(planningErrorOf(planner, request)
                 .find("nothing new to try: the instruction asks for a side grasp of marker"),
             std::string::npos);
@@ -119,10 +136,25 @@ TEST(OfflineTaskPlannerTest, FailureItCannotAnswerIsAnError) {
   OfflineTaskPlanner planner;
   const Scene scene = test::deskScene();
   PlanningRequest request = requestFor(scene, "put the marker in the holder");
-  request.earlierAttempts.push_back({"{}", "action 1: no collision-free path within 10 s"});
-  const std::string message = planningErrorOf(planner, request);
-  EXPECT_NE(message.find("nothing new to try"), std::string::npos) << message;
-  EXPECT_NE(message.find("no collision-free path within 10 s"), std::string::npos) << message;
+  // A failure in words only (an invalid plan, an unusable answer): nothing is parsed out of it,
+  // even when the words mention a grasp of an object.
+  PlanAttempt words;
+  words.failure = "step 1 (pick marker): no collision-free grasp of marker";
+  request.earlierAttempts = {words};
+  std::string message = planningErrorOf(planner, request);
+  EXPECT_NE(message.find("nothing new to try: the failure is not one of executing its plan"), std::string::npos) << message;
+  EXPECT_NE(message.find("no collision-free grasp of marker"), std::string::npos) << message;
+
+  const Plan plan = firstPlan(planner, requestFor(scene, "put the marker in the holder"));
+  request.earlierAttempts = {groundingFailure(plan, "marker", "precondition")};
+  message = planningErrorOf(planner, request);
+  EXPECT_NE(message.find("the plan asks for something the world does not allow"), std::string::npos) << message;
+  request.earlierAttempts = {groundingFailure(plan, "marker", "placement", {"eraser", "block"})};
+  message = planningErrorOf(planner, request);
+  EXPECT_NE(message.find("every position for marker is taken by eraser, block"), std::string::npos) << message;
+  request.earlierAttempts = {groundingFailure(plan, "holder", "motion")};
+  message = planningErrorOf(planner, request);
+  EXPECT_NE(message.find("the failure is not about an object the plan picks"), std::string::npos) << message;
 }
 
 TEST(OfflineTaskPlannerTest, RoomOfContainersComesFromTheirCavities) {

@@ -163,7 +163,7 @@ TEST_P(LlmPlannerRepairTest, PlaceBeforePickIsRepaired) {
   const RepairResult result = plan();
   expectRepairedInRoundTwo(result, RoundOutcome::kInvalidPlan,
                            "step 1 (place marker in holder): marker is not held; pick it first", requestText(1));
-  EXPECT_TRUE(result.rounds[0].plan.has_value()) << "the invalid plan parsed; validation rejected it";
+  EXPECT_TRUE(result.rounds[0].attempt.plan.has_value()) << "the invalid plan parsed; validation rejected it";
 }
 
 TEST_P(LlmPlannerRepairTest, RefusalIsRepaired) {

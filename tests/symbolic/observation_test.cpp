@@ -1,4 +1,6 @@
 #include <gmock/gmock.h>
+#include <tuple>
+
 #include <gtest/gtest.h>
 
 #include "lang2manip/core/error.hpp"
@@ -121,10 +123,13 @@ TEST(PlanPromptTest, SystemPromptHasGrammarSchemaRulesExampleAndVersion) {
 }
 
 TEST(PlanPromptTest, MessagesCarryTaskObservationAndEarlierAttempts) {
-  const std::vector<PlanAttempt> attempts{{"garbage", "(answer): no JSON object found"},
-                                          {"{\"actions\":[]}", "actions: empty"},
-                                          {"{...}", "step 1 (place marker in holder): marker is not held; pick it first"},
-                                          {"{....}", "fourth failure"}};
+  std::vector<PlanAttempt> attempts(4);
+  const std::pair<const char*, const char*> texts[] = {
+      {"garbage", "(answer): no JSON object found"},
+      {"{\"actions\":[]}", "actions: empty"},
+      {"{...}", "step 1 (place marker in holder): marker is not held; pick it first"},
+      {"{....}", "fourth failure"}};
+  for (std::size_t i = 0; i < attempts.size(); ++i) std::tie(attempts[i].answer, attempts[i].failure) = texts[i];
   const auto messages = planMessages("put the marker and eraser in the holder", "OBS", attempts, 3);
   ASSERT_EQ(messages.size(), 7U);
   EXPECT_THAT(messages[0].content, HasSubstr("TASK: put the marker and eraser in the holder"));

@@ -83,7 +83,7 @@ class ScriptedExecutor final : public PlanExecutor {
   std::optional<GroundingFailure> execute(const Plan& plan, const StopCondition&) override {
     executed.push_back(plan);
     if (failures_-- <= 0) return std::nullopt;
-    return GroundingFailure{1, "placement", "marker", "no collision-free placement of marker in holder: holder is full"};
+    return GroundingFailure{1, "placement", "marker", "no collision-free placement of marker in holder: holder is full", {"eraser"}};
   }
   std::vector<Plan> executed;
 
@@ -136,7 +136,7 @@ TEST_F(RepairLoopTest, BoundedRoundsEndInAFailureListingEveryAttempt) {
   EXPECT_THAT(result.failure, HasSubstr("round 3 (unusable answer): the plan has 1 problem:   actions[0].action: unknown action \"grab\""));
 }
 
-TEST_F(RepairLoopTest, GroundingFailuresAreFedBackInWords) {
+TEST_F(RepairLoopTest, GroundingFailuresAreFedBackInWordsAndAsData) {
   ScriptedPlanner planner({goodPlanText(), goodPlanText()});
   ScriptedExecutor executor(1);
   const RepairResult result = planWithRepair(planner, request_, &executor, rounds(3), StopCondition::never());
@@ -147,6 +147,14 @@ TEST_F(RepairLoopTest, GroundingFailuresAreFedBackInWords) {
   EXPECT_EQ(planner.requests[1].earlierAttempts[0].failure,
             "step 2 (place marker in holder) could not be executed at the placement stage for marker: "
             "no collision-free placement of marker in holder: holder is full");
+  const PlanAttempt& attempt = planner.requests[1].earlierAttempts[0];
+  ASSERT_TRUE(attempt.plan.has_value());
+  EXPECT_EQ(attempt.plan->actions.size(), executor.executed[0].actions.size());
+  ASSERT_TRUE(attempt.grounding.has_value());
+  EXPECT_EQ(attempt.grounding->actionIndex, 1U);
+  EXPECT_EQ(attempt.grounding->stage, "placement");
+  EXPECT_EQ(attempt.grounding->object, "marker");
+  EXPECT_EQ(attempt.grounding->blockingObjects, std::vector<std::string>{"eraser"});
 }
 
 TEST_F(RepairLoopTest, PlannerErrorsEndTheLoopWithoutMoreRounds) {

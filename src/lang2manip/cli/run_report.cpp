@@ -107,7 +107,12 @@ json roundsJson(const RepairResult& repair) {
   for (const RepairRound& round : repair.rounds) {
     json entry = {{"round", round.round}, {"outcome", roundOutcomeName(round.outcome)}};
     if (round.outcome != RoundOutcome::kAccepted) entry["failure"] = round.attempt.failure;
-    if (round.plan) entry["plan"] = toJson(*round.plan);
+    if (round.attempt.plan) entry["plan"] = toJson(*round.attempt.plan);
+    if (const auto& failure = round.attempt.grounding) {
+      entry["grounding_failure"] = {{"action_index", failure->actionIndex}, {"stage", failure->stage},
+                                    {"object", failure->object}, {"reason", failure->reason},
+                                    {"blocking_objects", failure->blockingObjects}};
+    }
     rounds.push_back(entry);
   }
   return rounds;

@@ -96,7 +96,7 @@ SelectedTaskPlanner taskPlannerFor(const RunRequest& request, const Scene& scene
 /// The accepted plan, else the last one that was parsed.
 const Plan* planOf(const RepairResult& repair) {
   if (repair.plan) return &*repair.plan;
-  if (!repair.rounds.empty() && repair.rounds.back().plan) return &*repair.rounds.back().plan;
+  if (!repair.rounds.empty() && repair.rounds.back().attempt.plan) return &*repair.rounds.back().attempt.plan;
   return nullptr;
 }
 

@@ -186,6 +186,8 @@ struct ActionExecution {
   /// why, naming the object.
   std::string stage;
   std::string reason;
+  /// On failure: the objects standing where the action needed room (a placement's blockers).
+  std::vector<std::string> blockingObjects;
   /// What was chosen: "top, closing 90 deg ...", "in holder at ...", "home".
   std::string choice;
   std::vector<MotionSegment> segments;

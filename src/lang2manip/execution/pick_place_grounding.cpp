@@ -182,6 +182,7 @@ std::optional<GroundingAttempt> groundPlace(const GroundingContext& c, const Sce
     record.times.placement += secondsSince(began);
     if (!places.success()) {
       refuse(record, "placement", places.reason);
+      record.blockingObjects = places.blockers;
       continue;
     }
     auto done = firstThatMoves(c, places.candidates, arm.settings().maxPlacementAttempts,

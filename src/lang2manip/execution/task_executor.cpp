@@ -28,7 +28,8 @@ std::optional<GroundingFailure> TaskExecutor::execute(const Plan& plan, const St
                        action.status == ActionStatus::kFailed ? action.reason : action.choice});
     record.times += action.times;
     if (action.status == ActionStatus::kFailed) {
-      record.failure = GroundingFailure{i, action.stage.empty() ? "motion" : action.stage, plan.actions[i].object, action.reason};
+      record.failure = GroundingFailure{i, action.stage.empty() ? "motion" : action.stage, plan.actions[i].object,
+                                        action.reason, action.blockingObjects};
     }
     record.actions.push_back(std::move(action));
   }

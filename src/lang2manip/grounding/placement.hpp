@@ -130,6 +130,8 @@ struct PlacementRejection {
   std::string label;
   PlacementFailure failure = PlacementFailure::kNone;
   std::string reason;
+  /// The objects standing where the pose would put the object (kBlocked).
+  std::vector<std::string> blockers;
 };
 
 struct PlacementPlan {
@@ -137,6 +139,8 @@ struct PlacementPlan {
   PlacementFailure failure = PlacementFailure::kNone;
   /// On failure, names the object, the target and the reason.
   std::string reason;
+  /// On failure: every object that blocked one of the poses, in the order first met.
+  std::vector<std::string> blockers;
   std::vector<PlacementRejection> rejections;
   [[nodiscard]] bool success() const { return !candidates.empty(); }
 };

@@ -136,12 +136,12 @@ bool tryPoseAt(Attempt& a, const PoseCandidate& pose, double drop, int& checks, 
     // rule the pose out.
     const ReachResult place = reach.reach(c.placePose, a.seed, c.releaseOpening);
     if (!place.reachable()) {
-      plan.rejections.push_back({pose.label, PlacementFailure::kUnreachable, "place pose " + place.reason});
+      plan.rejections.push_back({pose.label, PlacementFailure::kUnreachable, "place pose " + place.reason, {}});
       continue;
     }
     const ReachResult pre = reach.reach(c.prePlacePose, place.solutions.front(), c.heldWidth);
     if (!pre.reachable()) {
-      plan.rejections.push_back({pose.label, PlacementFailure::kUnreachable, "pre-place pose " + pre.reason});
+      plan.rejections.push_back({pose.label, PlacementFailure::kUnreachable, "pre-place pose " + pre.reason, {}});
       continue;
     }
     c.placeSolutions = place.solutions;
@@ -159,6 +159,9 @@ PlacementPlan noPlacement(PlacementPlan plan, const std::string& what) {
   const PlacementRejection* blocked = nullptr;
   const PlacementRejection* unreachable = nullptr;
   for (const PlacementRejection& r : plan.rejections) {
+    for (const std::string& blocker : r.blockers) {
+      if (std::find(plan.blockers.begin(), plan.blockers.end(), blocker) == plan.blockers.end()) plan.blockers.push_back(blocker);
+    }
     if (r.failure == PlacementFailure::kBlocked && blocked == nullptr) blocked = &r;
     if (r.failure == PlacementFailure::kUnreachable && unreachable == nullptr) unreachable = &r;
   }
@@ -253,7 +256,7 @@ PlacementPlan planPlacement(const ReachabilityChecker& reach, const PlacementReq
     if (!blockers.empty()) {
       std::string names;
       for (const std::string& name : blockers) names += (names.empty() ? "" : ", ") + name;
-      plan.rejections.push_back({pose.label, PlacementFailure::kBlocked, "blocked by " + names});
+      plan.rejections.push_back({pose.label, PlacementFailure::kBlocked, "blocked by " + names, blockers});
       continue;
     }
     tryPose(attempt, pose, checks, plan);

@@ -7,60 +7,58 @@
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/language/instruction.hpp"
 #include "lang2manip/language/object_descriptor.hpp"
-#include "lang2manip/language/words.hpp"
 #include "lang2manip/symbolic/symbolic_state.hpp"
 
 namespace lang2manip {
 namespace {
-
-/// True when a failure text is about grasping or reaching an object, which another grasp
-/// direction may fix.
-bool isGraspRelated(const std::string& failure) {
-  const Words words = tokenize(failure);
-  static const std::vector<std::string> markers{"grasp", "grasps", "ik", "reach", "reachable",
-                                                "unreachable", "kinematics", "approach"};
-  return std::any_of(words.begin(), words.end(), [](const std::string& word) {
-    return std::find(markers.begin(), markers.end(), word) != markers.end();
-  });
-}
-
-/// The first picked object of `plan` named in `failure` (by position in the text).
-std::string failedObject(const std::string& failure, const Plan& plan) {
-  const Words words = tokenize(failure);
-  std::size_t bestPosition = words.size();
-  std::string best;
-  for (const SymbolicAction& action : plan.actions) {
-    if (action.type != ActionType::kPick) continue;
-    const Words name = tokenize(action.object);
-    for (std::size_t at = 0; at < bestPosition; ++at) {
-      if (matchesAt(words, at, name)) {
-        bestPosition = at;
-        best = action.object;
-        break;
-      }
-    }
-  }
-  return best;
-}
 
 [[noreturn]] void nothingNewToTry(const std::string& why, const std::string& lastFailure) {
   throw PlanningError("offline planner: nothing new to try: " + why + " (last failure: " +
                       lastFailure + "); try an LLM backend with --llm");
 }
 
-/// Changes the grasps of `specification` for every grasp failure of the earlier attempts, as
-/// the planner answered them in turn: each failure moves the failed object to its next untried
-/// grasp direction.
-void applyEarlierAttempts(const PlanningRequest& request, TaskSpecification& specification,
-                          const Plan& firstPlan) {
+std::string joinedNames(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
+
+bool picks(const Plan& plan, const std::string& object) {
+  return std::any_of(plan.actions.begin(), plan.actions.end(), [&](const SymbolicAction& action) {
+    return action.type == ActionType::kPick && action.object == object;
+  });
+}
+
+/// The object of a failed plan whose grasp the next try changes: the one the failed action is
+/// about, when the plan picks it and the failure is one another grasp may fix (not a request the
+/// world does not allow, not every position taken by other objects).
+const std::string& objectToRegrasp(const PlanAttempt& attempt) {
+  if (!attempt.plan || !attempt.grounding) {
+    nothingNewToTry("the failure is not one of executing its plan", attempt.failure);
+  }
+  const GroundingFailure& failure = *attempt.grounding;
+  if (failure.stage == "precondition") {
+    nothingNewToTry("the plan asks for something the world does not allow", attempt.failure);
+  }
+  if (!failure.blockingObjects.empty()) {
+    nothingNewToTry("every position for " + failure.object + " is taken by " + joinedNames(failure.blockingObjects),
+                    attempt.failure);
+  }
+  if (failure.object.empty() || !picks(*attempt.plan, failure.object)) {
+    nothingNewToTry("the failure is not about an object the plan picks", attempt.failure);
+  }
+  return failure.object;
+}
+
+/// Changes the grasps of `specification` for every failure of the earlier attempts, as the
+/// planner answered them in turn: each failure moves the failed object to its next untried grasp
+/// direction.
+void applyEarlierAttempts(const PlanningRequest& request, TaskSpecification& specification) {
   const std::map<std::string, GraspDirection> requested = specification.grasps;
   std::map<std::string, std::vector<GraspDirection>> tried;
   const std::vector<GraspDirection> order = graspRetryOrder();
   for (const PlanAttempt& attempt : request.earlierAttempts) {
-    const std::string object = failedObject(attempt.failure, firstPlan);
-    if (object.empty() || !isGraspRelated(attempt.failure)) {
-      nothingNewToTry("the failure is not about grasping an object of the plan", attempt.failure);
-    }
+    const std::string& object = objectToRegrasp(attempt);
     if (requested.count(object)) {
       nothingNewToTry("the instruction asks for a " + graspDirectionName(requested.at(object)) +
                           " grasp of " + object,
@@ -120,11 +118,8 @@ Plan OfflineTaskPlanner::plan(const PlanningRequest& request, const StopConditio
   TaskSpecification specification = understandInstruction(request.task, objects);
   const SymbolicState state = observeSymbolicState(scene);
   const SequencingOptions options = sequencingOptionsFor(scene);
+  applyEarlierAttempts(request, specification);
   Plan plan = sequenceGoals(specification, state, options);
-  if (!request.earlierAttempts.empty()) {
-    applyEarlierAttempts(request, specification, plan);
-    plan = sequenceGoals(specification, state, options);
-  }
   statistics.planningSeconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return plan;

@@ -20,20 +20,21 @@ void accumulate(PlanningStatistics& total, const PlanningStatistics& round) {
   total.planningSeconds += round.planningSeconds;
 }
 
-/// Asks the planner once; fills round.plan or round.outcome/attempt for answers that failed.
+/// Asks the planner once; fills round.attempt.plan or round.outcome/attempt for answers that failed.
 void askPlanner(TaskPlanner& planner, const PlanningRequest& request, const StopCondition& stop, RepairRound& round) {
   const auto start = Clock::now();
   try {
-    round.plan = planner.plan(request, stop, round.statistics);
+    round.attempt.plan = planner.plan(request, stop, round.statistics);
   } catch (const UnusableAnswerError& error) {
     round.outcome = RoundOutcome::kUnusableAnswer;
-    round.attempt = {error.answer(), error.what()};
+    round.attempt.answer = error.answer();
+    round.attempt.failure = error.what();
   } catch (const PlanningError& error) {
     round.outcome = RoundOutcome::kPlannerError;
-    round.attempt = {"", planner.name() + " could not plan: " + error.what()};
+    round.attempt.failure = planner.name() + " could not plan: " + error.what();
   } catch (const LlmError& error) {
     round.outcome = RoundOutcome::kPlannerError;
-    round.attempt = {"", "the LLM call of " + planner.name() + " failed: " + error.what()};
+    round.attempt.failure = "the LLM call of " + planner.name() + " failed: " + error.what();
   }
   if (round.statistics.planningSeconds == 0.0) {
     round.statistics.planningSeconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -43,7 +44,7 @@ void askPlanner(TaskPlanner& planner, const PlanningRequest& request, const Stop
 /// Checks a plan the planner returned: validation, then grounding.
 void checkPlan(const PlanningRequest& request, PlanExecutor* executor, const RepairOptions& options,
                const StopCondition& stop, RepairRound& round) {
-  const Plan& plan = *round.plan;
+  const Plan& plan = *round.attempt.plan;
   round.attempt.answer = toJson(plan).dump();
   if (options.validate) {
     const PlanValidation validation =
@@ -57,7 +58,7 @@ void checkPlan(const PlanningRequest& request, PlanExecutor* executor, const Rep
   if (executor != nullptr) {
     if (auto failure = executor->execute(plan, stop)) {
       round.outcome = RoundOutcome::kGroundingFailed;
-      round.grounding = failure;
+      round.attempt.grounding = failure;
       round.attempt.failure = describeGroundingFailure(*failure, plan);
       return;
     }
@@ -121,11 +122,11 @@ RepairResult planWithRepair(TaskPlanner& planner, const PlanningRequest& request
     round.round = number;
     report(options.progress, {ProgressStage::kPlannerCall, number, -1, "", planner.name()});
     askPlanner(planner, current, stop, round);
-    if (round.plan) checkPlan(current, executor, options, stop, round);
+    if (round.attempt.plan) checkPlan(current, executor, options, stop, round);
     report(options.progress, {ProgressStage::kPlannerAnswer, number, -1, roundOutcomeName(round.outcome), round.attempt.failure});
     accumulate(result.statistics, round.statistics);
     if (round.outcome == RoundOutcome::kAccepted) {
-      result.plan = round.plan;
+      result.plan = round.attempt.plan;
       return result;
     }
     if (round.outcome == RoundOutcome::kPlannerError) {

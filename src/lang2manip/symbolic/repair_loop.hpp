@@ -38,11 +38,9 @@ std::string roundOutcomeName(RoundOutcome outcome);
 struct RepairRound {
   int round = 0;
   RoundOutcome outcome = RoundOutcome::kAccepted;
-  /// The answer and, unless accepted, why it was rejected (fed back to the planner).
+  /// The answer, the parsed plan (absent for unusable answers and planner errors) and, unless
+  /// accepted, why it was rejected, in words and as data (fed back to the planner).
   PlanAttempt attempt;
-  /// The parsed plan (absent for unusable answers and planner errors).
-  std::optional<Plan> plan;
-  std::optional<GroundingFailure> grounding;
   PlanningStatistics statistics;
 };
 

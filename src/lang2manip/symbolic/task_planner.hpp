@@ -25,13 +25,20 @@ struct GroundingFailure {
   std::string object;
   /// In words, naming objects: "no collision-free grasp of eraser: ...".
   std::string reason;
+  /// The objects standing where the action needed room (every placement blocked by them).
+  std::vector<std::string> blockingObjects;
 };
 
-/// One earlier round: what the planner answered and why it was not accepted, in words.
+/// One earlier round: what the planner answered and why it was not accepted, in words (for
+/// LLMs) and, when a plan was grounded, as data (for planners that choose their next try).
 struct PlanAttempt {
   /// The raw answer (LLM text) or the plan as JSON.
   std::string answer;
   std::string failure;
+  /// The plan that was tried, when the answer was one.
+  std::optional<Plan> plan;
+  /// Why the plan could not be executed, when it got that far.
+  std::optional<GroundingFailure> grounding;
 };
 
 struct PlanningRequest {
