@@ -140,6 +140,36 @@ TEST(GraspPlanner, FixedObjectAndHeldObjectAreNotGraspable) {
   EXPECT_THAT(held.reason, HasSubstr("eraser: already held"));
 }
 
+TEST(GraspPlanner, BesideAWallTheHandLeansAwayInsteadOfGivingUp) {
+  Scene scene = deskScene("panda");
+  const SceneObject& marker = scene.object("marker");
+  const Vector3 size = marker.dimensions();
+  Eigen::Index longest = 0;
+  size.maxCoeff(&longest);
+  const Vector3 along = marker.pose.linear().col(longest);
+  const Vector3 across = Vector3::UnitZ().cross(along).normalized();
+  // A wall 10 cm from the marker's axis, as long as the marker and as high as the hand comes
+  // down: straight from above, the hand (wide across the marker) touches it.
+  const Vector3 centre = objectCentre(marker, marker.pose);
+  SceneObject wall = boxObject("wall", Vector3(0.02, 0.16, 0.10), Vector3(centre.x(), centre.y(), 0.0) + across * 0.10);
+  wall.pose.translation().z() = marker.worldBounds().min().z();
+  wall.pose.linear() = Eigen::AngleAxisd(std::atan2(along.y(), along.x()) - M_PI / 2.0, Vector3::UnitZ()).toRotationMatrix();
+  wall.movable = false;
+  scene.addObject(wall);
+  const ReachabilityChecker reach = reachFor("panda", scene);
+  const GraspPlan plan = planGrasp(reach, "marker", GraspDirection::kTop);
+  ASSERT_TRUE(plan.success()) << plan.reason;
+  EXPECT_NEAR(plan.widenedTilt, 2.0 * M_PI / 9.0, 1e-12) << "a straight-down grasp was found beside the wall";
+  for (const GraspCandidate& c : plan.candidates) {
+    EXPECT_GT(c.approachDirection.z(), -0.99) << c.label;
+    expectReachable(reach, c);
+  }
+  GraspRequest request;
+  request.object = "marker";
+  request.settings.widenedTopTilts = {0.3, M_PI / 2.0};
+  EXPECT_THROW(static_cast<void>(makeGraspPlanner("heuristic")->plan(reach, request)), InputError);
+}
+
 TEST(GraspPlanner, BadInputThrows) {
   const ReachabilityChecker reach = reachFor("panda", deskScene("panda"));
   EXPECT_THROW(static_cast<void>(planGrasp(reach, "stapler", GraspDirection::kTop)), InputError);

@@ -84,7 +84,7 @@ struct Figures {
 /// Why a trial failed: the repair loop's failure, or what verification found.
 std::string trialFailure(const RepairResult& repair, const ExecutionVerification& verification) {
   if (!repair.succeeded()) {
-    return repair.rounds.empty() || repair.rounds.back().attempt.failure.empty() ? repair.failure : repair.rounds.back().attempt.failure;
+    return repair.failure;  // every round's failure
   }
   if (!verification.collision.empty()) return "collision: " + verification.collision;
   if (!verification.disturbedObjects.empty()) return "disturbed: " + verification.disturbedObjects.front();

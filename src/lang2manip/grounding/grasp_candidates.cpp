@@ -184,4 +184,26 @@ GraspGeneration generateGrasps(const GraspGeometryInput& input, const GripperGeo
   return out;
 }
 
+GraspGeneration generateWidenedGrasps(const GraspGeometryInput& input, const GripperGeometry& gripper,
+                                      GraspDirection direction, const GraspSettings& settings) {
+  GraspGeneration out;
+  if (direction != GraspDirection::kAuto && direction != GraspDirection::kTop) return out;
+  const Vector3 reference = topApproaches(input, settings).front().closings.front();
+  const int steps = 2 * settings.topYawSteps;
+  for (int k = 0; k < steps; ++k) {
+    const Vector3 c = Eigen::AngleAxisd(2.0 * M_PI * k / steps, kUp) * reference;
+    if (k % 2 == 1) addGrasps(input, gripper, settings, {GraspDirection::kTop, -kUp, {}}, c, out);
+    const Vector3 between = -kUp.cross(c);  // the axis from one finger's width to the other's
+    for (const Vector3& axis : {c, between}) {
+      for (const double tilt : settings.widenedTopTilts) {
+        for (const double sign : {1.0, -1.0}) {
+          const Eigen::AngleAxisd lean(sign * tilt, axis);
+          addGrasps(input, gripper, settings, {GraspDirection::kTop, lean * -kUp, {}}, lean * c, out);
+        }
+      }
+    }
+  }
+  return out;
+}
+
 }  // namespace lang2manip

@@ -52,4 +52,12 @@ struct GraspGeometryInput {
 GraspGeneration generateGrasps(const GraspGeometryInput& input, const GripperGeometry& gripper,
                                GraspDirection direction, const GraspSettings& settings);
 
+/// The grasps of the widened search (none of generateGrasps()'s): top approaches at the closing
+/// directions halfway between those of generateGrasps(), and at every one of the 2 * topYawSteps
+/// closing directions tilted by each of settings.widenedTopTilts both ways about the closing
+/// axis (the hand leans along the object) and about the axis between the fingers (it leans
+/// across). Empty unless `direction` is auto or top.
+GraspGeneration generateWidenedGrasps(const GraspGeometryInput& input, const GripperGeometry& gripper,
+                                      GraspDirection direction, const GraspSettings& settings);
+
 }  // namespace lang2manip

@@ -59,6 +59,9 @@ void checkGraspSettings(const GraspSettings& s) {
     if (!std::isfinite(pitch) || pitch < 0.0 || pitch >= M_PI / 2.0) throw InputError("grasp settings: approachPitches must be in [0, pi/2)");
   }
   if (s.approachPitches.empty()) throw InputError("grasp settings: approachPitches must not be empty");
+  for (double tilt : s.widenedTopTilts) {
+    if (!std::isfinite(tilt) || tilt <= 0.0 || tilt >= M_PI / 2.0) throw InputError("grasp settings: widenedTopTilts must be in (0, pi/2)");
+  }
   requireSettingCount(s.topYawSteps, "grasp", "topYawSteps");
   requireSettingCount(s.maxCandidates, "grasp", "maxCandidates");
   requireSettingCount(s.maxReachChecks, "grasp", "maxReachChecks");

@@ -47,6 +47,10 @@ struct GraspSettings {
   /// Front and side approaches are tilted down from the horizontal by each of these angles
   /// (radians; 0 = level), so that low objects can be taken from the side.
   std::vector<double> approachPitches = {0.0, M_PI / 6.0, M_PI / 3.0};
+  /// When no grasp of the first search is collision-free and reachable, a widened search: top
+  /// approaches tilted by each of these angles (radians) both ways about the closing axis and
+  /// about the object's axis between the fingers, at twice the closing directions.
+  std::vector<double> widenedTopTilts = {M_PI / 9.0, 2.0 * M_PI / 9.0};
   /// Best candidates kept and fully checked (IK for grasp and pre-grasp, clearance).
   int maxCandidates = 6;
   /// Stop after this many reachability checks (bounds the time spent on unreachable objects).
@@ -104,6 +108,9 @@ struct GraspPlan {
   std::string reason;
   /// Every candidate dropped on the way, in the order it was considered.
   std::vector<GraspRejection> rejections;
+  /// The largest tilt of the widened search (radians) when it ran; 0 when the first search found
+  /// candidates.
+  double widenedTilt = 0.0;
   [[nodiscard]] bool success() const { return !candidates.empty(); }
 };
 

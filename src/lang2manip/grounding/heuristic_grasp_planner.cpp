@@ -60,7 +60,9 @@ GraspPlan noReachableGrasp(GraspPlan plan, const std::string& object, GraspDirec
   const std::string detail = shown == nullptr ? "" : ": " + shown->reason;
   const GraspFailure failure = collision ? GraspFailure::kInCollision : GraspFailure::kUnreachable;
   const std::string words = collision ? " is collision-free" : " is reachable";
-  return failed(std::move(plan), failure, object + ": no " + directionWords(direction) + words + detail);
+  const std::string widened =
+      plan.widenedTilt > 0.0 ? " (top grasps tilted up to " + std::to_string(static_cast<int>(std::lround(plan.widenedTilt * 180.0 / M_PI))) + " deg too)" : "";
+  return failed(std::move(plan), failure, object + ": no " + directionWords(direction) + words + widened + detail);
 }
 
 struct Context {
@@ -132,6 +134,16 @@ std::vector<GeometricGrasp> interleaveByDirection(std::vector<GeometricGrasp> gr
   return order;
 }
 
+/// Checks `grasps` in order into `plan` until enough candidates or the reach-check budget.
+void checkGrasps(const Context& context, std::vector<GeometricGrasp> grasps, GraspPlan& plan) {
+  int checks = 0;
+  for (const GeometricGrasp& g : grasps) {
+    if (static_cast<int>(plan.candidates.size()) >= context.request.settings.maxCandidates) break;
+    if (checks++ >= context.request.settings.maxReachChecks) break;
+    if (auto candidate = checkGrasp(context, g, plan)) plan.candidates.push_back(std::move(*candidate));
+  }
+}
+
 }  // namespace
 
 GraspPlan HeuristicGraspPlanner::plan(const ReachabilityChecker& reach, const GraspRequest& request) const {
@@ -154,11 +166,15 @@ GraspPlan HeuristicGraspPlanner::plan(const ReachabilityChecker& reach, const Gr
   withoutObject.object(object.name).collisionEnabled = false;
   const ReachabilityChecker free = reach.withScene(std::move(withoutObject));
   const Context context{reach, free, request, object};
-  int checks = 0;
-  for (const GeometricGrasp& g : interleaveByDirection(std::move(generation.grasps))) {
-    if (static_cast<int>(plan.candidates.size()) >= request.settings.maxCandidates) break;
-    if (checks++ >= request.settings.maxReachChecks) break;
-    if (auto candidate = checkGrasp(context, g, plan)) plan.candidates.push_back(std::move(*candidate));
+  checkGrasps(context, interleaveByDirection(std::move(generation.grasps)), plan);
+  if (plan.candidates.empty()) {
+    // Near other objects or at the edge of the workspace: lean the hand before giving up.
+    GraspGeneration widened = generateWidenedGrasps(input, reach.gripper(), request.direction, request.settings);
+    orderGrasps(widened.grasps);
+    if (!widened.grasps.empty()) {
+      plan.widenedTilt = *std::max_element(request.settings.widenedTopTilts.begin(), request.settings.widenedTopTilts.end());
+    }
+    checkGrasps(context, std::move(widened.grasps), plan);
   }
   std::stable_sort(plan.candidates.begin(), plan.candidates.end(),
                    [](const GraspCandidate& a, const GraspCandidate& b) { return a.score > b.score; });
