@@ -88,8 +88,12 @@ TEST(CliPlan, OfflineJsonIsThePlanDocument) {
   expectPaperPlanJson(result.output);
   // Exactly the plan document: every field of the schema, nothing else.
   const json plan = json::parse(result.output);
-  EXPECT_EQ(plan.size(), 2U) << "actions and reasoning";
+  EXPECT_EQ(plan.size(), 3U) << "actions, reasoning and goals";
   EXPECT_EQ(plan["actions"][0].size(), 5U);
+  // The goal statement: what the instruction asks for at the end.
+  ASSERT_EQ(plan["goals"].size(), 2U);
+  EXPECT_EQ(plan["goals"][0], json({{"kind", "relation"}, {"object", "marker"}, {"relation", "in"}, {"target", "holder"},
+                                    {"distance", nullptr}, {"displacement", nullptr}, {"configuration", nullptr}}));
 }
 
 TEST(CliPlan, OfflinePlansOnOtherBuiltInProblems) {

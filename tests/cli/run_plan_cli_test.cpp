@@ -37,6 +37,28 @@ TEST(RunPlanCli, AGivenPlanIsExecutedAndItsGoalsVerified) {
   EXPECT_EQ(report["goal_source"], "plan");
 }
 
+TEST(RunPlanCli, APlansGoalStatementIsWhatIsVerified) {
+  const test::TempDirectory temporary;
+  const std::string actions = R"("actions": [
+      {"action": "pick", "object": "eraser"},
+      {"action": "place", "object": "eraser", "params": {"relation": "in", "target": "holder"}}])";
+  const fs::path kept = writePlan(temporary.path(), "{" + actions + R"(, "goals": [{"kind": "relation", "object": "eraser", "relation": "in", "target": "holder"}]})");
+  const test::RunResult met = test::run("run --plan " + kept.string() + " --out " + (temporary.path() / "met").string() + " --json", false);
+  ASSERT_EQ(met.exitCode, 0) << met.output;
+  json report = json::parse(met.output);
+  EXPECT_EQ(report["goal_source"], "plan_goal_statement");
+  EXPECT_THAT(report["goals"].dump(), HasSubstr("eraser in holder"));
+  // A statement the plan does not make true: the run fails on that goal, it is not replaced by
+  // what the actions imply.
+  const fs::path wrong = writePlan(temporary.path(), "{" + actions + R"(, "goals": [{"kind": "relation", "object": "marker", "relation": "in", "target": "holder"}]})");
+  const test::RunResult unmet = test::run("run --plan " + wrong.string() + " --out " + (temporary.path() / "unmet").string() + " --json", false);
+  EXPECT_EQ(unmet.exitCode, 2) << unmet.output;
+  report = json::parse(unmet.output);
+  EXPECT_FALSE(report["success"].get<bool>());
+  EXPECT_EQ(report["goal_source"], "plan_goal_statement");
+  EXPECT_THAT(report["goals"].dump(), HasSubstr("marker in holder"));
+}
+
 TEST(RunPlanCli, AGivenPlanThatCannotBeExecutedIsNotReplanned) {
   const test::TempDirectory temporary;
   const fs::path plan = writePlan(temporary.path(), R"({"actions": [{"action": "place", "object": "eraser", "params": {"relation": "in", "target": "holder"}}]})");

@@ -100,6 +100,26 @@ TEST(PlanParserTest, EveryProblemIsReportedNotOnlyTheFirst) {
   EXPECT_THAT(problems, Contains(R"(actions[3].planner: unknown planner "FancyPlanner" (planners: RRTConnect, RRTstar, PRM; or null for the default))"));
 }
 
+TEST(PlanParserTest, GoalStatementRoundTripsThroughTheDocument) {
+  json document = paperPlan();
+  document["goals"] = {{{"kind", "relation"}, {"object", "marker"}, {"relation", "in"}, {"target", "holder"}},
+                       {{"kind", "relation"}, {"object", "eraser"}, {"relation", "left_of"}, {"target", "holder"}, {"distance", 0.05}},
+                       {{"kind", "holding"}, {"object", "eraser"}, {"relation", nullptr}},
+                       {{"kind", "displaced"}, {"object", "eraser"}, {"displacement", {{"x", 0.0}, {"y", 0.05}, {"z", 0.0}}}},
+                       {{"kind", "at_configuration"}, {"configuration", "home"}}};
+  const Plan plan = parsePlan(document, parserDeskContext());
+  ASSERT_EQ(plan.goals.size(), 5U);
+  EXPECT_EQ(describeGoal(plan.goals[0]), "marker in holder");
+  EXPECT_EQ(describeGoal(plan.goals[1]), "eraser left_of holder at 0.05 m");
+  EXPECT_EQ(plan.goals[2].kind, GoalKind::kHolding);
+  EXPECT_TRUE(plan.goals[3].displacement.isApprox(Vector3(0.0, 0.05, 0.0)));
+  EXPECT_EQ(plan.goals[4].configuration, "home");
+  const Plan again = parsePlan(toJson(plan), parserDeskContext());
+  ASSERT_EQ(again.goals.size(), 5U);
+  for (std::size_t i = 0; i < 5; ++i) EXPECT_EQ(describeGoal(again.goals[i]), describeGoal(plan.goals[i]));
+  EXPECT_TRUE(parsePlan(paperPlan(), parserDeskContext()).goals.empty());  // a plan without goals is still a plan
+}
+
 TEST(PlanParserTest, PlannerNamesAreCheckedOnlyWhenTheContextListsThem) {
   json document = paperPlan();
   document["actions"][0]["planner"] = "AnyPlanner";
@@ -140,7 +160,19 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"ActionNotObject", [](json& d) { d["actions"][1] = 3; }, "actions[1]: expected an action object, got number 3"},
         BadCase{"MissingActionName", [](json& d) { d["actions"][0].erase("action"); }, "actions[0].action: missing (one of: pick, place, move, push)"},
         BadCase{"UnknownActionField", [](json& d) { d["actions"][0]["speed"] = 2; }, "actions[0].speed: unknown field (valid fields: action, object, params, refinements, planner)"},
-        BadCase{"UnknownTopField", [](json& d) { d["notes"] = "x"; }, "notes: unknown field (valid fields: actions, reasoning)"},
+        BadCase{"UnknownTopField", [](json& d) { d["notes"] = "x"; }, "notes: unknown field (valid fields: actions, reasoning, goals)"},
+        BadCase{"GoalsNotArray", [](json& d) { d["goals"] = "marker in holder"; }, "goals: expected an array of goals, got string"},
+        BadCase{"GoalNotObject", [](json& d) { d["goals"] = {1}; }, "goals[0]: expected a goal object, got number 1"},
+        BadCase{"GoalUnknownKind", [](json& d) { d["goals"] = {{{"kind", "tidy"}}}; }, "goals[0].kind: unknown kind string \"tidy\" (kinds: relation, holding, displaced, at_configuration)"},
+        BadCase{"GoalMissingKind", [](json& d) { d["goals"] = {{{"object", "marker"}}}; }, "goals[0].kind: missing"},
+        BadCase{"GoalUnknownObject", [](json& d) { d["goals"] = {{{"kind", "holding"}, {"object", "cup"}}}; }, "goals[0].object: unknown object \"cup\" (objects: "},
+        BadCase{"GoalRelationWithoutTarget", [](json& d) { d["goals"] = {{{"kind", "relation"}, {"object", "marker"}, {"relation", "in"}}}; }, "goals[0].target: missing; a relation goal needs it"},
+        BadCase{"GoalUnknownRelation", [](json& d) { d["goals"] = {{{"kind", "relation"}, {"object", "marker"}, {"relation", "under"}, {"target", "holder"}}}; }, "goals[0].relation: unknown relation string \"under\""},
+        BadCase{"GoalFieldOfAnotherKind", [](json& d) { d["goals"] = {{{"kind", "holding"}, {"object", "marker"}, {"target", "holder"}}}; }, "goals[0].target: must be null for a holding goal"},
+        BadCase{"GoalZeroDisplacement", [](json& d) { d["goals"] = {{{"kind", "displaced"}, {"object", "eraser"}, {"displacement", {0, 0, 0}}}}; }, "goals[0].displacement: a displacement of zero moves nothing"},
+        BadCase{"GoalBadDisplacement", [](json& d) { d["goals"] = {{{"kind", "displaced"}, {"object", "eraser"}, {"displacement", "5 cm left"}}}; }, "goals[0].displacement: expected {x, y, z} in metres, got string"},
+        BadCase{"GoalNegativeDistance", [](json& d) { d["goals"] = {{{"kind", "relation"}, {"object", "marker"}, {"relation", "left_of"}, {"target", "holder"}, {"distance", -1}}}; }, "goals[0].distance: expected a positive number of metres, got number -1"},
+        BadCase{"GoalUnknownField", [](json& d) { d["goals"] = {{{"kind", "holding"}, {"object", "marker"}, {"when", "now"}}}; }, "goals[0].when: unknown field"},
         BadCase{"ObjectNotString", [](json& d) { d["actions"][0]["object"] = json::array({"marker"}); }, "actions[0].object: expected a string, got array"},
         BadCase{"MissingObjectForPick", [](json& d) { d["actions"][0].erase("object"); }, "actions[0].object: missing; pick needs an object"},
         BadCase{"UnknownRelation", [](json& d) { d["actions"][1]["params"]["relation"] = "under"; }, "actions[1].params.relation: unknown relation \"under\" (valid relations: in, on, left_of, right_of, in_front_of, behind, next_to)"},

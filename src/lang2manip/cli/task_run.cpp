@@ -33,6 +33,11 @@ void chooseGoals(const std::string& task, const Scene& scene, const std::string&
     return;
   } catch (const PlanningError&) {
   }
+  if (run.repair.plan && !run.repair.plan->goals.empty()) {
+    run.goals = run.repair.plan->goals;
+    run.goalSource = "plan_goal_statement";
+    return;
+  }
   run.goalSource = "plan";
   if (run.repair.plan) run.goals = goalsImpliedByPlan(*run.repair.plan);
 }

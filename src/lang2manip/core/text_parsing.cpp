@@ -91,4 +91,10 @@ bool parseFlag(std::string_view text, std::string_view what, const SourceLocatio
                               std::string(trimmed(text)) + "\"");
 }
 
+std::string joinedNames(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
+
 }  // namespace lang2manip

@@ -33,6 +33,9 @@ std::string_view trimmed(std::string_view text);
 /// `text` with ASCII letters lower-cased.
 std::string lowercase(std::string text);
 
+/// The names separated by ", " (for messages listing valid names).
+std::string joinedNames(const std::vector<std::string>& names);
+
 /// A length for messages: "0.123 m" (three decimals).
 std::string metresText(double value);
 

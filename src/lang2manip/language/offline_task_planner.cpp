@@ -5,6 +5,7 @@
 #include <map>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/language/instruction.hpp"
 #include "lang2manip/language/object_descriptor.hpp"
 #include "lang2manip/symbolic/symbolic_state.hpp"
@@ -17,11 +18,6 @@ namespace {
                       lastFailure + "); try an LLM backend with --llm");
 }
 
-std::string joinedNames(const std::vector<std::string>& names) {
-  std::string text;
-  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
-  return text;
-}
 
 bool picks(const Plan& plan, const std::string& object) {
   return std::any_of(plan.actions.begin(), plan.actions.end(), [&](const SymbolicAction& action) {
@@ -120,6 +116,7 @@ Plan OfflineTaskPlanner::plan(const PlanningRequest& request, const StopConditio
   const SequencingOptions options = sequencingOptionsFor(scene);
   applyEarlierAttempts(request, specification);
   Plan plan = sequenceGoals(specification, state, options);
+  plan.goals = specification.goals;
   statistics.planningSeconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return plan;

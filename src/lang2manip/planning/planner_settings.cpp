@@ -52,11 +52,6 @@ const std::vector<std::string>& commonParameterNames() {
   return names;
 }
 
-std::string joined(const std::vector<std::string>& names) {
-  std::string text;
-  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
-  return text;
-}
 
 struct OmplParameterInfo {
   bool known = false;
@@ -210,7 +205,7 @@ void PlannerSettings::setOmplParameter(const std::string& name, const std::strin
     return;
   }
   throw InputError("unknown parameter \"" + name + "\" for planner " + planner_ +
-                   "; valid parameters: " + joined(parameterNames()));
+                   "; valid parameters: " + joinedNames(parameterNames()));
 }
 
 }  // namespace lang2manip

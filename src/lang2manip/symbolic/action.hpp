@@ -71,12 +71,6 @@ struct SymbolicAction {
   std::string planner;
 };
 
-struct Plan {
-  std::vector<SymbolicAction> actions;
-  /// Optional free-text reasoning the planner gave with the plan.
-  std::string reasoning;
-};
-
 /// What an instruction asks to hold at the end; the final state is checked against these.
 enum class GoalKind {
   /// `object` `relation` `target` (e.g. marker in pen_holder).
@@ -98,6 +92,15 @@ struct Goal {
   std::optional<double> distance;
   Vector3 displacement = Vector3::Zero();
   std::string configuration;
+};
+
+struct Plan {
+  std::vector<SymbolicAction> actions;
+  /// Optional free-text reasoning the planner gave with the plan.
+  std::string reasoning;
+  /// The final state the planner says the plan reaches (its goal statement); empty when it gave
+  /// none. Checked against the final world when the instruction is beyond the offline parser.
+  std::vector<Goal> goals;
 };
 
 /// "marker in pen_holder", "holding marker", "eraser displaced by (0, 0.05, 0)", "at home".

@@ -2,6 +2,8 @@
 
 #include <sstream>
 
+#include "lang2manip/symbolic/goal_statement.hpp"
+
 namespace lang2manip {
 namespace {
 
@@ -123,7 +125,8 @@ nlohmann::json planJsonSchema() {
       {{"reasoning", nullableString("Optional short reasoning behind the plan")},
        {"actions", {{"type", "array"},
                     {"description", "The actions in execution order"},
-                    {"items", actionSchema()}}}},
+                    {"items", actionSchema()}}},
+       {"goals", goalStatementSchema()}},
       "A symbolic manipulation plan");
 }
 
@@ -138,7 +141,7 @@ nlohmann::json toJson(const SymbolicAction& action) {
 nlohmann::json toJson(const Plan& plan) {
   json actions = json::array();
   for (const SymbolicAction& action : plan.actions) actions.push_back(toJson(action));
-  return {{"reasoning", stringOrNull(plan.reasoning)}, {"actions", actions}};
+  return {{"reasoning", stringOrNull(plan.reasoning)}, {"actions", actions}, {"goals", goalStatementJson(plan.goals)}};
 }
 
 std::string describeAction(const SymbolicAction& action) {

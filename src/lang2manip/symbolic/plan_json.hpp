@@ -11,8 +11,12 @@
 ///               "params": {"relation", "target", "distance", "position", "orientation",
 ///                          "configuration", "direction"} | null,
 ///               "refinements": {"grasp", "approach"} | null,
-///               "planner": "RRTConnect" | null}, ...]}
+///               "planner": "RRTConnect" | null}, ...],
+///  "goals": [{"kind": "relation" | "holding" | "displaced" | "at_configuration",
+///             "object", "relation", "target", "distance", "displacement",
+///             "configuration"}, ...] | null}
 /// @endcode
+/// "goals" is the planner's goal statement (goal_statement.hpp).
 /// Vectors are objects {"x","y","z"} (metres or unit vectors, robot base frame); orientations
 /// are quaternions {"w","x","y","z"}.
 

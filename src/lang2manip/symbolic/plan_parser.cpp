@@ -6,23 +6,21 @@
 #include <optional>
 #include <set>
 
+#include "lang2manip/core/text_parsing.hpp"
+#include "lang2manip/symbolic/goal_statement.hpp"
+
 
 namespace lang2manip {
 namespace {
 
 using nlohmann::json;
 
-const std::vector<std::string> kPlanFields{"actions", "reasoning"};
+const std::vector<std::string> kPlanFields{"actions", "reasoning", "goals"};
 const std::vector<std::string> kActionFields{"action", "object", "params", "refinements", "planner"};
 const std::vector<std::string> kParamFields{"relation", "target",        "distance", "position",
                                             "orientation", "configuration", "direction"};
 const std::vector<std::string> kRefinementFields{"grasp", "approach"};
 
-std::string joined(const std::vector<std::string>& names) {
-  std::string text;
-  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
-  return text;
-}
 
 /// A name from the document in quotes, cut after 60 bytes: an answer may hold names of megabytes.
 std::string inQuotes(const std::string& text) {
@@ -73,6 +71,7 @@ class PlanReader {
     if (document.is_object()) {
       checkFields(document, "", kPlanFields);
       if (auto reasoning = optionalString(document, "reasoning", "reasoning")) plan.reasoning = *reasoning;
+      if (const json* goals = find(document, "goals")) plan.goals = readGoalStatement(*goals, "goals", context_.objects, problems_);
       actions = find(document, "actions");
       if (actions == nullptr) {
         report("actions", "missing; the plan needs an \"actions\" array");
@@ -105,7 +104,7 @@ class PlanReader {
   void checkFields(const json& object, const std::string& path, const std::vector<std::string>& valid) {
     for (const auto& [name, value] : object.items()) {
       if (std::find(valid.begin(), valid.end(), name) == valid.end()) {
-        report(join(path, name), "unknown field (valid fields: " + joined(valid) + ")");
+        report(join(path, name), "unknown field (valid fields: " + joinedNames(valid) + ")");
       }
     }
   }
@@ -162,7 +161,7 @@ class PlanReader {
   std::optional<ActionType> readActionType(const json& item, const std::string& path) {
     const json* value = find(item, "action");
     if (value == nullptr) {
-      report(path + ".action", "missing (one of: " + joined(actionTypeNames()) + ")");
+      report(path + ".action", "missing (one of: " + joinedNames(actionTypeNames()) + ")");
       return std::nullopt;
     }
     if (!value->is_string()) {
@@ -172,7 +171,7 @@ class PlanReader {
     const auto type = actionTypeFromName(normalizedName(value->get<std::string>()));
     if (!type) {
       report(path + ".action", "unknown action " + inQuotes(value->get<std::string>()) +
-                                   " (valid actions: " + joined(actionTypeNames()) + ")");
+                                   " (valid actions: " + joinedNames(actionTypeNames()) + ")");
     }
     return type;
   }
@@ -185,14 +184,14 @@ class PlanReader {
     for (const std::string& object : context_.objects) {
       if (normalizedName(object) == normalizedName(name)) return object;
     }
-    report(path, "unknown object " + inQuotes(name) + " (objects: " + joined(context_.objects) + ")");
+    report(path, "unknown object " + inQuotes(name) + " (objects: " + joinedNames(context_.objects) + ")");
     return name;
   }
 
   std::string checkPlanner(const std::string& name, const std::string& path) {
     if (name.empty() || context_.planners.empty()) return name;
     if (std::find(context_.planners.begin(), context_.planners.end(), name) == context_.planners.end()) {
-      report(path, "unknown planner " + inQuotes(name) + " (planners: " + joined(context_.planners) +
+      report(path, "unknown planner " + inQuotes(name) + " (planners: " + joinedNames(context_.planners) +
                        "; or null for the default)");
     }
     return name;
@@ -208,7 +207,7 @@ class PlanReader {
       out.relation = relationFromLooseName(*relation);
       if (!out.relation) {
         report(path + ".relation", "unknown relation " + inQuotes(*relation) +
-                                       " (valid relations: " + joined(spatialRelationNames()) + ")");
+                                       " (valid relations: " + joinedNames(spatialRelationNames()) + ")");
       }
     }
     if (auto target = optionalString(params, "target", path + ".target")) {
@@ -242,7 +241,7 @@ class PlanReader {
         out.grasp = *direction;
       } else {
         report(path + ".grasp", "unknown grasp " + inQuotes(*grasp) + " (valid grasps: " +
-                                    joined(graspDirectionNames()) + ")");
+                                    joinedNames(graspDirectionNames()) + ")");
       }
     }
     if (const json* approach = find(refinements, "approach")) {
@@ -286,7 +285,7 @@ class PlanReader {
       return components;
     }
     if (!value.is_object()) {
-      report(path, "expected an object {" + joined(names) + "}, got " + shown(value));
+      report(path, "expected an object {" + joinedNames(names) + "}, got " + shown(value));
       return std::nullopt;
     }
     checkFields(value, path, names);
@@ -355,7 +354,7 @@ class PlanReader {
     for (const std::string& name : given) {
       const bool known = std::find(kParamFields.begin(), kParamFields.end(), name) != kParamFields.end();
       if (known && std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
-        report(path + ".params." + name, "not used by " + verb + (allowed.empty() ? " (it takes no parameters)" : " (it takes: " + joined(allowed) + ")"));
+        report(path + ".params." + name, "not used by " + verb + (allowed.empty() ? " (it takes no parameters)" : " (it takes: " + joinedNames(allowed) + ")"));
       }
     }
     const std::string params = path + ".params";
@@ -391,7 +390,7 @@ class PlanReader {
     }
     if (relation && !target) report(params + ".target", "missing; place needs a target object for its relation");
     if (target && !relation && !position) {
-      report(params + ".relation", "missing (one of: " + joined(spatialRelationNames()) + ")");
+      report(params + ".relation", "missing (one of: " + joinedNames(spatialRelationNames()) + ")");
     }
     if (!action.object.empty() && action.object == action.params.target) {
       report(params + ".target", "the object cannot be placed relative to itself");

@@ -26,14 +26,16 @@ RULES.
 4. Push needs a free gripper.
 5. Give every field of every action; use null for values that do not apply.
 6. Answer with ONE JSON object that follows the schema below and nothing else: no prose, no code fences. Put any explanation in "reasoning".
-7. If an earlier answer was rejected, read the failure, fix the plan and answer again with a complete plan.
+7. In "goals", state the final state the task asks for, one condition per entry: {"kind": "relation", "object", "relation", "target"} (an object in, on or beside another at the end), {"kind": "holding", "object"} (the robot still holds it), {"kind": "displaced", "object", "displacement": {x, y, z}} (moved by that many metres), {"kind": "at_configuration", "configuration"} (e.g. "home"). Only the end state: not a step a later action undoes (a pick followed by a place of the same object is not "holding"). Every goal is checked against the world after the plan runs.
+8. If an earlier answer was rejected, read the failure, fix the plan and answer again with a complete plan.
 )";
 
 constexpr const char* kExample = R"(
 EXAMPLE. Task: "put the cube in the box" (objects: table, cube, box). Answer:
 {"reasoning": "pick the cube, then place it in the box", "actions": [
  {"action": "pick", "object": "cube", "params": null, "refinements": {"grasp": "top", "approach": null}, "planner": null},
- {"action": "place", "object": "cube", "params": {"relation": "in", "target": "box", "distance": null, "position": null, "orientation": null, "configuration": null, "direction": null}, "refinements": null, "planner": null}]}
+ {"action": "place", "object": "cube", "params": {"relation": "in", "target": "box", "distance": null, "position": null, "orientation": null, "configuration": null, "direction": null}, "refinements": null, "planner": null}],
+ "goals": [{"kind": "relation", "object": "cube", "relation": "in", "target": "box", "distance": null, "displacement": null, "configuration": null}]}
 )";
 
 std::string planListLine(const std::vector<std::string>& planners) {

@@ -1,22 +1,13 @@
 #include "lang2manip/symbolic/plan_validation.hpp"
 
+#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/symbolic/plan_json.hpp"
 
 namespace lang2manip {
 namespace {
 
-std::string joined(const std::vector<std::string>& names) {
-  std::string text;
-  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
-  return text;
-}
-
-std::string joined(const std::set<std::string>& names) {
-  return joined(std::vector<std::string>(names.begin(), names.end()));
-}
-
 std::string unknownObject(const std::string& name, const SymbolicState& state) {
-  return "there is no object \"" + name + "\" (objects: " + joined(state.objects) + ")";
+  return "there is no object \"" + name + "\" (objects: " + joinedNames(state.objects) + ")";
 }
 
 std::string heldText(const SymbolicState& state) {
@@ -40,7 +31,7 @@ std::vector<std::string> pickProblems(const SymbolicAction& action, const Symbol
   if (!state.movable.count(o)) problems.push_back(o + " is fixed and cannot be picked");
   if (!state.held.empty()) problems.push_back("the gripper is not free: " + heldText(state));
   if (!state.isClear(o)) {
-    problems.push_back(o + " is not clear: " + joined(state.objectsOn(o)) + " " +
+    problems.push_back(o + " is not clear: " + joinedNames(state.objectsOn(o)) + " " +
                        (state.containers.count(o) ? "is in it" : "is on it") + "; move them first");
   }
   return problems;
@@ -56,11 +47,11 @@ std::vector<std::string> placeTargetProblems(const SymbolicAction& action, const
   if (*action.params.relation == SpatialRelation::kIn && !state.containers.count(target)) {
     return {target + " is not a container" +
             (state.containers.empty() ? std::string(" (the scene has no containers)")
-                                      : " (containers: " + joined(state.containers) + ")")};
+                                      : " (containers: " + joinedNames({state.containers.begin(), state.containers.end()}) + ")")};
   }
   if (*action.params.relation == SpatialRelation::kOn && !state.supports.count(target) &&
       !state.isClear(target)) {
-    return {target + " is not clear: " + joined(state.objectsOn(target)) + " is on it"};
+    return {target + " is not clear: " + joinedNames(state.objectsOn(target)) + " is on it"};
   }
   return {};
 }
@@ -89,7 +80,7 @@ std::vector<std::string> moveProblems(const SymbolicAction& action, const Symbol
   if (!configuration.empty() && !state.namedConfigurations.empty() &&
       !state.namedConfigurations.count(configuration)) {
     problems.push_back("the robot has no configuration \"" + configuration +
-                       "\" (configurations: " + joined(state.namedConfigurations) + ")");
+                       "\" (configurations: " + joinedNames({state.namedConfigurations.begin(), state.namedConfigurations.end()}) + ")");
   }
   if (configuration.empty() && !action.params.position) {
     problems.push_back("move needs a configuration or a position");

@@ -1,0 +1,229 @@
+#include "lang2manip/symbolic/goal_statement.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "lang2manip/core/json_limits.hpp"
+
+namespace lang2manip {
+namespace {
+
+using nlohmann::json;
+
+constexpr GoalKind kGoalKinds[] = {GoalKind::kRelation, GoalKind::kHolding, GoalKind::kDisplaced,
+                                   GoalKind::kAtConfiguration};
+const std::vector<std::string> kGoalFields{"kind", "object", "relation", "target", "distance", "displacement", "configuration"};
+
+json nullableOf(const json& type, const std::string& description) {
+  return {{"anyOf", {type, {{"type", "null"}}}}, {"description", description}};
+}
+
+std::string shown(const json& value) { return std::string(value.type_name()) + " " + boundedJsonDump(value, 40); }
+
+/// Reads one goal object, reporting each problem under `path`.
+class GoalReader {
+ public:
+  GoalReader(const std::vector<std::string>& objects, std::vector<std::string>& problems)
+      : objects_(objects), problems_(problems) {}
+
+  std::optional<Goal> read(const json& item, const std::string& path) {
+    if (!item.is_object()) return fail(path, "expected a goal object, got " + shown(item));
+    for (const auto& [name, value] : item.items()) {
+      if (std::find(kGoalFields.begin(), kGoalFields.end(), name) == kGoalFields.end()) {
+        report(path + "." + name, "unknown field (valid fields: kind, object, relation, target, distance, displacement, configuration)");
+      }
+    }
+    const std::optional<GoalKind> kind = readKind(item, path);
+    if (!kind) return std::nullopt;
+    Goal goal;
+    goal.kind = *kind;
+    const std::size_t before = problems_.size();
+    checkGiven(item, path, requiredFields(*kind), optionalFields(*kind));
+    goal.object = objectName(item, "object", path);
+    goal.target = objectName(item, "target", path);
+    goal.configuration = stringField(item, "configuration", path);
+    if (const json* relation = given(item, "relation")) goal.relation = readRelation(*relation, path + ".relation");
+    if (const json* distance = given(item, "distance")) goal.distance = readPositive(*distance, path + ".distance");
+    if (const json* displacement = given(item, "displacement")) goal.displacement = readDisplacement(*displacement, path + ".displacement");
+    if (problems_.size() != before) return std::nullopt;
+    return goal;
+  }
+
+ private:
+  std::optional<Goal> fail(const std::string& path, const std::string& message) {
+    report(path, message);
+    return std::nullopt;
+  }
+  void report(const std::string& path, const std::string& message) { problems_.push_back(path + ": " + message); }
+
+  static const json* given(const json& item, const std::string& field) {
+    const auto it = item.find(field);
+    return (it == item.end() || it->is_null()) ? nullptr : &*it;
+  }
+
+  static std::vector<std::string> requiredFields(GoalKind kind) {
+    switch (kind) {
+      case GoalKind::kRelation: return {"object", "relation", "target"};
+      case GoalKind::kHolding: return {"object"};
+      case GoalKind::kDisplaced: return {"object", "displacement"};
+      case GoalKind::kAtConfiguration: return {"configuration"};
+    }
+    return {};
+  }
+  static std::vector<std::string> optionalFields(GoalKind kind) {
+    return kind == GoalKind::kRelation ? std::vector<std::string>{"distance"} : std::vector<std::string>{};
+  }
+
+  void checkGiven(const json& item, const std::string& path, const std::vector<std::string>& required,
+                  const std::vector<std::string>& optional) {
+    const std::string kind = item.at("kind").get<std::string>();
+    for (const std::string& field : required) {
+      if (given(item, field) == nullptr) report(path + "." + field, "missing; a " + kind + " goal needs it");
+    }
+    for (const std::string& field : kGoalFields) {
+      const bool allowed = field == "kind" || std::count(required.begin(), required.end(), field) != 0 ||
+                           std::count(optional.begin(), optional.end(), field) != 0;
+      if (!allowed && given(item, field) != nullptr) report(path + "." + field, "must be null for a " + kind + " goal");
+    }
+  }
+
+  std::optional<GoalKind> readKind(const json& item, const std::string& path) {
+    const json* kind = given(item, "kind");
+    std::string names;
+    for (const GoalKind k : kGoalKinds) {
+      if (kind != nullptr && kind->is_string() && kind->get<std::string>() == goalKindName(k)) return k;
+      names += (names.empty() ? "" : ", ") + goalKindName(k);
+    }
+    report(path + ".kind", (kind == nullptr ? std::string("missing") : "unknown kind " + shown(*kind)) + " (kinds: " + names + ")");
+    return std::nullopt;
+  }
+
+  std::string stringField(const json& item, const std::string& field, const std::string& path) {
+    const json* value = given(item, field);
+    if (value == nullptr) return {};
+    if (!value->is_string()) {
+      report(path + "." + field, "expected a string, got " + shown(*value));
+      return {};
+    }
+    return value->get<std::string>();
+  }
+
+  std::string objectName(const json& item, const std::string& field, const std::string& path) {
+    std::string name = stringField(item, field, path);
+    if (!name.empty() && !objects_.empty() && std::find(objects_.begin(), objects_.end(), name) == objects_.end()) {
+      std::string names;
+      for (const std::string& object : objects_) names += (names.empty() ? "" : ", ") + object;
+      report(path + "." + field, "unknown object " + boundedJsonDump(json(name), 60) + " (objects: " + names + ")");
+    }
+    return name;
+  }
+
+  std::optional<SpatialRelation> readRelation(const json& value, const std::string& path) {
+    if (value.is_string()) {
+      if (auto relation = spatialRelationFromName(value.get<std::string>())) return relation;
+    }
+    std::string names;
+    for (const std::string& name : spatialRelationNames()) names += (names.empty() ? "" : ", ") + name;
+    report(path, "unknown relation " + shown(value) + " (relations: " + names + ")");
+    return std::nullopt;
+  }
+
+  std::optional<double> readPositive(const json& value, const std::string& path) {
+    if (value.is_number() && std::isfinite(value.get<double>()) && value.get<double>() > 0.0) return value.get<double>();
+    report(path, "expected a positive number of metres, got " + shown(value));
+    return std::nullopt;
+  }
+
+  Vector3 readDisplacement(const json& value, const std::string& path) {
+    Vector3 v = Vector3::Zero();
+    const bool asObject = value.is_object() && value.size() == 3 && value.contains("x") && value.contains("y") && value.contains("z");
+    const bool asArray = value.is_array() && value.size() == 3;
+    for (int i = 0; (asObject || asArray) && i < 3; ++i) {
+      const json& component = asObject ? value.at(std::string(1, static_cast<char>('x' + i))) : value.at(static_cast<std::size_t>(i));
+      if (!component.is_number() || !std::isfinite(component.get<double>())) {
+        report(path, "expected {x, y, z} in metres, got " + shown(value));
+        return v;
+      }
+      v[i] = component.get<double>();
+    }
+    if (!asObject && !asArray) report(path, "expected {x, y, z} in metres, got " + shown(value));
+    else if (v.norm() == 0.0) report(path, "a displacement of zero moves nothing");
+    return v;
+  }
+
+  const std::vector<std::string>& objects_;
+  std::vector<std::string>& problems_;
+};
+
+}  // namespace
+
+std::string goalKindName(GoalKind kind) {
+  switch (kind) {
+    case GoalKind::kRelation: return "relation";
+    case GoalKind::kHolding: return "holding";
+    case GoalKind::kDisplaced: return "displaced";
+    case GoalKind::kAtConfiguration: return "at_configuration";
+  }
+  return "unknown";
+}
+
+nlohmann::json goalStatementSchema() {
+  json kinds = json::array();
+  for (const GoalKind kind : kGoalKinds) kinds.push_back(goalKindName(kind));
+  json relations = spatialRelationNames();
+  const json number = {{"type", "number"}};
+  const json goal = {
+      {"type", "object"},
+      {"description", "One condition of the final state"},
+      {"properties",
+       {{"kind", {{"type", "string"}, {"enum", kinds}, {"description", "relation, holding, displaced or at_configuration"}}},
+        {"object", nullableOf({{"type", "string"}}, "The object the goal is about (null for at_configuration)")},
+        {"relation", nullableOf({{"type", "string"}, {"enum", relations}}, "relation: where the object ends up relative to target")},
+        {"target", nullableOf({{"type", "string"}}, "relation: the reference object")},
+        {"distance", nullableOf(number, "relation: offset from target in metres, when the task gives one")},
+        {"displacement", nullableOf({{"type", "object"},
+                                     {"properties", {{"x", number}, {"y", number}, {"z", number}}},
+                                     {"required", {"x", "y", "z"}},
+                                     {"additionalProperties", false}},
+                                    "displaced: how far the object moves, metres, robot base frame")},
+        {"configuration", nullableOf({{"type", "string"}}, "at_configuration: the named configuration, e.g. home")}}},
+      {"required", kGoalFields},
+      {"additionalProperties", false}};
+  return nullableOf({{"type", "array"}, {"items", goal}}, "The final state the plan reaches (what the task asks for)");
+}
+
+nlohmann::json goalStatementJson(const std::vector<Goal>& goals) {
+  if (goals.empty()) return nullptr;
+  json list = json::array();
+  for (const Goal& goal : goals) {
+    const bool relation = goal.kind == GoalKind::kRelation;
+    const bool displaced = goal.kind == GoalKind::kDisplaced;
+    list.push_back({{"kind", goalKindName(goal.kind)},
+                    {"object", goal.object.empty() ? json(nullptr) : json(goal.object)},
+                    {"relation", relation && goal.relation ? json(spatialRelationName(*goal.relation)) : json(nullptr)},
+                    {"target", goal.target.empty() ? json(nullptr) : json(goal.target)},
+                    {"distance", relation && goal.distance ? json(*goal.distance) : json(nullptr)},
+                    {"displacement", displaced ? json{{"x", goal.displacement.x()}, {"y", goal.displacement.y()}, {"z", goal.displacement.z()}}
+                                               : json(nullptr)},
+                    {"configuration", goal.configuration.empty() ? json(nullptr) : json(goal.configuration)}});
+  }
+  return list;
+}
+
+std::vector<Goal> readGoalStatement(const nlohmann::json& goals, const std::string& path,
+                                    const std::vector<std::string>& objects, std::vector<std::string>& problems) {
+  std::vector<Goal> result;
+  if (goals.is_null()) return result;
+  if (!goals.is_array()) {
+    problems.push_back(path + ": expected an array of goals, got " + shown(goals));
+    return result;
+  }
+  GoalReader reader(objects, problems);
+  for (std::size_t i = 0; i < goals.size(); ++i) {
+    if (auto goal = reader.read(goals[i], path + "[" + std::to_string(i) + "]")) result.push_back(*goal);
+  }
+  return result;
+}
+
+}  // namespace lang2manip
