@@ -108,8 +108,10 @@ TEST(OfflineTaskPlannerTest, GraspFailuresLeadToOtherGraspDirections) {
   const std::vector<GraspDirection> order = graspRetryOrder();
   Plan tried = firstPlan(planner, request);
   for (std::size_t failures = 1; failures < order.size(); ++failures) {
-    // Failures at any stage of an action on a picked object: another grasp may fix them.
-    request.earlierAttempts.push_back(groundingFailure(tried, "eraser", failures == 2 ? "motion" : "grasp"));
+    // Failures at any stage of an action on a picked object: another grasp may fix them (a
+    // placement no pose of which is reachable too: the object is held differently).
+    const char* stage = failures == 1 ? "grasp" : failures == 2 ? "motion" : "placement";
+    request.earlierAttempts.push_back(groundingFailure(tried, "eraser", stage));
     const Plan plan = planner.plan(request, StopCondition::never(), statistics);
     ASSERT_EQ(plan.actions.size(), 4u);
     EXPECT_EQ(plan.actions[0].refinements.grasp, GraspDirection::kAuto);

@@ -139,7 +139,8 @@ struct PlacementPlan {
   PlacementFailure failure = PlacementFailure::kNone;
   /// On failure, names the object, the target and the reason.
   std::string reason;
-  /// On failure: every object that blocked one of the poses, in the order first met.
+  /// On a kBlocked failure (no pose free of other objects): every object that blocked one, in
+  /// the order first met.
   std::vector<std::string> blockers;
   std::vector<PlacementRejection> rejections;
   [[nodiscard]] bool success() const { return !candidates.empty(); }

@@ -159,14 +159,18 @@ PlacementPlan noPlacement(PlacementPlan plan, const std::string& what) {
   const PlacementRejection* blocked = nullptr;
   const PlacementRejection* unreachable = nullptr;
   for (const PlacementRejection& r : plan.rejections) {
-    for (const std::string& blocker : r.blockers) {
-      if (std::find(plan.blockers.begin(), plan.blockers.end(), blocker) == plan.blockers.end()) plan.blockers.push_back(blocker);
-    }
     if (r.failure == PlacementFailure::kBlocked && blocked == nullptr) blocked = &r;
     if (r.failure == PlacementFailure::kUnreachable && unreachable == nullptr) unreachable = &r;
   }
   if (unreachable != nullptr) return failed(std::move(plan), PlacementFailure::kUnreachable, what + ": no placement is reachable (" + unreachable->reason + ")");
-  if (blocked != nullptr) return failed(std::move(plan), PlacementFailure::kBlocked, what + ": every position is blocked (" + blocked->reason + ")");
+  if (blocked != nullptr) {
+    for (const PlacementRejection& r : plan.rejections) {
+      for (const std::string& blocker : r.blockers) {
+        if (std::find(plan.blockers.begin(), plan.blockers.end(), blocker) == plan.blockers.end()) plan.blockers.push_back(blocker);
+      }
+    }
+    return failed(std::move(plan), PlacementFailure::kBlocked, what + ": every position is blocked (" + blocked->reason + ")");
+  }
   return failed(std::move(plan), PlacementFailure::kUnreachable, what + ": no placement found");
 }
 
