@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "lang2manip/symbolic/task_planner.hpp"
+
 namespace lang2manip::language_detail {
 namespace {
 
@@ -152,10 +154,56 @@ void StepParser::parseObjects(Step& step) {
   skipSource(step);
 }
 
+std::vector<std::string> StepParser::peekDestinations(const Step& step, std::size_t at) const {
+  const Words& words = step.words;
+  while (at < words.size() && (words[at] == "up" || words[at] == "down" || words[at] == "back" || words[at] == "away")) ++at;
+  const std::size_t source = words.size() > at && (words[at] == "from" || words[at] == "off") ? 1
+                             : matchesAt(words, at, {"out", "of"})                           ? 2
+                                                                                             : 0;
+  if (source > 0) {
+    const std::optional<NounPhrase> phrase = reader_.read(words, at + source);
+    if (!phrase) return {};
+    at = phrase->end;
+  }
+  std::vector<std::string> targets;
+  while (true) {  // "on the desk next to the holder"
+    if (auto length = vocabulary::matchLength(words, at)) at += length->length;
+    const std::optional<vocabulary::RelationMatch> relation = vocabulary::matchRelation(words, at);
+    if (!relation) return targets;
+    const auto direction = vocabulary::matchDirection(words, at);
+    if (direction && direction->length >= relation->length) return targets;  // "to the left": a displacement
+    const std::optional<NounPhrase> target = reader_.read(words, at + relation->length);
+    if (!target || target->pronoun != Pronoun::kNone) return targets;
+    try {
+      const std::vector<std::string> names = reader_.ground(*target, discourse_, true, {});
+      if (names.size() == 1) targets.push_back(names.front());
+    } catch (const PlanningError&) {
+      // the target's own error is reported when the relation is parsed
+    }
+    at = target->end;
+  }
+}
+
+std::vector<std::string> StepParser::groundMoved(const NounPhrase& phrase, const std::vector<std::string>& destinations) const {
+  try {
+    std::vector<std::string> plain = reader_.ground(phrase, discourse_, false, {});
+    // A destination named alone ("the red block on the red block") is refused later; picked
+    // by a superlative or a place ("the object farthest from you"), it was not meant.
+    const bool picked = phrase.modifier || phrase.size != SizeWord::kNone || phrase.place != PlaceWord::kNone;
+    const bool includesDestination = std::any_of(destinations.begin(), destinations.end(),
+                                                 [&plain](const std::string& name) { return containsWord(plain, name); });
+    if (!includesDestination || (plain.size() == 1 && !picked)) return plain;
+  } catch (const PlanningError&) {
+    if (destinations.empty()) throw;
+  }
+  return reader_.ground(phrase, discourse_, false, {}, false, destinations);
+}
+
 std::vector<std::string> StepParser::groundList(Step& step, const std::vector<NounPhrase>& list) {
   std::vector<std::string> objects;
+  const std::vector<std::string> destinations = peekDestinations(step, list.back().end);
   for (const NounPhrase& phrase : list) {
-    const std::vector<std::string> grounded = reader_.ground(phrase, discourse_, false, {});
+    const std::vector<std::string> grounded = groundMoved(phrase, destinations);
     const bool group = phrase.isPlural() && phrase.pronoun == Pronoun::kNone;
     if (group && list.size() == 1) step.listedExplicitly = false;
     for (const std::string& object : grounded) {

@@ -63,6 +63,13 @@ class StepParser {
   void finish(Step& step, const StepModifiers& modifiers);
 
   std::vector<std::string> groundList(Step& step, const std::vector<NounPhrase>& list);
+  /// The objects the step puts things in relation to ("in the holder", "on the desk next to the
+  /// box"), read ahead of its objects (after particles and a source); those not yet clear are
+  /// left out.
+  [[nodiscard]] std::vector<std::string> peekDestinations(const Step& step, std::size_t at) const;
+  /// The objects a phrase of moved objects names; the destinations are not among them when that
+  /// makes the phrase name something ("both", "the largest object").
+  [[nodiscard]] std::vector<std::string> groundMoved(const NounPhrase& phrase, const std::vector<std::string>& destinations) const;
   /// `intoSomething`: "in" or "to", where "it" prefers a container.
   std::string groundTarget(Step& step, const NounPhrase& phrase, bool intoSomething);
   SpatialRelation relationByRole(const std::string& target) const;

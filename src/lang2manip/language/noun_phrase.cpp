@@ -34,8 +34,14 @@ std::optional<SizeWord> sizeWord(const std::string& word) {
                                             "largest", "huge", "giant"};
   static const std::vector<std::string> small{"small", "smaller", "smallest", "little", "tiny",
                                               "mini"};
+  static const std::vector<std::string> tall{"tall", "taller", "tallest", "highest", "higher"};
+  static const std::vector<std::string> low{"shortest", "lowest", "flattest", "flatter"};
+  static const std::vector<std::string> longer{"longest", "longer"};
   if (containsWord(big, word)) return SizeWord::kBig;
   if (containsWord(small, word)) return SizeWord::kSmall;
+  if (containsWord(tall, word)) return SizeWord::kTall;
+  if (containsWord(low, word)) return SizeWord::kShort;
+  if (containsWord(longer, word)) return SizeWord::kLong;
   return std::nullopt;
 }
 
@@ -232,6 +238,8 @@ bool NounPhraseReader::readAdjective(const Words& words, std::size_t& at, NounPh
     phrase.size = *size;
   } else if (auto place = placeWord(word)) {
     phrase.place = *place;
+  } else if (word == "movable" || word == "moveable" || word == "loose") {
+    phrase.movableOnly = true;
   } else if (!(isShadeWord(word) && at + 1 < words.size() && colourWord(words[at + 1]))) {
     return false;
   }
@@ -318,9 +326,79 @@ std::optional<NounPhrase> NounPhraseReader::read(const Words& words, std::size_t
       }
     }
   }
+  position = readModifier(words, position, phrase);
   phrase.end = position;
   phrase.text = joinWords(words, phrase.begin, phrase.end);
   return phrase;
+}
+
+bool NounPhraseReader::headIsAmbiguous(const NounPhrase& phrase) const {
+  if (phrase.isPlural() || phrase.size != SizeWord::kNone || phrase.place != PlaceWord::kNone) return false;
+  if (phrase.one || phrase.other) return true;
+  std::size_t count = 0;
+  for (const ObjectDescriptor& object : objects_) {
+    const bool named = !phrase.noun || containsWord(phrase.noun->objects, object.name);
+    const bool coloured = std::all_of(phrase.colours.begin(), phrase.colours.end(),
+                                      [&object](const std::string& colour) { return containsWord(object.colours, colour); });
+    if (named && coloured) ++count;
+  }
+  return count > 1;
+}
+
+std::size_t NounPhraseReader::readModifier(const Words& words, std::size_t at, NounPhrase& phrase) const {
+  if (phrase.pronoun != Pronoun::kNone || phrase.unknownNoun || at >= words.size()) return at;
+  std::size_t p = at;
+  bool relativeClause = false;
+  for (const Words& lead : {Words{"that", "is"}, Words{"which", "is"}, Words{"that", "are"}, Words{"which", "are"}}) {
+    if (matchesAt(words, p, lead)) {
+      p += lead.size();
+      relativeClause = true;
+      break;
+    }
+  }
+  NounModifier modifier;
+  std::size_t length = 0;
+  for (const Words& nearest : {Words{"closest", "to"}, Words{"nearest", "to"}, Words{"nearest"}}) {
+    if (length == 0 && matchesAt(words, p, nearest)) modifier.kind = NounModifier::Kind::kNearestTo, length = nearest.size();
+  }
+  for (const Words& farthest : {Words{"farthest", "away", "from"}, Words{"furthest", "away", "from"}, Words{"farthest", "from"},
+                                Words{"furthest", "from"}}) {
+    if (length == 0 && matchesAt(words, p, farthest)) modifier.kind = NounModifier::Kind::kFarthestFrom, length = farthest.size();
+  }
+  const bool ambiguous = headIsAmbiguous(phrase);
+  if (length != 0 && !(ambiguous || phrase.isPlural())) return at;  // "put the marker closest to ...": a place
+  if (length == 0 && ambiguous && (matchesAt(words, p, {"on", "the", "left"}) || matchesAt(words, p, {"on", "the", "right"})) &&
+      !matchesAt(words, p + 3, {"of"})) {
+    phrase.place = words[p + 2] == "left" ? PlaceWord::kLeft : PlaceWord::kRight;  // "the thing on the right"
+    return p + 3;
+  }
+  if (length == 0) {
+    const auto relation = vocabulary::matchRelation(words, p);
+    const bool beside = relation && relation->relation && *relation->relation != SpatialRelation::kIn &&
+                        *relation->relation != SpatialRelation::kOn;
+    // "in"/"on" say where the objects are only in a relative clause ("everything that is on the desk").
+    const bool where = relation && relation->relation && relativeClause;
+    if (!(beside || where) || !(ambiguous || phrase.isPlural())) return at;
+    modifier.relation = *relation->relation;
+    length = relation->length;
+  }
+  for (const Words& robot : {Words{"the", "robot", "base"}, Words{"the", "robot"}, Words{"the", "base"}, Words{"you"}}) {
+    if (matchesAt(words, p + length, robot)) {
+      phrase.modifier = std::move(modifier);  // no reference phrase: the robot
+      return p + length + robot.size();
+    }
+  }
+  const std::optional<NounPhrase> reference = read(words, p + length);
+  if (!reference) return at;
+  // A plural phrase's place is where they go ("put the blocks next to the box") unless the
+  // step goes on with another place.
+  if (modifier.kind == NounModifier::Kind::kRelation && !ambiguous && !relativeClause &&
+      !vocabulary::matchRelation(words, reference->end)) {
+    return at;
+  }
+  modifier.reference = {*reference};
+  phrase.modifier = std::move(modifier);
+  return reference->end;
 }
 
 std::vector<NounPhrase> NounPhraseReader::readList(const Words& words, std::size_t at) const {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lang2manip/language/object_descriptor.hpp"
+#include "lang2manip/symbolic/action.hpp"
 #include "lang2manip/language/words.hpp"
 
 namespace lang2manip::language_detail {
@@ -18,7 +19,8 @@ namespace lang2manip::language_detail {
 
 enum class Quantity { kDefinite, kIndefinite, kAll, kExactly };
 enum class Pronoun { kNone, kIt, kThem };
-enum class SizeWord { kNone, kBig, kSmall };
+/// Superlatives of size: volume (big, small), height (tall, short) and length (long).
+enum class SizeWord { kNone, kBig, kSmall, kTall, kShort, kLong };
 enum class PlaceWord { kNone, kLeft, kRight, kNear, kFar };
 
 /// The objects a noun names ("markers" -> every marker) and whether it was plural.
@@ -27,6 +29,20 @@ struct NounMatch {
   bool plural = false;
   /// True when the noun came from a neighbour in a list ("the red [block] and the blue block").
   bool borrowed = false;
+};
+
+struct NounPhrase;
+
+/// What follows a noun to pick among its objects: "closest to the holder", "farthest from the
+/// robot's base", "to the left of the marker", "next to the eraser".
+struct NounModifier {
+  enum class Kind { kNearestTo, kFarthestFrom, kRelation };
+  Kind kind = Kind::kRelation;
+  /// For kRelation: left_of, right_of, in_front_of, behind or next_to.
+  SpatialRelation relation = SpatialRelation::kNextTo;
+  /// The object the modifier refers to (one phrase), empty when it is the robot ("the robot",
+  /// "you": the origin of its base frame).
+  std::vector<NounPhrase> reference;
 };
 
 /// A noun phrase as read, before grounding.
@@ -47,6 +63,9 @@ struct NounPhrase {
   bool one = false;
   /// A determiner or adjectives followed by words that name no object ("the cup").
   bool unknownNoun = false;
+  /// "movable": only objects that can be picked.
+  bool movableOnly = false;
+  std::optional<NounModifier> modifier;
 
   [[nodiscard]] bool isPlural() const;
 };
@@ -79,11 +98,14 @@ class NounPhraseReader {
 
   /// The objects `phrase` names. `asTarget`: it is the target of a relation (pronouns then
   /// prefer the latest target); `actedOn`: the objects of the same step, which a target pronoun
-  /// does not refer to. Throws PlanningError when it names no object or is ambiguous.
+  /// does not refer to; `excluded`: objects it cannot mean (where the step puts them: "both",
+  /// "the largest object" never include the destination). Throws PlanningError when it names no
+  /// object or is ambiguous.
   [[nodiscard]] std::vector<std::string> ground(const NounPhrase& phrase, const Discourse& discourse,
                                                 bool asTarget,
                                                 const std::vector<std::string>& actedOn,
-                                                bool preferContainer = false) const;
+                                                bool preferContainer = false,
+                                                const std::vector<std::string>& excluded = {}) const;
 
   [[nodiscard]] const ObjectDescriptor& descriptor(const std::string& name) const;
   [[nodiscard]] const std::vector<ObjectDescriptor>& objects() const { return objects_; }
@@ -114,6 +136,12 @@ class NounPhraseReader {
                                                        bool preferContainer) const;
   [[nodiscard]] std::vector<std::string> narrow(const NounPhrase& phrase,
                                                 std::vector<std::string> names) const;
+  /// Reads a modifier after the noun at words[at] into `phrase`; the position after it.
+  [[nodiscard]] std::size_t readModifier(const Words& words, std::size_t at, NounPhrase& phrase) const;
+  /// True when a singular phrase without superlative could name several objects.
+  [[nodiscard]] bool headIsAmbiguous(const NounPhrase& phrase) const;
+  [[nodiscard]] std::vector<std::string> applyModifier(const NounPhrase& phrase, std::vector<std::string> names,
+                                                       const Discourse& discourse) const;
   [[nodiscard]] std::string describe(const std::vector<std::string>& names) const;
 
   std::vector<ObjectDescriptor> objects_;

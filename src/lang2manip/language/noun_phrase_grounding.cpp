@@ -1,7 +1,9 @@
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 #include "lang2manip/language/noun_phrase.hpp"
+#include "lang2manip/symbolic/spatial_relations.hpp"
 
 namespace lang2manip::language_detail {
 namespace {
@@ -17,6 +19,9 @@ bool hasColours(const ObjectDescriptor& object, const std::vector<std::string>& 
 double score(const ObjectDescriptor& object, SizeWord size, PlaceWord place) {
   if (size == SizeWord::kBig) return object.volume;
   if (size == SizeWord::kSmall) return -object.volume;
+  if (size == SizeWord::kTall) return object.bounds.sizes().z();
+  if (size == SizeWord::kShort) return -object.bounds.sizes().z();
+  if (size == SizeWord::kLong) return object.dimensions.maxCoeff();
   switch (place) {
     case PlaceWord::kLeft: return object.position.y();
     case PlaceWord::kRight: return -object.position.y();
@@ -27,20 +32,77 @@ double score(const ObjectDescriptor& object, SizeWord size, PlaceWord place) {
   return 0.0;
 }
 
+/// True when `a` stands in `relation` to `b`, by the conventions of the symbolic state (in and on:
+/// its centre over `b`, resting on `b`'s top or inside its box).
+bool standsIn(const ObjectDescriptor& a, SpatialRelation relation, const ObjectDescriptor& b) {
+  const SpatialOptions conventions;
+  if (relation == SpatialRelation::kNextTo) return boxGap(a.bounds, b.bounds) <= conventions.nearDistance;
+  const bool above = a.position.x() >= b.bounds.min().x() && a.position.x() <= b.bounds.max().x() &&
+                     a.position.y() >= b.bounds.min().y() && a.position.y() <= b.bounds.max().y();
+  if (relation == SpatialRelation::kOn) return above && std::abs(a.bounds.min().z() - b.bounds.max().z()) <= conventions.distanceTolerance;
+  if (relation == SpatialRelation::kIn) return above && a.bounds.min().z() >= b.bounds.min().z() - conventions.distanceTolerance &&
+                                               a.bounds.min().z() < b.bounds.max().z();
+  const std::vector<SpatialRelation> relations = directionalRelations(a.position - b.position, conventions.directionMargin);
+  return std::find(relations.begin(), relations.end(), relation) != relations.end();
+}
+
 }  // namespace
+
+std::vector<std::string> NounPhraseReader::applyModifier(const NounPhrase& phrase, std::vector<std::string> names,
+                                                         const Discourse& discourse) const {
+  const NounModifier& modifier = *phrase.modifier;
+  ObjectDescriptor robot;
+  robot.name = "the robot";
+  robot.bounds.extend(Vector3::Zero());
+  const ObjectDescriptor* referred = &robot;
+  if (!modifier.reference.empty()) {
+    const NounPhrase& referencePhrase = modifier.reference.front();
+    const std::vector<std::string> references = ground(referencePhrase, discourse, true, {});
+    if (references.size() != 1) {
+      throwGroundingError(referencePhrase.text, "names " + std::to_string(references.size()) + " objects; a place is relative to one");
+    }
+    referred = &descriptor(references.front());
+  }
+  const ObjectDescriptor& reference = *referred;
+  std::erase(names, reference.name);
+  if (modifier.kind == NounModifier::Kind::kRelation) {
+    std::erase_if(names, [&](const std::string& name) { return !standsIn(descriptor(name), modifier.relation, reference); });
+    if (names.empty()) {
+      throwGroundingError(phrase.text, "no object is " + spatialRelationName(modifier.relation) + " " + reference.name);
+    }
+    return names;
+  }
+  const double sign = modifier.kind == NounModifier::Kind::kNearestTo ? 1.0 : -1.0;
+  auto gap = [&](const std::string& name) { return sign * boxGap(descriptor(name).bounds, reference.bounds); };
+  std::stable_sort(names.begin(), names.end(), [&](const std::string& a, const std::string& b) { return gap(a) < gap(b); });
+  std::size_t kept = phrase.quantity == Quantity::kExactly ? static_cast<std::size_t>(phrase.count) : 1;
+  if (phrase.isPlural() && phrase.quantity != Quantity::kExactly) kept = (names.size() + 1) / 2;
+  if (names.size() > kept && std::abs(gap(names[kept - 1]) - gap(names[kept])) < 1e-6) {
+    throwGroundingError(phrase.text, "it is ambiguous: " + names[kept - 1] + " and " + names[kept] + " are as far from " +
+                                         reference.name + "; say which");
+  }
+  names.resize(std::min(kept, names.size()));
+  return names;
+}
 
 std::vector<std::string> NounPhraseReader::ground(const NounPhrase& phrase,
                                                   const Discourse& discourse, bool asTarget,
                                                   const std::vector<std::string>& actedOn,
-                                                  bool preferContainer) const {
+                                                  bool preferContainer,
+                                                  const std::vector<std::string>& excluded) const {
   if (phrase.pronoun != Pronoun::kNone) {
     return groundPronoun(phrase, discourse, asTarget, actedOn, preferContainer);
   }
   if (phrase.unknownNoun) {
     throwGroundingError(phrase.text, "no object matches (objects: " + objectList() + ")");
   }
-  const std::vector<std::string> byNoun = candidates(phrase, discourse, asTarget);
-  std::vector<std::string> names = narrow(phrase, byNoun);
+  std::vector<std::string> byNoun = candidates(phrase, discourse, asTarget);
+  std::erase_if(byNoun, [&](const std::string& name) {
+    return containsWord(excluded, name) || (phrase.movableOnly && !descriptor(name).movable);
+  });
+  const bool relative = phrase.modifier && phrase.modifier->kind == NounModifier::Kind::kRelation;
+  std::vector<std::string> names = narrow(phrase, relative ? applyModifier(phrase, byNoun, discourse) : byNoun);
+  if (phrase.modifier && !relative && !names.empty()) names = applyModifier(phrase, names, discourse);
   if (byNoun.empty() && phrase.other) {
     throwGroundingError(phrase.text, "there is no other one: already mentioned " +
                                          joinAlternatives(discourse.mentioned));

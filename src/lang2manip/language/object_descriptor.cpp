@@ -172,6 +172,8 @@ std::vector<ObjectDescriptor> describeObjects(const Scene& scene, const std::str
     descriptor.dimensions = object.dimensions();
     descriptor.volume = boundsVolume(object.localBounds());
     descriptor.position = worldToBase * object.worldBounds().center();
+    const AlignedBox3 world = object.worldBounds();
+    for (int corner = 0; corner < 8; ++corner) descriptor.bounds.extend(worldToBase * world.corner(static_cast<AlignedBox3::CornerType>(corner)));
     descriptor.movable = object.movable;
     descriptor.role = object.role;
     descriptors.push_back(std::move(descriptor));

@@ -30,6 +30,8 @@ struct ObjectDescriptor {
   Vector3 dimensions = Vector3::Zero();
   /// Centre of its world bounds in the robot's base frame (x forward, y left), metres.
   Vector3 position = Vector3::Zero();
+  /// Its world bounds' corners in the robot's base frame, bounded by an axis-aligned box.
+  AlignedBox3 bounds;
   bool movable = false;
   ObjectRole role = ObjectRole::kNone;
 };
