@@ -44,6 +44,27 @@ TEST_P(ActionsOnRobot, PickThenPlaceInTheHolder) {
   EXPECT_GT(record.counters.ikCalls, 0);
 }
 
+TEST_P(ActionsOnRobot, CartesianStepsWhoseJointsMoveFastAreHalvedNotRefused) {
+  // 8 cm Cartesian steps with at most 0.12 rad per joint and step: whole steps would jump, the
+  // halved ones (down to 1 cm) do not, and every waypoint keeps within the limit.
+  ExecutionSettings settings = testSettings();
+  settings.cartesianStep = 0.08;
+  settings.maxJointStep = 0.12;
+  TaskExecutor executor(deskScene(GetParam()), settings);
+  const ExecutionRecord& record = run(executor, planOf({pickAction("marker")}));
+  ASSERT_TRUE(record.succeeded());
+  bool halved = false;
+  for (const MotionSegment& segment : record.actions[0].segments) {
+    if (segment.label != "approach marker" && segment.label != "lift marker") continue;
+    halved = halved || segment.waypoints.size() > 3;  // a 10 cm move is 2 whole steps
+    for (std::size_t i = 1; i < segment.waypoints.size(); ++i) {
+      const VectorX step = segment.waypoints[i] - segment.waypoints[i - 1];
+      EXPECT_LE(step.cwiseAbs().maxCoeff(), settings.maxJointStep + 1e-9) << segment.label << " waypoint " << i;
+    }
+  }
+  EXPECT_TRUE(halved);
+}
+
 TEST_P(ActionsOnRobot, PickHoldsTheObjectAndMoveCarriesItHome) {
   TaskExecutor executor(deskScene(GetParam()), testSettings());
   const ExecutionRecord& record = run(executor, planOf({pickAction("eraser"), moveHomeAction()}));

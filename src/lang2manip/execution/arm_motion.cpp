@@ -225,6 +225,69 @@ MotionResult planTransitThroughHome(const ArmContext& arm, const Scene& world, c
   return second;
 }
 
+/// The straight tool motion planCartesian() follows, in the arm's base frame.
+struct CartesianLine {
+  const ArmContext& arm;
+  Pose X_WB;
+  Pose from;
+  Pose to;
+  const std::string& label;
+  int steps;
+
+  [[nodiscard]] Pose at(double t) const {
+    Pose X_WG = Pose::Identity();
+    X_WG.linear() = Quaternion(from.linear()).slerp(t, Quaternion(to.linear())).toRotationMatrix();
+    X_WG.translation() = from.translation() + t * (to.translation() - from.translation());
+    return X_WG;
+  }
+};
+
+/// A step whose joints would move more than the limit is halved up to this many times: near a
+/// singularity the joints move fast and smaller steps keep them continuous, while a change of IK
+/// branch jumps however small the step.
+constexpr int kCartesianHalvings = 3;
+
+/// Appends the IK solution of the line at `t1` (seeded from the last waypoint), halving the step
+/// from `t0` while the joints would jump; false with `result` failed otherwise.
+bool appendCartesianStep(const CartesianLine& line, double t0, double t1, int halvings, std::vector<VectorX>& waypoints,
+                         MotionResult& result) {
+  const ExecutionSettings& s = line.arm.settings();
+  IkRequest request;
+  request.model = &line.arm.model();
+  request.manipulator = line.arm.manipulator().name;
+  request.target = IkTarget::pose(line.X_WB.inverse() * line.at(t1) * line.arm.gripper().graspFrame.inverse());
+  request.seed = waypoints.back();
+  request.timeoutSeconds = s.reach.ikTimeoutSeconds;
+  request.randomSeed = s.seed;
+  ++result.ikCalls;
+  const IkResult ik = line.arm.ik()->solve(request);
+  const int step = static_cast<int>(std::ceil(t1 * line.steps - 1e-9));
+  const std::string where = " at step " + std::to_string(step) + " of " + std::to_string(line.steps);
+  if (ik.status != IkStatus::kSuccess) {
+    const int calls = result.ikCalls;
+    result = failedMotion("ik", line.label + ": no IK solution" + where + " (" + ikStatusName(ik.status) + ")");
+    result.ikCalls = calls;
+    return false;
+  }
+  const VectorX& q = ik.solutions.front();
+  const double jump = (armValues(line.arm, q) - armValues(line.arm, waypoints.back())).cwiseAbs().maxCoeff();
+  if (jump <= s.maxJointStep) {
+    waypoints.push_back(q);
+    return true;
+  }
+  if (halvings > 0) {
+    const double middle = 0.5 * (t0 + t1);
+    return appendCartesianStep(line, t0, middle, halvings - 1, waypoints, result) &&
+           appendCartesianStep(line, middle, t1, halvings - 1, waypoints, result);
+  }
+  char text[160];
+  std::snprintf(text, sizeof text, ": the arm would jump %.2f rad%s (limit %.2f)", jump, where.c_str(), s.maxJointStep);
+  const int calls = result.ikCalls;
+  result = failedMotion("ik", line.label + text);
+  result.ikCalls = calls;
+  return false;
+}
+
 }  // namespace
 
 MotionResult planTransit(const ArmContext& arm, const Scene& world, const VectorX& start,
@@ -255,36 +318,12 @@ MotionResult planCartesian(const ArmContext& arm, const Scene& world, const Vect
   segment.carriedDisplacement = allowance.carriedDisplacement;
   segment.waypoints.push_back(start);
   const auto began = std::chrono::steady_clock::now();
+  const CartesianLine line{arm, X_WB, X_WG_start, X_WG_goal, label, steps};
   for (int i = 1; i <= steps; ++i) {
-    const double t = static_cast<double>(i) / steps;
-    Pose X_WG = Pose::Identity();
-    X_WG.linear() = from.slerp(t, to).toRotationMatrix();
-    X_WG.translation() = X_WG_start.translation() + t * (X_WG_goal.translation() - X_WG_start.translation());
-    IkRequest request;
-    request.model = &arm.model();
-    request.manipulator = arm.manipulator().name;
-    request.target = IkTarget::pose(X_WB.inverse() * X_WG * arm.gripper().graspFrame.inverse());
-    request.seed = segment.waypoints.back();
-    request.timeoutSeconds = s.reach.ikTimeoutSeconds;
-    request.randomSeed = s.seed;
-    ++result.ikCalls;
-    const IkResult ik = arm.ik()->solve(request);
-    if (ik.status != IkStatus::kSuccess) {
-      MotionResult failure = failedMotion("ik", label + ": no IK solution at step " + std::to_string(i) + " of " +
-                                                    std::to_string(steps) + " (" + ikStatusName(ik.status) + ")");
-      failure.ikCalls = result.ikCalls;
-      return failure;
+    if (!appendCartesianStep(line, static_cast<double>(i - 1) / steps, static_cast<double>(i) / steps, kCartesianHalvings,
+                             segment.waypoints, result)) {
+      return result;
     }
-    const VectorX& q = ik.solutions.front();
-    const double jump = (armValues(arm, q) - armValues(arm, segment.waypoints.back())).cwiseAbs().maxCoeff();
-    if (jump > s.maxJointStep) {
-      char text[160];
-      std::snprintf(text, sizeof text, ": the arm would jump %.2f rad at step %d of %d (limit %.2f)", jump, i, steps, s.maxJointStep);
-      MotionResult failure = failedMotion("ik", label + text);
-      failure.ikCalls = result.ikCalls;
-      return failure;
-    }
-    segment.waypoints.push_back(q);
   }
   result.ikSeconds = secondsSince(began);
   const SegmentCheck check = checkSegment(arm, segment, s.verificationResolution);
