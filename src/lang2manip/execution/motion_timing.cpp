@@ -159,6 +159,27 @@ std::vector<double> samplesAlong(const PathSegment& piece, double resolution) {
   return at;
 }
 
+/// Arc lengths on a line piece at the states checkSegment() checked its segment at (the grid
+/// anchored at the segment's first waypoint), and both ends: a line is a part of a verified
+/// segment and is checked as it was, so that a path grazing an obstacle between two checked
+/// states is not accepted by one check and refused by another.
+std::vector<double> lineSamples(const PathSegment& line, const RunPath& path, double resolution) {
+  const VectorX& from = path.waypoints[line.waypoint];
+  const VectorX& to = path.waypoints[line.waypoint + 1];
+  const double length = (to - from).norm();
+  std::vector<double> at{0.0};
+  if (length > 0.0) {
+    const int steps = std::max(1, static_cast<int>(std::ceil((to - from).cwiseAbs().maxCoeff() / resolution)));
+    const double start = (line.position(0.0) - from).norm() / length;
+    for (int i = static_cast<int>(std::ceil(start * steps)); i <= steps; ++i) {
+      const double u = (static_cast<double>(i) / steps - start) * length;
+      if (u > 0.0 && u < line.length) at.push_back(u);
+    }
+  }
+  at.push_back(line.length);
+  return at;
+}
+
 /// Whether every sample of `arc` is allowed by its segments and, on Cartesian moves, straight.
 bool arcIsAcceptable(const PathSegment& arc, const RunPath& path, double resolution, RunPointChecker& checker) {
   const std::vector<std::size_t> owners = ownersOf(arc, path);
@@ -359,7 +380,9 @@ SegmentCheck checkTimedAction(const ArmContext& arm, const ActionExecution& acti
     const BlendedPath blended(path.waypoints, run.cornerDeviations);
     for (const PathSegment& piece : blended.segments()) {
       const std::vector<std::size_t> owners = ownersOf(piece, path);
-      for (const double u : samplesAlong(piece, resolution)) {
+      const std::vector<double> samples =
+          piece.kind == PathSegment::Kind::kLine ? lineSamples(piece, path, resolution) : samplesAlong(piece, resolution);
+      for (const double u : samples) {
         std::string contacts = checker.contacts(piece.position(u), owners);
         if (contacts.empty()) continue;
         result.collision = contacts + (piece.kind == PathSegment::Kind::kArc ? " (on the blend at waypoint " : " (after waypoint ") +
