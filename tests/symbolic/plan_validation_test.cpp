@@ -121,10 +121,41 @@ TEST_F(PlanValidationTest, PlacingWhileHoldingAnotherObjectSaysWhatIsHeld) {
   EXPECT_THAT(result.problems, Contains(HasSubstr("eraser is not held (the gripper holds marker)")));
 }
 
+/// A movable box of `size` standing on the desk at (x, y).
+SceneObject blockOnDesk(const std::string& name, const Vector3& size, double x, double y) {
+  SceneObject block;
+  block.name = name;
+  block.kind = "block";
+  block.movable = true;
+  Shape shape;
+  shape.geometry = Box{size};
+  block.collisions.push_back(shape);
+  block.pose.translation() = Vector3(x, y, 0.75 + size.z() / 2.0);
+  return block;
+}
+
 TEST_F(PlanValidationTest, StackingNeedsAClearTarget) {
-  const PlanValidation result = validate({pickAction("marker"), place("marker", SpatialRelation::kOn, "eraser"),
-                                          pickAction("holder"), place("holder", SpatialRelation::kOn, "eraser")});
-  EXPECT_THAT(result.problems, Contains("step 4 (place holder on eraser): eraser is not clear: marker is on it"));
+  Scene scene = problem_.scene;
+  scene.addObject(blockOnDesk("block", Vector3(0.06, 0.06, 0.03), 0.1, 0.3));
+  Plan plan;
+  plan.actions = {pickAction("eraser"), place("eraser", SpatialRelation::kOn, "block"), pickAction("holder"),
+                  place("holder", SpatialRelation::kOn, "block")};
+  const PlanValidation result = validatePlan(plan, observeSymbolicState(scene));
+  EXPECT_THAT(result.problems, Contains("step 4 (place holder on block): block is not clear: eraser is on it"));
+}
+
+TEST_F(PlanValidationTest, StackingNeedsAFlatTopTheObjectFitsOn) {
+  EXPECT_THAT(validate({pickAction("eraser"), place("eraser", SpatialRelation::kOn, "marker")}).problems,
+              Contains("step 2 (place eraser on marker): eraser cannot rest on marker: its top is round (a cylinder lying on its side)"));
+  EXPECT_THAT(validate({pickAction("holder"), place("holder", SpatialRelation::kOn, "eraser")}).problems,
+              Contains("step 2 (place holder on eraser): holder (0.086 x 0.086 m) does not fit on the top of eraser (0.050 x 0.020 m)"));
+  EXPECT_THAT(validate({pickAction("marker"), place("marker", SpatialRelation::kOn, "holder")}).problems,
+              Contains(HasSubstr("marker cannot rest on holder: it is open at the top (a container: put things in it)")));
+  Scene scene = problem_.scene;
+  scene.addObject(blockOnDesk("block", Vector3(0.06, 0.06, 0.03), 0.1, 0.3));
+  Plan plan;
+  plan.actions = {pickAction("eraser"), place("eraser", SpatialRelation::kOn, "block")};
+  EXPECT_TRUE(validatePlan(plan, observeSymbolicState(scene)).valid());
 }
 
 TEST_F(PlanValidationTest, PushNeedsAFreeGripperAndMoveAKnownConfiguration) {

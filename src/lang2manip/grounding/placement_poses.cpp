@@ -6,6 +6,7 @@
 
 #include "lang2manip/core/random.hpp"
 #include "lang2manip/grounding/object_geometry.hpp"
+#include "lang2manip/symbolic/support_surface.hpp"
 
 namespace lang2manip {
 namespace {
@@ -94,7 +95,9 @@ std::vector<Quaternion> uprightYaws(const Quaternion& current) {
 }
 
 PoseSampling onSurface(const PoseSamplingInput& in, const SceneObject& surface, const PlacementSettings& s) {
-  const AlignedBox3 top = surface.worldBounds();
+  const SupportSurface support = supportSurface(surface);
+  if (!support.top) return failure(PlacementFailure::kNoSupport, in.object->name + " cannot rest on " + surface.name + ": " + support.why);
+  const AlignedBox3 top = *support.top;
   Random random(s.seed);
   std::vector<Vector3> points;
   for (int i = 0; i < s.surfaceSamples; ++i) {

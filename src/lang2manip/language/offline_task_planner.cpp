@@ -8,6 +8,7 @@
 #include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/language/instruction.hpp"
 #include "lang2manip/language/object_descriptor.hpp"
+#include "lang2manip/symbolic/plan_validation.hpp"
 #include "lang2manip/symbolic/symbolic_state.hpp"
 
 namespace lang2manip {
@@ -117,6 +118,11 @@ Plan OfflineTaskPlanner::plan(const PlanningRequest& request, const StopConditio
   applyEarlierAttempts(request, specification);
   Plan plan = sequenceGoals(specification, state, options);
   plan.goals = specification.goals;
+  // What the world does not allow (an object on a round top, one too large for the top it is
+  // put on) is refused here, with the reason, rather than tried.
+  if (const PlanValidation validation = validatePlan(plan, state); !validation.valid()) {
+    throw PlanningError("offline planner: the instruction asks for what cannot be done: " + validation.summary());
+  }
   statistics.planningSeconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return plan;

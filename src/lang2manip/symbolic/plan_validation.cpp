@@ -1,7 +1,10 @@
 #include "lang2manip/symbolic/plan_validation.hpp"
 
+#include <cstdio>
+
 #include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/symbolic/plan_json.hpp"
+#include "lang2manip/symbolic/support_surface.hpp"
 
 namespace lang2manip {
 namespace {
@@ -37,6 +40,20 @@ std::vector<std::string> pickProblems(const SymbolicAction& action, const Symbol
   return problems;
 }
 
+/// Whether `object` can rest on `target`: a flat top it fits on, within the footprint.
+std::vector<std::string> stackingProblems(const std::string& object, const std::string& target, const SymbolicState& state) {
+  if (const auto why = state.noFlatTop.find(target); why != state.noFlatTop.end()) {
+    return {object + " cannot rest on " + target + ": " + why->second};
+  }
+  const auto top = state.flatTops.find(target);
+  const auto size = state.sizes.find(object);
+  if (top == state.flatTops.end() || size == state.sizes.end() || footprintFits(size->second, top->second)) return {};
+  char text[160];
+  std::snprintf(text, sizeof text, " (%.3f x %.3f m) does not fit on the top of %s (%.3f x %.3f m)", size->second.x(),
+                size->second.y(), target.c_str(), top->second.sizes().x(), top->second.sizes().y());
+  return {object + text};
+}
+
 std::vector<std::string> placeTargetProblems(const SymbolicAction& action, const SymbolicState& state) {
   const std::string& target = action.params.target;
   if (!action.params.relation) return {};
@@ -53,6 +70,7 @@ std::vector<std::string> placeTargetProblems(const SymbolicAction& action, const
       !state.isClear(target)) {
     return {target + " is not clear: " + joinedNames(state.objectsOn(target)) + " is on it"};
   }
+  if (*action.params.relation == SpatialRelation::kOn) return stackingProblems(action.object, target, state);
   return {};
 }
 

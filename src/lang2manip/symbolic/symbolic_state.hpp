@@ -22,6 +22,13 @@ struct SymbolicState {
   std::map<std::string, std::string> inside;
   /// object -> the object it rests on (a support or another object; absent when inside one).
   std::map<std::string, std::string> onTopOf;
+  /// object -> its flat top (supportSurface()), for objects others may rest on.
+  std::map<std::string, AlignedBox3> flatTops;
+  /// object -> why nothing can rest on it (round, tilted, open at the top).
+  std::map<std::string, std::string> noFlatTop;
+  /// Movable object -> its size (footprint x, y and height): in its own frame when it stands
+  /// upright (its frame's z vertical), else of its world bounds.
+  std::map<std::string, Vector3> sizes;
   /// The object the robot holds, empty when its gripper is free.
   std::string held;
   /// The robot's current named configuration ("home"), empty when it is elsewhere.

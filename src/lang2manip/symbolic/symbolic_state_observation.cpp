@@ -5,6 +5,7 @@
 
 #include "lang2manip/model/scene.hpp"
 #include "lang2manip/symbolic/symbolic_state.hpp"
+#include "lang2manip/symbolic/support_surface.hpp"
 
 namespace lang2manip {
 namespace {
@@ -107,6 +108,13 @@ SymbolicState observeSymbolicState(const Scene& scene, const SymbolicStateTolera
     if (object.movable) state.movable.insert(object.name);
     if (object.role == ObjectRole::kContainer) state.containers.insert(object.name);
     if (object.role == ObjectRole::kSupport) state.supports.insert(object.name);
+    if (object.movable) {
+      const bool upright = std::abs(object.pose.linear()(2, 2)) > 0.996;  // its frame's z within 5 deg of vertical
+      state.sizes[object.name] = upright ? object.dimensions() : object.worldBounds().sizes();
+    }
+    const SupportSurface surface = supportSurface(object);
+    if (surface.top) state.flatTops[object.name] = *surface.top;
+    else state.noFlatTop[object.name] = surface.why;
   }
   if (!robot.empty()) {
     observeConfiguration(scene.robot(robot), tolerances, state);

@@ -1,0 +1,30 @@
+#pragma once
+/// @file Whether other objects can rest on an object: the flat top of its collision shapes (a
+/// box's level face, a standing cylinder's disk), or why it has none (round on top, tilted, a
+/// container's open top). Used by plan validation ("place on") and the placement sampler.
+
+#include <optional>
+#include <string>
+
+#include "lang2manip/model/scene.hpp"
+
+namespace lang2manip {
+
+struct SupportSurface {
+  /// The flat region objects may rest on: x/y the largest axis-aligned rectangle inside it
+  /// (world frame), z its height (min = max). Absent when there is none.
+  std::optional<AlignedBox3> top;
+  /// Why there is none ("its top is round: a cylinder lying on its side").
+  std::string why;
+};
+
+/// The support surface of `object` from its collision shapes at its top (within 3 mm): a box
+/// with a face within 5 degrees of level, a cylinder standing within 5 degrees; a mesh counts by
+/// its bounds (its shape is not analysed). Containers (with a cavity) offer none: what goes there
+/// goes in.
+SupportSurface supportSurface(const SceneObject& object);
+
+/// True when a footprint of `size` (x, y; any yaw of 90-degree steps) fits inside `top`.
+bool footprintFits(const Vector3& size, const AlignedBox3& top);
+
+}  // namespace lang2manip
