@@ -1,0 +1,104 @@
+// Milliseconds for the offline planner to answer an instruction on the Panda's desk, over a set
+// of instructions of every kind it understands (steps, several objects, references by quantity,
+// property and place). Variants:
+//   FirstRound   one plan per instruction (the baseline, registered first);
+//   WithRepair   the plan, then the answer to a structured grounding failure of its first pick
+//                (the repair loop's second round: another grasp direction).
+// Counters: median_ms and p95_ms over all instructions and iterations, and
+// median_over_first_round = a variant's median over the baseline's (same process).
+//
+//   build/benchmarks/offline_planning_benchmark
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "lang2manip/language/offline_task_planner.hpp"
+#include "lang2manip/model/builtin_data.hpp"
+#include "lang2manip/model/kautham_problem.hpp"
+
+namespace lang2manip {
+namespace {
+
+const char* const kInstructions[] = {
+    "put the marker and eraser in the holder",
+    "put the eraser and the marker into the holder",
+    "pick up the marker and put it in the holder",
+    "grab the eraser, then drop it into the holder",
+    "put both objects in the holder",
+    "put all the movable objects in the holder",
+    "put the largest object in the holder",
+    "put the object closest to the holder in the holder",
+    "put the thing on the right into the holder",
+    "put the object to the left of the holder in the holder",
+    "place the eraser next to the holder",
+    "move the marker 5 cm to the left",
+    "push the eraser 3 cm forward",
+    "put the marker in the holder, then go home",
+};
+
+enum class Variant { kFirstRound, kWithRepair };
+
+/// A failed round of `plan`: its first pick could not be grasped.
+PlanAttempt graspFailureOf(const Plan& plan) {
+  PlanAttempt attempt;
+  attempt.plan = plan;
+  for (std::size_t i = 0; i < plan.actions.size(); ++i) {
+    if (plan.actions[i].type != ActionType::kPick) continue;
+    attempt.grounding = GroundingFailure{i, "grasp", plan.actions[i].object, "no grasp is reachable", {}};
+    break;
+  }
+  attempt.failure = "no grasp is reachable";
+  return attempt;
+}
+
+void planTheInstructions(benchmark::State& state, Variant variant) {
+  static double firstRoundMedian = 0.0;
+  static const Scene scene = readKauthamProblem(resolveProblem("panda_desk")).scene;
+  OfflineTaskPlanner planner;
+  std::vector<double> times;
+  for (auto _ : state) {
+    for (const char* instruction : kInstructions) {
+      PlanningRequest request;
+      request.task = instruction;
+      request.scene = &scene;
+      PlanningStatistics statistics;
+      const auto start = std::chrono::steady_clock::now();
+      Plan plan = planner.plan(request, StopCondition::never(), statistics);
+      if (variant == Variant::kWithRepair && graspFailureOf(plan).grounding) {
+        request.earlierAttempts.push_back(graspFailureOf(plan));
+        plan = planner.plan(request, StopCondition::never(), statistics);
+      }
+      times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      benchmark::DoNotOptimize(plan);
+    }
+  }
+  std::sort(times.begin(), times.end());
+  const double median = times[times.size() / 2];
+  state.counters["median_ms"] = median;
+  state.counters["p95_ms"] = times[times.size() * 95 / 100];
+  if (variant == Variant::kFirstRound) firstRoundMedian = median;
+  if (variant != Variant::kFirstRound && firstRoundMedian > 0.0) state.counters["median_over_first_round"] = median / firstRoundMedian;
+}
+
+}  // namespace
+}  // namespace lang2manip
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  using lang2manip::Variant;
+  for (const auto& [name, variant] : {std::pair{"OfflinePlanning/FirstRound", Variant::kFirstRound},
+                                      std::pair{"OfflinePlanning/WithRepair", Variant::kWithRepair}}) {
+    const Variant chosen = variant;
+    benchmark::RegisterBenchmark(name, [chosen](benchmark::State& state) { lang2manip::planTheInstructions(state, chosen); })
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(20);
+  }
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
