@@ -23,6 +23,18 @@ struct Refusal {
 
 
 const Refusal kRefusals[] = {
+    // Contradictions: both requests named, nothing planned.
+    {D, "put the marker in the holder and keep it on the desk",
+     "it contradicts itself: it asks for marker in holder and to keep marker on desk"},
+    {D, "put the marker in the holder and on the desk", "it contradicts itself: marker in holder and marker on desk cannot both hold"},
+    {D, "put the eraser on the desk and into the holder", "it contradicts itself: eraser on desk and eraser in holder cannot both hold"},
+    {D, "put the marker to the left of the holder and to the right of the holder",
+     "marker left_of holder and marker right_of holder cannot both hold"},
+    {D, "place the eraser in front of the holder and behind the holder", "eraser in_front_of holder and eraser behind holder cannot both hold"},
+    {D, "put the eraser in the holder and leave the eraser where it is",
+     "it asks for eraser in holder and to leave eraser where it is"},
+    {D, "move the marker 5 cm to the left and leave it alone", "it asks for marker displaced by"},
+    {D, "keep the marker on the desk", "it asks for nothing the robot could do"},
     {D, "put the bottle in the holder",
      "could not ground \"the bottle\": no object matches (objects: desk, marker, eraser, holder)"},
     {D, "put the marker in the box", "could not ground \"the box\": no object matches"},

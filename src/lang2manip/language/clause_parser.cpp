@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "lang2manip/language/goal_conflicts.hpp"
 #include "lang2manip/symbolic/task_planner.hpp"
 
 namespace lang2manip::language_detail {
@@ -84,6 +85,10 @@ void StepParser::parsePredicate(Step& step) {
     parseHome(step);
     return;
   }
+  if (step.verb.keeps) {
+    parseKeep(step);
+    return;
+  }
   if (!step.verb.places && !step.verb.picks && !step.verb.pushes) {
     failStep(step, "the only place to " + step.verb.lemma + " is home");
   }
@@ -91,6 +96,25 @@ void StepParser::parsePredicate(Step& step) {
   if (!parseRelations(step) && !parseDisplacement(step)) parseWithoutPlace(step);
   parseGappedRelations(step);
   skipSource(step);
+}
+
+void StepParser::parseKeep(Step& step) {
+  parseObjects(step);
+  Goal kept;
+  kept.kind = GoalKind::kDisplaced;  // "where it is", "in place", "alone": not moved at all
+  if (const auto relation = vocabulary::matchRelation(step.words, step.at); relation && relation->relation) {
+    const std::optional<NounPhrase> target = reader_.read(step.words, step.at + relation->length);
+    if (!target) failStep(step, "expected where to keep it");
+    kept.kind = GoalKind::kRelation;
+    kept.relation = *relation->relation;
+    kept.target = groundTarget(step, *target, *relation->relation == SpatialRelation::kIn);
+    step.at = target->end;
+  }
+  step.at = step.words.size();
+  for (const std::string& object : step.objects) {
+    kept.object = object;
+    specification_.kept.push_back(kept);
+  }
 }
 
 std::size_t StepParser::sameAs(const Words& words, std::size_t at) {
@@ -448,6 +472,16 @@ void StepParser::parseGappedRelations(Step& step) {
     const std::size_t restart = step.at;
     std::size_t at = step.at + 1;
     if (matchesAt(step.words, at, {"and"})) ++at;
+    if (vocabulary::matchRelation(step.words, at)) {  // "on the desk and next to the holder"; refused when they conflict
+      step.at = at;
+      if (!parseRelation(step)) {
+        step.at = restart;
+        return;
+      }
+      refuseConflictingGoals({specification_.goals.begin() + static_cast<std::ptrdiff_t>(step.firstGoal), specification_.goals.end()},
+                             joinWords(step.words));
+      continue;
+    }
     const std::vector<NounPhrase> list = reader_.readList(step.words, at);
     if (list.empty()) return;
     step.at = list.back().end;

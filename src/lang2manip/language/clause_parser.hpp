@@ -52,6 +52,8 @@ class StepParser {
   void parsePredicate(Step& step);
   void parseSameAs(Step& step, std::size_t length);
   void parseHome(Step& step);
+  /// "keep X on Y", "leave X where it is": conditions (TaskSpecification::kept), not goals.
+  void parseKeep(Step& step);
   void parseObjects(Step& step);
   /// One or more relation phrases in a row; false when none.
   bool parseRelations(Step& step);

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "lang2manip/language/clause_parser.hpp"
+#include "lang2manip/language/goal_conflicts.hpp"
 #include "lang2manip/language/noun_phrase.hpp"
 #include "lang2manip/language/vocabulary.hpp"
 #include "lang2manip/symbolic/task_planner.hpp"
@@ -146,6 +147,7 @@ TaskSpecification understandInstruction(const std::string& text,
     const language_detail::StepModifiers modifiers = language_detail::extractModifiers(step);
     parser.parse(step, modifiers);
   }
+  language_detail::refuseMovingKeptObjects(specification.goals, specification.kept, text);
   if (specification.goals.empty()) {
     throwGroundingError(text, "it asks for nothing the robot could do");
   }

@@ -30,6 +30,10 @@ struct TaskSpecification {
   std::map<std::string, std::string> planners;
   /// The planner for every other action ("use PRM for everything"); empty = the default.
   std::string defaultPlanner;
+  /// What the instruction says must stay as it is ("keep the marker on the desk": a relation;
+  /// "leave the eraser where it is": a zero displacement). Not goals: an instruction whose goals
+  /// move a kept object is refused as contradicting itself.
+  std::vector<Goal> kept;
 };
 
 /// Understands `text` over `objects` (see describeObjects()).

@@ -67,6 +67,8 @@ const PhraseTable<Verb>& verbTable() {
       {"lift", makeVerb("lift", {&V::places, &V::picks})},
       {"lift up", makeVerb("lift", {&V::places, &V::picks})},
       {"hold", makeVerb("hold", {&V::picks})},
+      {"keep", makeVerb("keep", {&V::keeps})},
+      {"leave", makeVerb("leave", {&V::keeps})},
       {"fetch", makeVerb("fetch", {&V::places, &V::picks})},
       {"seize", makeVerb("seize", {&V::picks})},
       {"push", makeVerb("push", {&V::pushes, &V::places})},
