@@ -178,3 +178,31 @@ TEST(PaperTaskPlanners, EveryRegisteredGeometricPlannerSucceedsOnThePanda) {
 
 }  // namespace
 }  // namespace lang2manip::test
+
+namespace lang2manip::test {
+namespace {
+
+TEST(RepairByCarrying, APushTheHandHasNoRoomForIsCarriedInstead) {
+  Scene scene = deskScene("panda");
+  // A block 5 mm to the right of the eraser: the hand cannot get behind it to push it left.
+  scene.addObject(fixedBox("block", Vector3(0.06, 0.03, 0.05), Vector3(-0.02, 0.14, 0.75)));
+  TaskExecutor executor(scene, testSettings());
+  OfflineTaskPlanner planner;
+  PlanningRequest request;
+  request.task = "move the eraser 5 cm to the left";
+  request.scene = &scene;
+  request.robot = executor.arm().robotName();
+  const RepairResult repair = planWithRepair(planner, request, &executor, RepairOptions{}, StopCondition::never());
+  ASSERT_TRUE(repair.succeeded()) << repair.failure;
+  ASSERT_GE(repair.rounds.size(), 2u);
+  ASSERT_TRUE(repair.rounds[0].attempt.grounding.has_value());
+  EXPECT_EQ(repair.rounds[0].attempt.plan->actions[0].type, ActionType::kPush);  // its descent behind the eraser collides
+  ASSERT_EQ(repair.plan->actions.size(), 2u);
+  EXPECT_EQ(repair.plan->actions[0].type, ActionType::kPick);
+  const Vector3 moved = executor.lastExecution().finalScene.object("eraser").pose.translation() - scene.object("eraser").pose.translation();
+  EXPECT_NEAR(moved.x(), 0.0, 0.01);
+  EXPECT_NEAR(moved.y(), 0.05, 0.01);
+}
+
+}  // namespace
+}  // namespace lang2manip::test

@@ -3,7 +3,10 @@
 #include <atomic>
 #include <memory>
 
+#include "lang2manip/language/instruction.hpp"
+#include "lang2manip/language/object_descriptor.hpp"
 #include "lang2manip/language/offline_task_planner.hpp"
+#include "language/language_test_support.hpp"
 #include "language/language_test_scenes.hpp"
 
 namespace lang2manip {
@@ -157,6 +160,30 @@ TEST(OfflineTaskPlannerTest, FailureItCannotAnswerIsAnError) {
   request.earlierAttempts = {groundingFailure(plan, "holder", "motion")};
   message = planningErrorOf(planner, request);
   EXPECT_NE(message.find("the failure is not about an object the plan picks"), std::string::npos) << message;
+}
+
+TEST(OfflineTaskPlannerTest, APushThatFailedBecomesAPickAndPlaceByTheSameDisplacement) {
+  OfflineTaskPlanner planner;
+  const Scene scene = test::deskScene();
+  PlanningRequest request = requestFor(scene, "move the eraser 5 cm to the left");
+  const Plan pushed = firstPlan(planner, request);
+  ASSERT_EQ(pushed.actions.size(), 1u);
+  ASSERT_EQ(pushed.actions[0].type, ActionType::kPush);
+  request.earlierAttempts.push_back(groundingFailure(pushed, "eraser", "motion"));  // no way behind it
+  const Plan carried = firstPlan(planner, request);
+  ASSERT_EQ(carried.actions.size(), 2u);
+  EXPECT_EQ(carried.actions[0].type, ActionType::kPick);
+  EXPECT_EQ(carried.actions[1].type, ActionType::kPlace);
+  ASSERT_TRUE(carried.actions[1].params.position.has_value());
+  const Pose base = scene.robots().front().basePose;
+  const Vector3 start = base.inverse() * scene.object("eraser").pose.translation();
+  EXPECT_TRUE(carried.actions[1].params.position->isApprox(start + Vector3(0.0, 0.05, 0.0), 1e-9));
+  EXPECT_EQ(test::summarize(understandInstruction(request.task, describeObjects(scene))), describeGoal(carried.goals.front()));
+  // Carrying it failed at the grasp: another grasp, still carried.
+  request.earlierAttempts.push_back(groundingFailure(carried, "eraser", "grasp"));
+  const Plan regrasped = firstPlan(planner, request);
+  ASSERT_EQ(regrasped.actions.size(), 2u);
+  EXPECT_EQ(regrasped.actions[0].refinements.grasp, graspRetryOrder()[1]);
 }
 
 TEST(OfflineTaskPlannerTest, RoomOfContainersComesFromTheirCavities) {

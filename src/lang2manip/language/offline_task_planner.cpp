@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <set>
 
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/language/instruction.hpp"
 #include "lang2manip/language/object_descriptor.hpp"
 #include "lang2manip/symbolic/plan_validation.hpp"
+#include "lang2manip/symbolic/spatial_relations.hpp"
 #include "lang2manip/symbolic/symbolic_state.hpp"
 
 namespace lang2manip {
@@ -47,14 +49,34 @@ const std::string& objectToRegrasp(const PlanAttempt& attempt) {
   return failure.object;
 }
 
-/// Changes the grasps of `specification` for every failure of the earlier attempts, as the
-/// planner answered them in turn: each failure moves the failed object to its next untried grasp
-/// direction.
-void applyEarlierAttempts(const PlanningRequest& request, TaskSpecification& specification) {
+/// True when the action that failed in `attempt` is a push (at whatever stage: reaching behind
+/// the object, the push itself).
+bool failedAPush(const PlanAttempt& attempt) {
+  if (!attempt.plan || !attempt.grounding || attempt.grounding->object.empty()) return false;
+  const std::size_t index = attempt.grounding->actionIndex;
+  return index < attempt.plan->actions.size() && attempt.plan->actions[index].type == ActionType::kPush;
+}
+
+/// What the earlier attempts changed: the objects displaced by pick and place instead of a push.
+struct Answers {
+  std::set<std::string> pickedInsteadOfPushed;
+};
+
+/// Changes `specification` for every failure of the earlier attempts, as the planner answered
+/// them in turn: a push that failed becomes a pick and place by the same displacement; any other
+/// failure moves the failed object to its next untried grasp direction.
+Answers applyEarlierAttempts(const PlanningRequest& request, TaskSpecification& specification) {
+  Answers answers;
   const std::map<std::string, GraspDirection> requested = specification.grasps;
   std::map<std::string, std::vector<GraspDirection>> tried;
   const std::vector<GraspDirection> order = graspRetryOrder();
   for (const PlanAttempt& attempt : request.earlierAttempts) {
+    if (failedAPush(attempt)) {
+      if (!answers.pickedInsteadOfPushed.insert(attempt.grounding->object).second) {
+        nothingNewToTry("pushing " + attempt.grounding->object + " and carrying it both failed", attempt.failure);
+      }
+      continue;
+    }
     const std::string& object = objectToRegrasp(attempt);
     if (requested.count(object)) {
       nothingNewToTry("the instruction asks for a " + graspDirectionName(requested.at(object)) +
@@ -73,6 +95,38 @@ void applyEarlierAttempts(const PlanningRequest& request, TaskSpecification& spe
     }
     specification.grasps[object] = *untried;
   }
+  return answers;
+}
+
+/// `plan` with the push of each object in `picked` replaced by a pick (with the grasp of
+/// `specification`) and a place at the position the push would have left it (where it stands in
+/// `scene` plus the displacement, base frame).
+Plan carryInsteadOfPushing(const Plan& plan, const std::set<std::string>& picked, const TaskSpecification& specification,
+                           const Scene& scene, const std::string& robot) {
+  if (picked.empty()) return plan;
+  const Pose base = robotBaseFrame(scene, robot);
+  Plan carried = plan;
+  carried.actions.clear();
+  for (const SymbolicAction& action : plan.actions) {
+    if (action.type != ActionType::kPush || !picked.count(action.object) || !action.params.direction || !action.params.distance) {
+      carried.actions.push_back(action);
+      continue;
+    }
+    SymbolicAction pick;
+    pick.type = ActionType::kPick;
+    pick.object = action.object;
+    pick.planner = action.planner;
+    SymbolicAction place = pick;
+    if (const auto grasp = specification.grasps.find(action.object); grasp != specification.grasps.end()) {
+      pick.refinements.grasp = grasp->second;
+    }
+    place.type = ActionType::kPlace;
+    place.params.position = base.inverse() * scene.object(action.object).pose.translation() +
+                            *action.params.direction * *action.params.distance;
+    carried.actions.push_back(pick);
+    carried.actions.push_back(place);
+  }
+  return carried;
 }
 
 double smallestCrossSection(const SceneObject& object) {
@@ -115,8 +169,9 @@ Plan OfflineTaskPlanner::plan(const PlanningRequest& request, const StopConditio
   TaskSpecification specification = understandInstruction(request.task, objects);
   const SymbolicState state = observeSymbolicState(scene);
   const SequencingOptions options = sequencingOptionsFor(scene);
-  applyEarlierAttempts(request, specification);
-  Plan plan = sequenceGoals(specification, state, options);
+  const Answers answers = applyEarlierAttempts(request, specification);
+  Plan plan = carryInsteadOfPushing(sequenceGoals(specification, state, options), answers.pickedInsteadOfPushed,
+                                    specification, scene, request.robot);
   plan.goals = specification.goals;
   // What the world does not allow (an object on a round top, one too large for the top it is
   // put on) is refused here, with the reason, rather than tried.
