@@ -206,3 +206,32 @@ TEST(RepairByCarrying, APushTheHandHasNoRoomForIsCarriedInstead) {
 
 }  // namespace
 }  // namespace lang2manip::test
+
+namespace lang2manip::test {
+namespace {
+
+TEST(HandingOver, TheObjectIsHeldOutAtTheHandoverPositionOnEveryBuiltInRobot) {
+  for (const auto& [robot, arm] : {std::pair{"panda", ""}, std::pair{"ur5", ""}, std::pair{"iiwa14", ""},
+                                   std::pair{"tx90", ""}, std::pair{"yumi", "right_arm"}, std::pair{"yumi", "left_arm"}}) {
+    SCOPED_TRACE(std::string(robot) + " " + arm);
+    const Scene scene = deskScene(robot);
+    TaskExecutor executor(scene, testSettings(arm));
+    OfflineTaskPlanner planner;
+    PlanningRequest request;
+    request.task = "hand me the eraser";
+    request.scene = &scene;
+    request.robot = executor.arm().robotName();
+    const RepairResult repair = planWithRepair(planner, request, &executor, RepairOptions{}, StopCondition::never());
+    ASSERT_TRUE(repair.succeeded()) << repair.failure;
+    const std::vector<Goal> goals = understandInstruction(request.task, describeObjects(scene, request.robot)).goals;
+    const ExecutionVerification verification = verifyExecution(executor.arm(), scene, executor.lastExecution(), goals);
+    EXPECT_TRUE(verification.success) << (verification.goals.empty() ? "" : verification.goals.front().explanation);
+    // Dropped where it was, it is not handed over.
+    Goal elsewhere = goals.front();
+    elsewhere.object = "marker";
+    EXPECT_FALSE(verifyExecution(executor.arm(), scene, executor.lastExecution(), {elsewhere}).goals.front().holds);
+  }
+}
+
+}  // namespace
+}  // namespace lang2manip::test

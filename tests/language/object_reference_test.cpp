@@ -82,6 +82,47 @@ TEST(ObjectReferences, QuantifiersSuperlativesAndPlacesOnEveryBuiltInDesk) {
   }
 }
 
+TEST(HandingOver, EveryPhrasingHoldsTheObjectOutOnEveryBuiltInDesk) {
+  const std::pair<const char*, const char*> handovers[] = {
+      {"hand me the marker", "marker handed over"},
+      {"give the eraser to me", "eraser handed over"},
+      {"hand over the marker", "marker handed over"},
+      {"pass me the eraser", "eraser handed over"},
+      {"give me the longest object", "marker handed over"},
+      {"hand the marker over to the user", "marker handed over"},
+      {"please give the person the eraser", "eraser handed over"},
+      {"put the eraser in the holder, then hand me the marker", "eraser in holder; marker handed over"},
+      {"hand me the marker, then put it in the holder", "marker in holder"},
+  };
+  for (const BuiltinProblem& problem : builtinProblems()) {
+    SCOPED_TRACE(problem.shortName);
+    const Scene scene = readKauthamProblem(problem.file).scene;
+    const SymbolicState state = observeSymbolicState(scene);
+    for (const auto& [instruction, expected] : handovers) {
+      SCOPED_TRACE(instruction);
+      try {
+        const TaskSpecification specification = understandInstruction(instruction, describeObjects(scene));
+        EXPECT_EQ(test::summarize(specification), expected);
+        const Plan plan = sequenceGoals(specification, state, sequencingOptionsFor(scene));
+        EXPECT_EQ(test::checkPlan(plan, state, specification), "");
+      } catch (const PlanningError& error) {
+        ADD_FAILURE() << "refused: " << error.what();
+      }
+    }
+  }
+  const Scene scene = readKauthamProblem(resolveProblem("panda_desk")).scene;
+  for (const auto& [instruction, fragment] : {std::pair{"give the marker to the holder", "a handover goes to a person"},
+                                              std::pair{"hand me the marker and the eraser", "one object at a time"}}) {
+    SCOPED_TRACE(instruction);
+    try {
+      (void)understandInstruction(instruction, describeObjects(scene));
+      ADD_FAILURE() << "understood";
+    } catch (const PlanningError& error) {
+      EXPECT_NE(std::string(error.what()).find(fragment), std::string::npos) << error.what();
+    }
+  }
+}
+
 TEST(ObjectReferences, TheRobotIsAReferenceToo) {
   const Scene scene = readKauthamProblem(resolveProblem("panda_desk")).scene;
   // Panda desk, base frame: the eraser's nearest corner is 0.389 m from the base, the marker's 0.394 m.

@@ -120,6 +120,17 @@ TEST(PlanParserTest, GoalStatementRoundTripsThroughTheDocument) {
   EXPECT_TRUE(parsePlan(paperPlan(), parserDeskContext()).goals.empty());  // a plan without goals is still a plan
 }
 
+TEST(PlanParserTest, AHandoverGoalNamesItsObject) {
+  json document = paperPlan();
+  document["goals"] = {{{"kind", "handed_over"}, {"object", "marker"}}};
+  const Plan plan = parsePlan(document, parserDeskContext());
+  ASSERT_EQ(plan.goals.size(), 1U);
+  EXPECT_EQ(describeGoal(plan.goals[0]), "marker handed over");
+  EXPECT_EQ(toJson(plan)["goals"][0]["kind"], "handed_over");
+  document["goals"] = {{{"kind", "handed_over"}}};
+  EXPECT_THAT(problemsOf(document), Contains(HasSubstr("goals[0].object: missing; a handed_over goal needs it")));
+}
+
 TEST(PlanParserTest, PlannerNamesAreCheckedOnlyWhenTheContextListsThem) {
   json document = paperPlan();
   document["actions"][0]["planner"] = "AnyPlanner";
@@ -163,7 +174,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"UnknownTopField", [](json& d) { d["notes"] = "x"; }, "notes: unknown field (valid fields: actions, reasoning, goals)"},
         BadCase{"GoalsNotArray", [](json& d) { d["goals"] = "marker in holder"; }, "goals: expected an array of goals, got string"},
         BadCase{"GoalNotObject", [](json& d) { d["goals"] = {1}; }, "goals[0]: expected a goal object, got number 1"},
-        BadCase{"GoalUnknownKind", [](json& d) { d["goals"] = {{{"kind", "tidy"}}}; }, "goals[0].kind: unknown kind string \"tidy\" (kinds: relation, holding, displaced, at_configuration)"},
+        BadCase{"GoalUnknownKind", [](json& d) { d["goals"] = {{{"kind", "tidy"}}}; }, "goals[0].kind: unknown kind string \"tidy\" (kinds: relation, holding, displaced, at_configuration, handed_over)"},
         BadCase{"GoalMissingKind", [](json& d) { d["goals"] = {{{"object", "marker"}}}; }, "goals[0].kind: missing"},
         BadCase{"GoalUnknownObject", [](json& d) { d["goals"] = {{{"kind", "holding"}, {"object", "cup"}}}; }, "goals[0].object: unknown object \"cup\" (objects: "},
         BadCase{"GoalRelationWithoutTarget", [](json& d) { d["goals"] = {{{"kind", "relation"}, {"object", "marker"}, {"relation", "in"}}}; }, "goals[0].target: missing; a relation goal needs it"},

@@ -55,6 +55,25 @@ std::vector<std::string> disturbed(const Scene& initial, const ExecutionRecord& 
   return moved;
 }
 
+/// Held by the arm, with the tool within 2 cm of handoverToolPosition().
+GoalOutcome evaluateHandover(const ArmContext& arm, const ExecutionRecord& record, const Goal& goal) {
+  GoalOutcome outcome;
+  outcome.goal = goal;
+  const Scene& world = record.finalScene;
+  const Attachment* held = world.findAttachment(goal.object);
+  if (held == nullptr || held->robot != arm.robotName()) {
+    outcome.explanation = describeGoal(goal) + ": does not hold (" + goal.object + " is not held)";
+    return outcome;
+  }
+  const Pose tool = robotBaseFrame(world, arm.robotName()).inverse() * arm.toolPose(world, world.robot(arm.robotName()).configuration);
+  const double off = (tool.translation() - handoverToolPosition()).norm();
+  outcome.holds = off <= 0.02;
+  char text[96];
+  std::snprintf(text, sizeof text, ": %s (the tool is %.3f m from the handover position)", outcome.holds ? "holds" : "does not hold", off);
+  outcome.explanation = describeGoal(goal) + text;
+  return outcome;
+}
+
 GoalOutcome evaluate(const Scene& initial, const ExecutionRecord& record, const Goal& goal, const std::string& robot) {
   GoalOutcome outcome;
   outcome.goal = goal;
@@ -78,7 +97,10 @@ ExecutionVerification verifyExecution(const ArmContext& arm, const Scene& initia
   const auto began = std::chrono::steady_clock::now();
   ExecutionVerification result;
   result.collision = firstCollision(arm, record, result);
-  for (const Goal& goal : goals) result.goals.push_back(evaluate(initial, record, goal, arm.robotName()));
+  for (const Goal& goal : goals) {
+    result.goals.push_back(goal.kind == GoalKind::kHandedOver ? evaluateHandover(arm, record, goal)
+                                                              : evaluate(initial, record, goal, arm.robotName()));
+  }
   result.disturbedObjects = disturbed(initial, record);
   bool goalsHold = !result.goals.empty();
   for (const GoalOutcome& goal : result.goals) goalsHold = goalsHold && goal.holds;

@@ -89,6 +89,10 @@ void StepParser::parsePredicate(Step& step) {
     parseKeep(step);
     return;
   }
+  if (step.verb.handsOver) {
+    parseHandOver(step);
+    return;
+  }
   if (!step.verb.places && !step.verb.picks && !step.verb.pushes) {
     failStep(step, "the only place to " + step.verb.lemma + " is home");
   }
@@ -96,6 +100,29 @@ void StepParser::parsePredicate(Step& step) {
   if (!parseRelations(step) && !parseDisplacement(step)) parseWithoutPlace(step);
   parseGappedRelations(step);
   skipSource(step);
+}
+
+void StepParser::parseHandOver(Step& step) {
+  static const std::vector<Words> person{{"me"}, {"us"}, {"the", "user"}, {"the", "person"}, {"the", "human"}, {"the", "operator"}};
+  auto skipPerson = [&step](std::size_t from) {
+    for (const Words& words : person) {
+      if (matchesAt(step.words, from, words)) return from + words.size();
+    }
+    return from;
+  };
+  step.at = skipPerson(step.at);  // "hand me the marker"
+  parseObjects(step);
+  if (step.next("over")) ++step.at;
+  if (step.next("to")) {
+    const std::size_t after = skipPerson(step.at + 1);
+    if (after == step.at + 1) failStep(step, "a handover goes to a person (\"to me\"), not to an object");
+    step.at = after;
+  }
+  if (step.objects.size() != 1) failStep(step, "the robot hands over one object at a time");
+  Goal goal;
+  goal.kind = GoalKind::kHandedOver;
+  goal.object = step.objects.front();
+  specification_.goals.push_back(goal);
 }
 
 void StepParser::parseKeep(Step& step) {

@@ -54,6 +54,8 @@ class StepParser {
   void parseHome(Step& step);
   /// "keep X on Y", "leave X where it is": conditions (TaskSpecification::kept), not goals.
   void parseKeep(Step& step);
+  /// "hand me X", "give X to the user": X held out at handoverToolPosition().
+  void parseHandOver(Step& step);
   void parseObjects(Step& step);
   /// One or more relation phrases in a row; false when none.
   bool parseRelations(Step& step);

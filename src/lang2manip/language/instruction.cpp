@@ -91,7 +91,7 @@ void checkHoldingGoals(const TaskSpecification& specification) {
   std::vector<std::string> held;
   for (std::size_t i = 0; i < specification.goals.size(); ++i) {
     const Goal& goal = specification.goals[i];
-    if (goal.kind != GoalKind::kHolding) continue;
+    if (goal.kind != GoalKind::kHolding && goal.kind != GoalKind::kHandedOver) continue;
     const bool superseded = std::any_of(specification.goals.begin() + static_cast<std::ptrdiff_t>(i) + 1,
                                         specification.goals.end(),
                                         [&goal](const Goal& later) { return involves(later, goal.object); });
@@ -113,7 +113,8 @@ void checkHoldingGoals(const TaskSpecification& specification) {
 /// goes to a configuration and later does anything else.
 bool supersedes(const Goal& later, const Goal& earlier) {
   switch (earlier.kind) {
-    case GoalKind::kHolding: return involves(later, earlier.object);
+    case GoalKind::kHolding:
+    case GoalKind::kHandedOver: return involves(later, earlier.object);
     case GoalKind::kRelation:
       return involves(later, earlier.object) && (later.kind == GoalKind::kRelation || later.kind == GoalKind::kHolding);
     case GoalKind::kAtConfiguration: return true;

@@ -148,7 +148,8 @@ class Sequencer {
         if (goal.relation == SpatialRelation::kOn) return lookup(state.onTopOf, goal.object) == goal.target;
         return world.achieved.count(index) > 0;
       case GoalKind::kHolding: return state.held == goal.object;
-      case GoalKind::kDisplaced: return world.achieved.count(index) > 0;
+      case GoalKind::kDisplaced:
+      case GoalKind::kHandedOver: return world.achieved.count(index) > 0;
       case GoalKind::kAtConfiguration: return state.atConfiguration == goal.configuration;
     }
     return false;
@@ -161,13 +162,28 @@ class Sequencer {
 
   void achieve(std::size_t index, World& world) {
     const Goal& goal = goals_[index];
-    if (goal.kind != GoalKind::kDisplaced && holds(goal, index, world)) return;
+    if (goal.kind != GoalKind::kDisplaced && goal.kind != GoalKind::kHandedOver && holds(goal, index, world)) return;
     switch (goal.kind) {
       case GoalKind::kRelation: achieveRelation(index, world); return;
       case GoalKind::kHolding: hold(world, goal.object); return;
       case GoalKind::kDisplaced: push(index, world); return;
       case GoalKind::kAtConfiguration: moveTo(world, goal.configuration); return;
+      case GoalKind::kHandedOver: handOver(index, world); return;
     }
+  }
+
+  /// Holds the object out at the handover position (picking it first).
+  void handOver(std::size_t index, World& world) {
+    const Goal& goal = goals_[index];
+    hold(world, goal.object);
+    SymbolicAction action;
+    action.type = ActionType::kMove;
+    action.object = goal.object;
+    action.params.position = handoverToolPosition();
+    action.planner = plannerFor(goal.object);
+    world.actions.push_back(action);
+    world.state.atConfiguration.clear();
+    world.achieved.insert(index);
   }
 
   void achieveRelation(std::size_t index, World& world) {

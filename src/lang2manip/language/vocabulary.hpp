@@ -25,6 +25,7 @@ struct Verb {
   bool putsDown = false;   ///< "put down X", "drop X": on the support when no relation is given
   bool nudges = false;     ///< a small default push distance when none is given
   bool keeps = false;      ///< "keep X on Y", "leave X where it is": a condition, not a goal
+  bool handsOver = false;  ///< "hand me X", "give X to me": held out at the handover position
 };
 
 struct VerbMatch {

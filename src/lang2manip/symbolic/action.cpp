@@ -96,8 +96,13 @@ std::string describeGoal(const Goal& goal) {
     case GoalKind::kAtConfiguration:
       text << "at " << goal.configuration;
       break;
+    case GoalKind::kHandedOver:
+      text << goal.object << " handed over";
+      break;
   }
   return text.str();
 }
+
+Vector3 handoverToolPosition() { return {0.40, 0.0, 0.25}; }
 
 }  // namespace lang2manip

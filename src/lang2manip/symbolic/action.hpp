@@ -81,7 +81,13 @@ enum class GoalKind {
   kDisplaced,
   /// The robot is at the named `configuration` (e.g. "home").
   kAtConfiguration,
+  /// The robot holds `object` out to a person at handoverToolPosition() ("hand me the marker").
+  kHandedOver,
 };
+
+/// Where the robot holds an object out to a person: the tool 0.40 m in front of the robot's base
+/// and 0.25 m above it (robot base frame, metres), its orientation kept.
+Vector3 handoverToolPosition();
 
 struct Goal {
   GoalKind kind = GoalKind::kRelation;

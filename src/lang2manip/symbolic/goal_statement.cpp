@@ -12,7 +12,7 @@ namespace {
 using nlohmann::json;
 
 constexpr GoalKind kGoalKinds[] = {GoalKind::kRelation, GoalKind::kHolding, GoalKind::kDisplaced,
-                                   GoalKind::kAtConfiguration};
+                                   GoalKind::kAtConfiguration, GoalKind::kHandedOver};
 const std::vector<std::string> kGoalFields{"kind", "object", "relation", "target", "distance", "displacement", "configuration"};
 
 json nullableOf(const json& type, const std::string& description) {
@@ -66,6 +66,7 @@ class GoalReader {
     switch (kind) {
       case GoalKind::kRelation: return {"object", "relation", "target"};
       case GoalKind::kHolding: return {"object"};
+      case GoalKind::kHandedOver: return {"object"};
       case GoalKind::kDisplaced: return {"object", "displacement"};
       case GoalKind::kAtConfiguration: return {"configuration"};
     }
@@ -164,6 +165,7 @@ std::string goalKindName(GoalKind kind) {
     case GoalKind::kHolding: return "holding";
     case GoalKind::kDisplaced: return "displaced";
     case GoalKind::kAtConfiguration: return "at_configuration";
+    case GoalKind::kHandedOver: return "handed_over";
   }
   return "unknown";
 }
@@ -177,7 +179,7 @@ nlohmann::json goalStatementSchema() {
       {"type", "object"},
       {"description", "One condition of the final state"},
       {"properties",
-       {{"kind", {{"type", "string"}, {"enum", kinds}, {"description", "relation, holding, displaced or at_configuration"}}},
+       {{"kind", {{"type", "string"}, {"enum", kinds}, {"description", "relation, holding, displaced, at_configuration or handed_over"}}},
         {"object", nullableOf({{"type", "string"}}, "The object the goal is about (null for at_configuration)")},
         {"relation", nullableOf({{"type", "string"}, {"enum", relations}}, "relation: where the object ends up relative to target")},
         {"target", nullableOf({{"type", "string"}}, "relation: the reference object")},

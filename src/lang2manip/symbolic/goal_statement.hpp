@@ -13,7 +13,7 @@
 
 namespace lang2manip {
 
-/// "relation", "holding", "displaced", "at_configuration".
+/// "relation", "holding", "displaced", "at_configuration", "handed_over".
 std::string goalKindName(GoalKind kind);
 
 /// The JSON Schema (strict mode: every field given, null where it does not apply) of the

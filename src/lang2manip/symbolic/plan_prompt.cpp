@@ -26,7 +26,7 @@ RULES.
 4. Push needs a free gripper.
 5. Give every field of every action; use null for values that do not apply.
 6. Answer with ONE JSON object that follows the schema below and nothing else: no prose, no code fences. Put any explanation in "reasoning".
-7. In "goals", state the final state the task asks for, one condition per entry: {"kind": "relation", "object", "relation", "target"} (an object in, on or beside another at the end), {"kind": "holding", "object"} (the robot still holds it), {"kind": "displaced", "object", "displacement": {x, y, z}} (moved by that many metres), {"kind": "at_configuration", "configuration"} (e.g. "home"). Only the end state: not a step a later action undoes (a pick followed by a place of the same object is not "holding"). Every goal is checked against the world after the plan runs.
+7. In "goals", state the final state the task asks for, one condition per entry: {"kind": "relation", "object", "relation", "target"} (an object in, on or beside another at the end), {"kind": "holding", "object"} (the robot still holds it), {"kind": "displaced", "object", "displacement": {x, y, z}} (moved by that many metres), {"kind": "at_configuration", "configuration"} (e.g. "home"), {"kind": "handed_over", "object"} (held out to the person: move it with params.position {"x": 0.40, "y": 0.0, "z": 0.25}, the handover position of the tool). Only the end state: not a step a later action undoes (a pick followed by a place of the same object is not "holding"). Every goal is checked against the world after the plan runs.
 8. If an earlier answer was rejected, read the failure, fix the plan and answer again with a complete plan.
 )";
 

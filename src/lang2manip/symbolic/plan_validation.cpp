@@ -208,6 +208,7 @@ PlanValidation validatePlan(const Plan& plan, const SymbolicState& initial) {
 std::optional<bool> goalHolds(const SymbolicState& state, const Goal& goal) {
   switch (goal.kind) {
     case GoalKind::kHolding:
+    case GoalKind::kHandedOver:  // symbolically: held (where the tool is is geometric)
       return state.held == goal.object;
     case GoalKind::kAtConfiguration:
       return state.atConfiguration == goal.configuration;

@@ -121,6 +121,9 @@ std::vector<SpatialRelation> directionalRelations(const Vector3& offset, double 
 
 GoalCheck checkGoalInScene(const Scene& scene, const Goal& goal, const GoalCheckOptions& options) {
   if (goal.kind == GoalKind::kDisplaced) return checkDisplaced(scene, goal, options);
+  if (goal.kind == GoalKind::kHandedOver) {
+    throw InputError("goal \"" + describeGoal(goal) + "\": where the tool is needs the robot's kinematics (verifyExecution checks it)");
+  }
   if (goal.kind != GoalKind::kRelation) {
     if (goal.kind == GoalKind::kHolding) objectNamed(scene, goal.object, "object");
     return checkSymbolic(scene, goal, options);
