@@ -59,7 +59,7 @@ TEST(MotionPlanner, EveryValidStateSamplerSolves) {
     MotionPlanner planner(planarArmSpace());
     PlannerSettings settings;
     settings.setPlanner("PRM");
-    settings.setParameter("_Max Planning Time", std::to_string(1.0 * kTimeLimitScale));
+    settings.setParameter("_Max Planning Time", std::to_string(0.5 * kTimeLimitScale));
     settings.setParameter("_Valid State Sampler", sampler);
     const MotionPlan plan = planner.solve(planarStart(), {planarGoal()}, settings, StopCondition::never());
     EXPECT_TRUE(plan.solved()) << sampler << ": " << plan.message;
