@@ -182,17 +182,22 @@ TEST(PaperTaskPlanners, EveryRegisteredGeometricPlannerSucceedsOnThePanda) {
 namespace lang2manip::test {
 namespace {
 
+/// `task` planned by the offline planner and executed by `executor` through the repair loop.
+RepairResult planOfflineWithRepair(const Scene& scene, TaskExecutor& executor, const std::string& task) {
+  OfflineTaskPlanner planner;
+  PlanningRequest request;
+  request.task = task;
+  request.scene = &scene;
+  request.robot = executor.arm().robotName();
+  return planWithRepair(planner, request, &executor, RepairOptions{}, StopCondition::never());
+}
+
 TEST(RepairByCarrying, APushTheHandHasNoRoomForIsCarriedInstead) {
   Scene scene = deskScene("panda");
   // A block 5 mm to the right of the eraser: the hand cannot get behind it to push it left.
   scene.addObject(fixedBox("block", Vector3(0.06, 0.03, 0.05), Vector3(-0.02, 0.14, 0.75)));
   TaskExecutor executor(scene, testSettings());
-  OfflineTaskPlanner planner;
-  PlanningRequest request;
-  request.task = "move the eraser 5 cm to the left";
-  request.scene = &scene;
-  request.robot = executor.arm().robotName();
-  const RepairResult repair = planWithRepair(planner, request, &executor, RepairOptions{}, StopCondition::never());
+  const RepairResult repair = planOfflineWithRepair(scene, executor, "move the eraser 5 cm to the left");
   ASSERT_TRUE(repair.succeeded()) << repair.failure;
   ASSERT_GE(repair.rounds.size(), 2u);
   ASSERT_TRUE(repair.rounds[0].attempt.grounding.has_value());
@@ -216,14 +221,9 @@ TEST(HandingOver, TheObjectIsHeldOutAtTheHandoverPositionOnEveryBuiltInRobot) {
     SCOPED_TRACE(std::string(robot) + " " + arm);
     const Scene scene = deskScene(robot);
     TaskExecutor executor(scene, testSettings(arm));
-    OfflineTaskPlanner planner;
-    PlanningRequest request;
-    request.task = "hand me the eraser";
-    request.scene = &scene;
-    request.robot = executor.arm().robotName();
-    const RepairResult repair = planWithRepair(planner, request, &executor, RepairOptions{}, StopCondition::never());
+    const RepairResult repair = planOfflineWithRepair(scene, executor, "hand me the eraser");
     ASSERT_TRUE(repair.succeeded()) << repair.failure;
-    const std::vector<Goal> goals = understandInstruction(request.task, describeObjects(scene, request.robot)).goals;
+    const std::vector<Goal> goals = understandInstruction("hand me the eraser", describeObjects(scene, executor.arm().robotName())).goals;
     const ExecutionVerification verification = verifyExecution(executor.arm(), scene, executor.lastExecution(), goals);
     EXPECT_TRUE(verification.success) << (verification.goals.empty() ? "" : verification.goals.front().explanation);
     // Dropped where it was, it is not handed over.

@@ -317,18 +317,7 @@ TEST(InstructionCorpusTest, IntermediateStepsAreNotGoalsOnEveryBuiltInDesk) {
   for (const BuiltinProblem& problem : builtinProblems()) {
     SCOPED_TRACE(problem.shortName);
     const Scene scene = readKauthamProblem(problem.file).scene;
-    const SymbolicState state = observeSymbolicState(scene);
-    for (const auto& [instruction, expected] : kIntermediateSteps) {
-      SCOPED_TRACE(instruction);
-      try {
-        const TaskSpecification specification = understandInstruction(instruction, describeObjects(scene));
-        EXPECT_EQ(test::summarize(specification), expected);
-        const Plan plan = sequenceGoals(specification, state, sequencingOptionsFor(scene));
-        EXPECT_EQ(test::checkPlan(plan, state, specification), "");
-      } catch (const PlanningError& error) {
-        ADD_FAILURE() << "refused: " << error.what();
-      }
-    }
+    test::expectUnderstoodAndPlanned(scene, kIntermediateSteps);
   }
 }
 

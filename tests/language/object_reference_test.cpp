@@ -57,18 +57,7 @@ TEST(ObjectReferences, QuantifiersSuperlativesAndPlacesOnEveryBuiltInDesk) {
   for (const BuiltinProblem& problem : builtinProblems()) {
     SCOPED_TRACE(problem.shortName);
     const Scene scene = readKauthamProblem(problem.file).scene;
-    const SymbolicState state = observeSymbolicState(scene);
-    for (const auto& [instruction, expected] : kReferences) {
-      SCOPED_TRACE(instruction);
-      try {
-        const TaskSpecification specification = understandInstruction(instruction, describeObjects(scene));
-        EXPECT_EQ(test::summarize(specification), expected);
-        const Plan plan = sequenceGoals(specification, state, sequencingOptionsFor(scene));
-        EXPECT_EQ(test::checkPlan(plan, state, specification), "");
-      } catch (const PlanningError& error) {
-        ADD_FAILURE() << "refused: " << error.what();
-      }
-    }
+    test::expectUnderstoodAndPlanned(scene, kReferences);
     // The desks differ in which object lies nearer to the holder.
     const std::pair<const char*, bool> byDistance[] = {{"put the object closest to the holder in the holder", true},
                                                       {"put the thing nearest to the holder into the holder", true},
@@ -97,18 +86,7 @@ TEST(HandingOver, EveryPhrasingHoldsTheObjectOutOnEveryBuiltInDesk) {
   for (const BuiltinProblem& problem : builtinProblems()) {
     SCOPED_TRACE(problem.shortName);
     const Scene scene = readKauthamProblem(problem.file).scene;
-    const SymbolicState state = observeSymbolicState(scene);
-    for (const auto& [instruction, expected] : handovers) {
-      SCOPED_TRACE(instruction);
-      try {
-        const TaskSpecification specification = understandInstruction(instruction, describeObjects(scene));
-        EXPECT_EQ(test::summarize(specification), expected);
-        const Plan plan = sequenceGoals(specification, state, sequencingOptionsFor(scene));
-        EXPECT_EQ(test::checkPlan(plan, state, specification), "");
-      } catch (const PlanningError& error) {
-        ADD_FAILURE() << "refused: " << error.what();
-      }
-    }
+    test::expectUnderstoodAndPlanned(scene, handovers);
   }
   const Scene scene = readKauthamProblem(resolveProblem("panda_desk")).scene;
   for (const auto& [instruction, fragment] : {std::pair{"give the marker to the holder", "a handover goes to a person"},

@@ -1,5 +1,13 @@
 #include "language/plan_check.hpp"
 
+#include <gtest/gtest.h>
+
+#include "lang2manip/language/object_descriptor.hpp"
+#include "lang2manip/language/offline_task_planner.hpp"
+#include "lang2manip/language/sequencer.hpp"
+#include "lang2manip/symbolic/task_planner.hpp"
+#include "language/language_test_support.hpp"
+
 namespace lang2manip::test {
 namespace {
 
@@ -94,6 +102,22 @@ std::string checkPlan(const Plan& plan, SymbolicState state,
     }
   }
   return "";
+}
+
+void expectUnderstoodAndPlanned(const Scene& scene, std::span<const std::pair<const char*, const char*>> cases) {
+  const SymbolicState state = observeSymbolicState(scene);
+  const std::vector<ObjectDescriptor> objects = describeObjects(scene);
+  for (const auto& [instruction, expected] : cases) {
+    SCOPED_TRACE(instruction);
+    try {
+      const TaskSpecification specification = understandInstruction(instruction, objects);
+      EXPECT_EQ(summarize(specification), expected);
+      const Plan plan = sequenceGoals(specification, state, sequencingOptionsFor(scene));
+      EXPECT_EQ(checkPlan(plan, state, specification), "");
+    } catch (const PlanningError& error) {
+      ADD_FAILURE() << "refused: " << error.what();
+    }
+  }
 }
 
 }  // namespace lang2manip::test

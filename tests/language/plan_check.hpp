@@ -2,7 +2,9 @@
 /// @file An independent check of plans for the language tests: replays the actions on a
 /// symbolic state, checking each precondition, then checks the goals that must hold at the end.
 
+#include <span>
 #include <string>
+#include <utility>
 
 #include "lang2manip/language/instruction.hpp"
 #include "lang2manip/symbolic/action.hpp"
@@ -15,5 +17,9 @@ namespace lang2manip::test {
 /// marker".
 std::string checkPlan(const Plan& plan, SymbolicState state,
                       const TaskSpecification& specification);
+
+/// Expects every instruction of `cases` to mean its goals (as summarize() writes them) on `scene`
+/// and to get a plan checkPlan() accepts; a refusal is a test failure naming why.
+void expectUnderstoodAndPlanned(const Scene& scene, std::span<const std::pair<const char*, const char*>> cases);
 
 }  // namespace lang2manip::test

@@ -275,10 +275,7 @@ bool MotionPlanner::mendPath(const StopCondition& stop, MotionPlan& plan) const 
   if (plan.rawPath != plan.path) candidates.push_back(plan.rawPath);
   std::optional<RepairedPath> repaired;
   for (std::size_t c = 0; c < candidates.size() && !repaired && !stop.shouldStop(); ++c) {
-    // Planned at a quarter of the verification step, so that a detour that ends its extensions
-    // next to an obstacle stays clear of the states any later check at the verification step
-    // samples.
-    repaired = repairCollidingSegments(*space_, candidates[c], options_.verificationResolution / 4.0, stop, ompl_->counters);
+    repaired = repairCollidingSegments(*space_, candidates[c], options_.verificationResolution, stop, ompl_->counters);
   }
   plan.statistics.repairSeconds += secondsSince(repairStart);
   if (!repaired) return false;

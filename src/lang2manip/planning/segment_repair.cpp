@@ -12,6 +12,11 @@ namespace {
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
 
+// A segment not mended within half a second is usually one no detour nearby mends (an end touching
+// an obstacle): the time is better spent planning the query again.
+constexpr double kMinSegmentSeconds = 0.05;
+constexpr double kMaxSegmentSeconds = 0.5;
+
 ob::ScopedState<> scopedState(const ob::SpaceInformationPtr& si, const VectorX& x) {
   ob::ScopedState<> state(si);
   for (Eigen::Index i = 0; i < x.size(); ++i) state[static_cast<unsigned int>(i)] = x[i];
@@ -27,7 +32,8 @@ std::optional<std::vector<VectorX>> planSegment(const ob::SpaceInformationPtr& s
   if (const auto range = space.defaultRange()) planner.setRange(*range);
   planner.setProblemDefinition(problem);
   planner.setup();
-  const StopCondition limit = stop.orElse(StopCondition::afterSeconds(std::max(0.05, 0.5 * stop.secondsLeft())));
+  const StopCondition limit =
+      stop.orElse(StopCondition::afterSeconds(std::clamp(0.5 * stop.secondsLeft(), kMinSegmentSeconds, kMaxSegmentSeconds)));
   const ob::PlannerStatus status = planner.solve(ob::PlannerTerminationCondition([&limit] { return limit.shouldStop(); }));
   std::optional<std::vector<VectorX>> points;
   if (status == ob::PlannerStatus::EXACT_SOLUTION && problem->hasExactSolution()) {
