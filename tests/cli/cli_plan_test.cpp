@@ -93,7 +93,8 @@ TEST(CliPlan, OfflineJsonIsThePlanDocument) {
   // The goal statement: what the instruction asks for at the end.
   ASSERT_EQ(plan["goals"].size(), 2U);
   EXPECT_EQ(plan["goals"][0], json({{"kind", "relation"}, {"object", "marker"}, {"relation", "in"}, {"target", "holder"},
-                                    {"distance", nullptr}, {"displacement", nullptr}, {"configuration", nullptr}}));
+                                    {"distance", nullptr}, {"displacement", nullptr}, {"configuration", nullptr},
+                                    {"position", nullptr}, {"angle", nullptr}}));
 }
 
 TEST(CliPlan, OfflinePlansOnOtherBuiltInProblems) {

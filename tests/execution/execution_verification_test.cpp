@@ -91,7 +91,7 @@ TEST_F(Verification, AGoalThatDoesNotHoldFailsTheRun) {
   EXPECT_FALSE(verifyExecution(executor_.arm(), executor_.initialScene(), record_, {}).success) << "no goal, no success";
 }
 
-TEST(GoalsImpliedByPlan, LastPlacementPushesHoldingAndConfiguration) {
+TEST(GoalsImpliedByPlan, LastPlacementPushesHoldingConfigurationAndPositions) {
   SymbolicAction placeAtPose;
   placeAtPose.type = ActionType::kPlace;
   placeAtPose.object = "eraser";
@@ -106,7 +106,11 @@ TEST(GoalsImpliedByPlan, LastPlacementPushesHoldingAndConfiguration) {
   EXPECT_NEAR(goals[1].displacement.y(), 0.05, 1e-12);
   EXPECT_EQ(goals[2].kind, GoalKind::kHolding);
   EXPECT_EQ(goals[3].kind, GoalKind::kAtConfiguration);
-  EXPECT_TRUE(goalsImpliedByPlan(planOf({placeAtPose})).empty());
+  // A place at a position: the object stands there at the end.
+  const std::vector<Goal> atPose = goalsImpliedByPlan(planOf({pickAction("eraser"), placeAtPose}));
+  ASSERT_EQ(atPose.size(), 1u);
+  EXPECT_EQ(atPose[0].kind, GoalKind::kAtPosition);
+  EXPECT_TRUE(atPose[0].position->isApprox(Vector3(0.3, 0.0, 0.0)));
 }
 
 }  // namespace

@@ -78,7 +78,7 @@ TEST_P(PlacementOnRobot, EraserOnTheDeskAndBesideTheMarker) {
                             SpatialRelation::kBehind, SpatialRelation::kNextTo}) {
     const PlacementPlan plan = place(reach, "eraser", relation(r, "marker"));
     ASSERT_TRUE(plan.success()) << spatialRelationName(r) << ": " << plan.reason;
-    Goal goal{GoalKind::kRelation, "eraser", r, "marker", {}, Vector3::Zero(), {}};
+    Goal goal{GoalKind::kRelation, "eraser", r, "marker", {}, Vector3::Zero(), {}, {}, 0.0};
     const GoalCheck check = checkGoalInScene(placed(reach, plan), goal);
     EXPECT_TRUE(check.holds) << check.explanation;
   }
@@ -90,7 +90,7 @@ TEST(Placement, GivenDistanceIsKept) {
   const ReachabilityChecker reach = reachFor("panda", deskScene("panda"));
   const PlacementPlan plan = place(reach, "eraser", relation(SpatialRelation::kLeftOf, "marker", 0.12));
   ASSERT_TRUE(plan.success()) << plan.reason;
-  Goal goal{GoalKind::kRelation, "eraser", SpatialRelation::kLeftOf, "marker", 0.12, Vector3::Zero(), {}};
+  Goal goal{GoalKind::kRelation, "eraser", SpatialRelation::kLeftOf, "marker", 0.12, Vector3::Zero(), {}, {}, 0.0};
   EXPECT_TRUE(checkGoalInScene(placed(reach, plan), goal).holds);
 }
 

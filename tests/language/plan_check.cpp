@@ -1,5 +1,7 @@
 #include "language/plan_check.hpp"
 
+#include <map>
+
 #include <gtest/gtest.h>
 
 #include "lang2manip/language/object_descriptor.hpp"
@@ -20,7 +22,7 @@ std::string checkPick(const SymbolicAction& action, const SymbolicState& state) 
 
 std::string checkPlace(const SymbolicAction& action, const SymbolicState& state) {
   if (state.held != action.object) return "not holding " + action.object;
-  if (!action.params.relation) return "no relation";
+  if (!action.params.relation) return action.params.position ? "" : "neither a relation nor a position";
   const std::string& target = action.params.target;
   if (!state.hasObject(target) || target == action.object) return "bad target " + target;
   if (*action.params.relation == SpatialRelation::kIn && !state.containers.count(target)) {
@@ -46,7 +48,21 @@ std::string supportOf(const SymbolicState& state, const std::string& object) {
   return "";
 }
 
-void apply(const SymbolicAction& action, SymbolicState& state) {
+std::string firstSupport(const SymbolicState& state) {
+  for (const std::string& name : state.objects) {
+    if (state.supports.count(name)) return name;
+  }
+  return "";
+}
+
+/// Applies `action`; a place at a position records it in `positions` (and rests on the support).
+void apply(const SymbolicAction& action, SymbolicState& state, std::map<std::string, Vector3>& positions) {
+  if (action.type == ActionType::kPlace && !action.params.relation) {
+    positions[action.object] = *action.params.position;
+    state.onTopOf[action.object] = firstSupport(state);
+    state.held.clear();
+    return;
+  }
   if (action.type == ActionType::kPick) {
     state.inside.erase(action.object);
     state.onTopOf.erase(action.object);
@@ -67,8 +83,12 @@ bool isFinal(const TaskSpecification& specification, std::size_t index) {
   return true;
 }
 
-std::string checkGoal(const Goal& goal, const SymbolicState& state) {
+std::string checkGoal(const Goal& goal, const SymbolicState& state, const std::map<std::string, Vector3>& positions) {
   bool holds = true;
+  if (goal.kind == GoalKind::kAtPosition) {
+    const auto at = positions.find(goal.object);
+    holds = at != positions.end() && goal.position && (at->second - *goal.position).head<2>().norm() < 0.01;
+  }
   if (goal.kind == GoalKind::kHolding) holds = state.held == goal.object;
   if (goal.kind == GoalKind::kRelation && goal.relation == SpatialRelation::kIn) {
     holds = state.inside.count(goal.object) && state.inside.at(goal.object) == goal.target;
@@ -83,6 +103,7 @@ std::string checkGoal(const Goal& goal, const SymbolicState& state) {
 
 std::string checkPlan(const Plan& plan, SymbolicState state,
                       const TaskSpecification& specification) {
+  std::map<std::string, Vector3> positions;
   for (std::size_t index = 0; index < plan.actions.size(); ++index) {
     const SymbolicAction& action = plan.actions[index];
     std::string problem;
@@ -93,11 +114,11 @@ std::string checkPlan(const Plan& plan, SymbolicState state,
       return "action " + std::to_string(index + 1) + " (" + actionTypeName(action.type) + " " +
              action.object + "): " + problem;
     }
-    apply(action, state);
+    apply(action, state, positions);
   }
   for (std::size_t index = 0; index < specification.goals.size(); ++index) {
     if (!isFinal(specification, index)) continue;
-    if (std::string problem = checkGoal(specification.goals[index], state); !problem.empty()) {
+    if (std::string problem = checkGoal(specification.goals[index], state, positions); !problem.empty()) {
       return problem;
     }
   }

@@ -9,6 +9,7 @@
 #include "lang2manip/symbolic/observation.hpp"
 #include "lang2manip/symbolic/plan_json.hpp"
 #include "lang2manip/symbolic/plan_prompt.hpp"
+#include "lang2manip/symbolic/spatial_relations.hpp"
 
 namespace lang2manip {
 namespace {
@@ -120,6 +121,19 @@ TEST(PlanPromptTest, SystemPromptHasGrammarSchemaRulesExampleAndVersion) {
   EXPECT_THAT(system, HasSubstr("RRTConnect, PRM"));
   // The fixed part does not depend on the planners.
   EXPECT_EQ(planSystemPrompt().substr(0, 2000), system.substr(0, 2000));
+}
+
+TEST(PlanPromptTest, TheSpatialConventionsAreTheSameInThePromptAndTheObservationAndFollowTheOptions) {
+  const KauthamProblem problem = readKauthamProblem(resolveProblem("panda_desk"));
+  const std::string conventions = spatialConventions();
+  EXPECT_THAT(conventions, HasSubstr("front = +x"));
+  EXPECT_THAT(conventions, HasSubstr("come within 0.100 m"));  // next_to: SpatialOptions::nearDistance
+  EXPECT_THAT(planSystemPrompt(), HasSubstr("SPATIAL CONVENTIONS: " + conventions));
+  EXPECT_THAT(observationText(observeEnvironment(problem.scene)), HasSubstr("Conventions: " + conventions));
+  ObservationOptions options;
+  options.spatial.nearDistance = 0.25;
+  const std::string wider = observationText(observeEnvironment(problem.scene, options));
+  EXPECT_THAT(wider, HasSubstr("come within 0.250 m"));
 }
 
 TEST(PlanPromptTest, MessagesCarryTaskObservationAndEarlierAttempts) {

@@ -131,6 +131,32 @@ TEST(PlanParserTest, AHandoverGoalNamesItsObject) {
   EXPECT_THAT(problemsOf(document), Contains(HasSubstr("goals[0].object: missing; a handed_over goal needs it")));
 }
 
+TEST(PlanParserTest, PlaceTurnAndPointingGoalsRoundTrip) {
+  json document = paperPlan();
+  document["goals"] = {{{"kind", "at_position"}, {"object", "marker"}, {"position", {{"x", 0.4}, {"y", 0.1}, {"z", 0.0}}}, {"target", "eraser"}},
+                       {{"kind", "turned"}, {"object", "eraser"}, {"angle", -1.5707963}},
+                       {{"kind", "facing"}, {"object", "marker"}, {"target", "holder"}}};
+  const Plan plan = parsePlan(document, parserDeskContext());
+  ASSERT_EQ(plan.goals.size(), 3U);
+  EXPECT_EQ(describeGoal(plan.goals[0]), "marker at (0.4, 0.1) where eraser stood");
+  EXPECT_EQ(describeGoal(plan.goals[1]), "eraser turned by -90 deg");
+  EXPECT_EQ(describeGoal(plan.goals[2]), "marker pointing at holder");
+  const Plan again = parsePlan(toJson(plan), parserDeskContext());
+  ASSERT_EQ(again.goals.size(), 3U);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(describeGoal(again.goals[i]), describeGoal(plan.goals[i]));
+  document["goals"] = {{{"kind", "at_position"}, {"object", "marker"}},
+                       {{"kind", "turned"}, {"object", "eraser"}, {"angle", 7.0}},
+                       {{"kind", "turned"}, {"object", "eraser"}, {"angle", 0}},
+                       {{"kind", "facing"}, {"object", "marker"}},
+                       {{"kind", "facing"}, {"object", "marker"}, {"target", "holder"}, {"angle", 1.0}}};
+  const auto problems = problemsOf(document);
+  EXPECT_THAT(problems, Contains(HasSubstr("goals[0].position: missing; a at_position goal needs it")));
+  EXPECT_THAT(problems, Contains(HasSubstr("goals[1].angle: expected a non-zero turn in radians within [-2 pi, 2 pi]")));
+  EXPECT_THAT(problems, Contains(HasSubstr("goals[2].angle: expected a non-zero turn")));
+  EXPECT_THAT(problems, Contains(HasSubstr("goals[3].target: missing; a facing goal needs it")));
+  EXPECT_THAT(problems, Contains(HasSubstr("goals[4].angle: must be null for a facing goal")));
+}
+
 TEST(PlanParserTest, PlannerNamesAreCheckedOnlyWhenTheContextListsThem) {
   json document = paperPlan();
   document["actions"][0]["planner"] = "AnyPlanner";
@@ -174,7 +200,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"UnknownTopField", [](json& d) { d["notes"] = "x"; }, "notes: unknown field (valid fields: actions, reasoning, goals)"},
         BadCase{"GoalsNotArray", [](json& d) { d["goals"] = "marker in holder"; }, "goals: expected an array of goals, got string"},
         BadCase{"GoalNotObject", [](json& d) { d["goals"] = {1}; }, "goals[0]: expected a goal object, got number 1"},
-        BadCase{"GoalUnknownKind", [](json& d) { d["goals"] = {{{"kind", "tidy"}}}; }, "goals[0].kind: unknown kind string \"tidy\" (kinds: relation, holding, displaced, at_configuration, handed_over)"},
+        BadCase{"GoalUnknownKind", [](json& d) { d["goals"] = {{{"kind", "tidy"}}}; }, "goals[0].kind: unknown kind string \"tidy\" (kinds: relation, holding, displaced, at_configuration, handed_over, at_position, turned, facing)"},
         BadCase{"GoalMissingKind", [](json& d) { d["goals"] = {{{"object", "marker"}}}; }, "goals[0].kind: missing"},
         BadCase{"GoalUnknownObject", [](json& d) { d["goals"] = {{{"kind", "holding"}, {"object", "cup"}}}; }, "goals[0].object: unknown object \"cup\" (objects: "},
         BadCase{"GoalRelationWithoutTarget", [](json& d) { d["goals"] = {{{"kind", "relation"}, {"object", "marker"}, {"relation", "in"}}}; }, "goals[0].target: missing; a relation goal needs it"},

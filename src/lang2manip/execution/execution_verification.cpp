@@ -119,12 +119,17 @@ std::vector<Goal> goalsImpliedByPlan(const Plan& plan) {
     if (action.type == ActionType::kPick) held = action.object;
     if (action.type == ActionType::kPlace) {
       if (held == action.object) held.clear();
-      if (!action.params.relation) continue;
+      if (!action.params.relation && !action.params.position) continue;
       Goal goal;
       goal.object = action.object;
-      goal.relation = action.params.relation;
-      goal.target = action.params.target;
-      goal.distance = action.params.distance;
+      if (action.params.relation) {
+        goal.relation = action.params.relation;
+        goal.target = action.params.target;
+        goal.distance = action.params.distance;
+      } else {
+        goal.kind = GoalKind::kAtPosition;
+        goal.position = action.params.position;
+      }
       if (placed.count(action.object) == 0) order.push_back(action.object);
       placed[action.object] = goal;
     }

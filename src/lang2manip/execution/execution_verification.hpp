@@ -40,7 +40,7 @@ ExecutionVerification verifyExecution(const ArmContext& arm, const Scene& initia
                                       const std::vector<Goal>& goals);
 
 /// The goals a plan achieves when the task planner gives none: for each object its last
-/// placement relation, each push as a displacement, the last move to a named configuration,
+/// placement (relation, or position: at_position), each push as a displacement, the last move to a named configuration,
 /// and holding an object picked and never placed.
 std::vector<Goal> goalsImpliedByPlan(const Plan& plan);
 

@@ -74,11 +74,18 @@ void StepParser::parsePredicate(Step& step) {
     parseHandOver(step);
     return;
   }
+  if (step.verb.swaps || step.verb.turns || step.verb.points || step.verb.replaces) {
+    if (step.verb.swaps) parseSwap(step);
+    if (step.verb.turns) parseTurn(step);
+    if (step.verb.points) parsePoint(step);
+    if (step.verb.replaces) parseReplace(step);
+    return;
+  }
   if (!step.verb.places && !step.verb.picks && !step.verb.pushes) {
     failStep(step, "the only place to " + step.verb.lemma + " is home");
   }
   parseObjects(step);
-  if (!parseRelations(step) && !parseDisplacement(step)) parseWithoutPlace(step);
+  if (!parseWhereStands(step) && !parseRelations(step) && !parseDisplacement(step)) parseWithoutPlace(step);
   parseGappedRelations(step);
   skipSource(step);
 }

@@ -56,6 +56,22 @@ class StepParser {
   void parseKeep(Step& step);
   /// "hand me X", "give X to the user": X held out at handoverToolPosition().
   void parseHandOver(Step& step);
+  /// "swap X and Y", "exchange the places of X and Y": each where the other stood.
+  void parseSwap(Step& step);
+  /// "replace Y with X": X where Y stood (Y set aside).
+  void parseReplace(Step& step);
+  /// "turn X by 90 degrees clockwise", "rotate X a quarter turn", "turn X to face Y".
+  void parseTurn(Step& step);
+  /// "point X at Y", "orient X toward Y".
+  void parsePoint(Step& step);
+  /// "... at/toward/to face Y" after the objects: facing goals; false when absent. After a turn
+  /// verb a bare "to"/"at" is not read as pointing ("turn it to the left").
+  bool parsePointing(Step& step, bool afterTurn);
+  /// "... where Y is", "... in the place of Y" after the objects: an at_position goal; false
+  /// when absent.
+  bool parseWhereStands(Step& step);
+  /// Goal: `object` stands where `owner` stands now (its footprint centred on the owner's).
+  void addPlaceGoal(const std::string& object, const std::string& owner);
   void parseObjects(Step& step);
   /// One or more relation phrases in a row; false when none.
   bool parseRelations(Step& step);

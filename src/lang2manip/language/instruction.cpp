@@ -116,7 +116,10 @@ bool supersedes(const Goal& later, const Goal& earlier) {
     case GoalKind::kHolding:
     case GoalKind::kHandedOver: return involves(later, earlier.object);
     case GoalKind::kRelation:
-      return involves(later, earlier.object) && (later.kind == GoalKind::kRelation || later.kind == GoalKind::kHolding);
+    case GoalKind::kAtPosition:
+    case GoalKind::kTurned:
+    case GoalKind::kFacing:
+      return involves(later, earlier.object) && later.kind != GoalKind::kDisplaced && later.kind != GoalKind::kAtConfiguration;
     case GoalKind::kAtConfiguration: return true;
     case GoalKind::kDisplaced: return false;
   }

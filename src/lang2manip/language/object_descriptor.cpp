@@ -174,6 +174,7 @@ std::vector<ObjectDescriptor> describeObjects(const Scene& scene, const std::str
     descriptor.position = worldToBase * object.worldBounds().center();
     const AlignedBox3 world = object.worldBounds();
     for (int corner = 0; corner < 8; ++corner) descriptor.bounds.extend(worldToBase * world.corner(static_cast<AlignedBox3::CornerType>(corner)));
+    descriptor.origin = worldToBase * object.pose.translation();
     descriptor.movable = object.movable;
     descriptor.role = object.role;
     descriptors.push_back(std::move(descriptor));

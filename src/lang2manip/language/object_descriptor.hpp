@@ -32,6 +32,8 @@ struct ObjectDescriptor {
   Vector3 position = Vector3::Zero();
   /// Its world bounds' corners in the robot's base frame, bounded by an axis-aligned box.
   AlignedBox3 bounds;
+  /// The origin of its frame in the robot's base frame, metres.
+  Vector3 origin = Vector3::Zero();
   bool movable = false;
   ObjectRole role = ObjectRole::kNone;
 };

@@ -9,8 +9,10 @@
 #include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/language/instruction.hpp"
 #include "lang2manip/language/object_descriptor.hpp"
+#include "lang2manip/symbolic/object_heading.hpp"
 #include "lang2manip/symbolic/plan_validation.hpp"
 #include "lang2manip/symbolic/spatial_relations.hpp"
+#include "lang2manip/symbolic/support_surface.hpp"
 #include "lang2manip/symbolic/symbolic_state.hpp"
 
 namespace lang2manip {
@@ -57,14 +59,69 @@ bool failedAPush(const PlanAttempt& attempt) {
   return index < attempt.plan->actions.size() && attempt.plan->actions[index].type == ActionType::kPush;
 }
 
-/// What the earlier attempts changed: the objects displaced by pick and place instead of a push.
+/// The failed action of `attempt` when it is a place at an explicit position (a turn, setting an
+/// object aside, putting it where another stood).
+const SymbolicAction* failedPlaceAtPosition(const PlanAttempt& attempt) {
+  if (!attempt.plan || !attempt.grounding) return nullptr;
+  const std::size_t index = attempt.grounding->actionIndex;
+  if (index >= attempt.plan->actions.size()) return nullptr;
+  const SymbolicAction& action = attempt.plan->actions[index];
+  return action.type == ActionType::kPlace && action.params.position ? &action : nullptr;
+}
+
+/// The objects `plan` set aside up to its action `last`: placed at a position no goal asks for.
+std::vector<std::string> objectsSetAside(const Plan& plan, std::size_t last, const TaskSpecification& specification) {
+  std::vector<std::string> aside;
+  for (std::size_t i = 0; i <= last && i < plan.actions.size(); ++i) {
+    const SymbolicAction& action = plan.actions[i];
+    if (action.type != ActionType::kPlace || !action.params.position || action.params.orientation) continue;
+    const bool wanted = std::any_of(specification.goals.begin(), specification.goals.end(), [&](const Goal& goal) {
+      return goal.kind == GoalKind::kAtPosition && goal.object == action.object && goal.position &&
+             (*goal.position - *action.params.position).head<2>().norm() < 0.01;
+    });
+    if (!wanted && std::find(aside.begin(), aside.end(), action.object) == aside.end()) aside.push_back(action.object);
+  }
+  return aside;
+}
+
+/// What the earlier attempts changed: the objects displaced by pick and place instead of a push,
+/// the free spots passed over for objects set aside, the steps a turn is split into.
 struct Answers {
   std::set<std::string> pickedInsteadOfPushed;
+  std::map<std::string, int> skippedSpots;
+  std::map<std::string, int> turnSteps;
 };
 
+constexpr int kMostSpotsSkipped = 3;
+constexpr int kMostTurnSteps = 4;
+
+/// The answer to a failed place at a position: a turn in more steps (a regrasp between them), or
+/// the next free spots for the objects set aside before it. False when neither applies.
+bool answerPlaceAtPosition(const PlanAttempt& attempt, const TaskSpecification& specification, Answers& answers) {
+  const SymbolicAction* place = failedPlaceAtPosition(attempt);
+  if (place == nullptr) return false;
+  if (place->params.orientation) {
+    int& steps = answers.turnSteps[place->object];
+    steps = steps == 0 ? 2 : steps * 2;
+    if (steps > kMostTurnSteps) {
+      nothingNewToTry("turning " + place->object + " in " + std::to_string(kMostTurnSteps) + " steps failed too", attempt.failure);
+    }
+    return true;
+  }
+  const std::vector<std::string> aside = objectsSetAside(*attempt.plan, attempt.grounding->actionIndex, specification);
+  for (const std::string& object : aside) {
+    if (++answers.skippedSpots[object] > kMostSpotsSkipped) {
+      nothingNewToTry(std::to_string(kMostSpotsSkipped + 1) + " free spots for " + object + " have failed", attempt.failure);
+    }
+  }
+  return !aside.empty();
+}
+
 /// Changes `specification` for every failure of the earlier attempts, as the planner answered
-/// them in turn: a push that failed becomes a pick and place by the same displacement; any other
-/// failure moves the failed object to its next untried grasp direction.
+/// them in turn: a push that failed becomes a pick and place by the same displacement; a failed
+/// turn is split into more steps; a failed place at a position after objects were set aside
+/// sets them aside elsewhere; any other failure moves the failed object to its next untried
+/// grasp direction.
 Answers applyEarlierAttempts(const PlanningRequest& request, TaskSpecification& specification) {
   Answers answers;
   const std::map<std::string, GraspDirection> requested = specification.grasps;
@@ -77,6 +134,7 @@ Answers applyEarlierAttempts(const PlanningRequest& request, TaskSpecification& 
       }
       continue;
     }
+    if (answerPlaceAtPosition(attempt, specification, answers)) continue;
     const std::string& object = objectToRegrasp(attempt);
     if (requested.count(object)) {
       nothingNewToTry("the instruction asks for a " + graspDirectionName(requested.at(object)) +
@@ -137,9 +195,22 @@ double smallestCrossSection(const SceneObject& object) {
 
 }  // namespace
 
-SequencingOptions sequencingOptionsFor(const Scene& scene) {
+SequencingOptions sequencingOptionsFor(const Scene& scene, const std::string& robot) {
   SequencingOptions options;
+  const Pose toBase = robotBaseFrame(scene, robot).inverse();
   for (const SceneObject& object : scene.objects()) {
+    ObjectLayout layout;
+    layout.origin = toBase * object.pose.translation();
+    layout.orientation = Quaternion(toBase.linear() * object.pose.linear());
+    layout.bounds = object.worldBounds().transformed(toBase);
+    if (const auto side = longSideYaw(object, layout.orientation.toRotationMatrix())) layout.longSideYaw = *side;
+    layout.turnSymmetry = turnSymmetry(object);
+    options.layout[object.name] = layout;
+    if (object.role == ObjectRole::kSupport) {
+      if (const SupportSurface surface = supportSurface(object); surface.top) {
+        options.supportAreas[object.name] = surface.top->transformed(toBase);
+      }
+    }
     if (object.role == ObjectRole::kContainer && object.cavity) {
       const Vector3 size = object.cavity->sizes();
       options.containerFloorArea[object.name] = size.x() * size.y();
@@ -168,8 +239,10 @@ Plan OfflineTaskPlanner::plan(const PlanningRequest& request, const StopConditio
   }
   TaskSpecification specification = understandInstruction(request.task, objects);
   const SymbolicState state = observeSymbolicState(scene);
-  const SequencingOptions options = sequencingOptionsFor(scene);
+  SequencingOptions options = sequencingOptionsFor(scene, request.robot);
   const Answers answers = applyEarlierAttempts(request, specification);
+  options.skippedSpots = answers.skippedSpots;
+  options.turnSteps = answers.turnSteps;
   Plan plan = carryInsteadOfPushing(sequenceGoals(specification, state, options), answers.pickedInsteadOfPushed,
                                     specification, scene, request.robot);
   plan.goals = specification.goals;

@@ -11,10 +11,11 @@
 
 namespace lang2manip {
 
-/// Container room and object footprints of `scene` for the sequencer: a container's room is the
-/// floor area of its cavity; an object's footprint is the product of its two smallest extents
-/// (it may go in standing up).
-SequencingOptions sequencingOptionsFor(const Scene& scene);
+/// What the sequencer needs of `scene`: a container's room is the floor area of its cavity; an
+/// object's footprint is the product of its two smallest extents (it may go in standing up);
+/// every object's layout and every support's flat top in the base frame of `robot` (the first
+/// robot when empty).
+SequencingOptions sequencingOptionsFor(const Scene& scene, const std::string& robot = {});
 
 /// The grasp directions the offline planner tries in turn after grasp failures of an object.
 std::vector<GraspDirection> graspRetryOrder();

@@ -4,10 +4,19 @@
 #include <set>
 #include <stdexcept>
 
+#include "lang2manip/language/layout_geometry.hpp"
+#include "lang2manip/symbolic/object_heading.hpp"
 #include "lang2manip/symbolic/task_planner.hpp"
 
 namespace lang2manip {
 namespace {
+
+using language_detail::facingTurn;
+using language_detail::footprintsOverlap;
+using language_detail::freeSpots;
+using language_detail::moveLayout;
+using language_detail::shifted;
+using language_detail::validatePoseGoal;
 
 /// A goal order that does not work; the search tries another.
 class SequencingFailure : public std::runtime_error {
@@ -26,7 +35,12 @@ struct World {
   /// disturbed since.
   std::set<std::size_t> achieved;
   std::vector<SymbolicAction> actions;
+  /// Where the objects stand (base frame) as the actions leave them; an object put somewhere
+  /// by a relation is left out (its spot is chosen later, by the grounding).
+  std::map<std::string, ObjectLayout> layout;
 };
+
+constexpr double kSamePlace = 0.01;
 
 class Sequencer {
  public:
@@ -38,7 +52,7 @@ class Sequencer {
 
   Plan run() {
     validateGoals();
-    World start{initial_, {}, {}};
+    World start{initial_, {}, {}, options_.layout};
     std::vector<bool> used(goals_.size(), false);
     int budget = options_.maxOrdersTried;
     World result;
@@ -66,8 +80,11 @@ class Sequencer {
       if (goal.kind == GoalKind::kDisplaced && goal.displacement.norm() <= 0.0) {
         throw PlanningError("offline planner: " + describeGoal(goal) + " moves it nowhere");
       }
+      if (goal.kind == GoalKind::kFacing) requireObject(goal.target);
+      validatePoseGoal(goal, options_);
     }
   }
+
 
   void requireObject(const std::string& name) const {
     if (!initial_.hasObject(name)) {
@@ -78,8 +95,9 @@ class Sequencer {
   }
 
   bool initiallyTrue(const Goal& goal) const {
-    World world{initial_, {}, {}};
-    return goal.kind != GoalKind::kDisplaced && !isDirectional(goal) && holds(goal, 0, world);
+    World world{initial_, {}, {}, options_.layout};
+    return goal.kind != GoalKind::kDisplaced && goal.kind != GoalKind::kTurned && !isDirectional(goal) &&
+           holds(goal, 0, world);
   }
 
   bool search(const World& world, std::vector<bool>& used, int& budget, World& result) {
@@ -151,6 +169,15 @@ class Sequencer {
       case GoalKind::kDisplaced:
       case GoalKind::kHandedOver: return world.achieved.count(index) > 0;
       case GoalKind::kAtConfiguration: return state.atConfiguration == goal.configuration;
+      case GoalKind::kAtPosition: {
+        const auto at = world.layout.find(goal.object);
+        return at != world.layout.end() && goal.position && (at->second.origin - *goal.position).head<2>().norm() <= kSamePlace;
+      }
+      case GoalKind::kTurned: return world.achieved.count(index) > 0;
+      case GoalKind::kFacing: {
+        const std::optional<double> turn = facingTurn(world.layout, goal);
+        return turn && std::abs(*turn) < kTurnTolerance / 2.0;
+      }
     }
     return false;
   }
@@ -162,15 +189,104 @@ class Sequencer {
 
   void achieve(std::size_t index, World& world) {
     const Goal& goal = goals_[index];
-    if (goal.kind != GoalKind::kDisplaced && goal.kind != GoalKind::kHandedOver && holds(goal, index, world)) return;
+    const bool repeatable = goal.kind == GoalKind::kDisplaced || goal.kind == GoalKind::kHandedOver || goal.kind == GoalKind::kTurned;
+    if (!repeatable && holds(goal, index, world)) return;
     switch (goal.kind) {
       case GoalKind::kRelation: achieveRelation(index, world); return;
       case GoalKind::kHolding: hold(world, goal.object); return;
       case GoalKind::kDisplaced: push(index, world); return;
       case GoalKind::kAtConfiguration: moveTo(world, goal.configuration); return;
       case GoalKind::kHandedOver: handOver(index, world); return;
+      case GoalKind::kAtPosition: moveToPosition(goal, world); return;
+      case GoalKind::kTurned: turn(goal.object, goal.angle, world); world.achieved.insert(index); return;
+      case GoalKind::kFacing: turn(goal.object, turnToFace(world, goal), world); return;
     }
   }
+
+  double turnToFace(const World& world, const Goal& goal) const {
+    const std::optional<double> turn = facingTurn(world.layout, goal);
+    if (!turn) throw SequencingFailure("where " + goal.object + " and " + goal.target + " stand is not known");
+    return *turn;
+  }
+
+  static const ObjectLayout& layoutOf(const World& world, const std::string& object) {
+    const auto found = world.layout.find(object);
+    if (found == world.layout.end()) throw SequencingFailure("where " + object + " stands is not known");
+    return found->second;
+  }
+
+  /// Puts the object where the goal says, setting aside first whatever stands there.
+  void moveToPosition(const Goal& goal, World& world) {
+    const ObjectLayout& mine = layoutOf(world, goal.object);
+    const Vector3 shift(goal.position->x() - mine.origin.x(), goal.position->y() - mine.origin.y(), 0.0);
+    const AlignedBox3 spot = shifted(mine.bounds, shift);
+    for (const std::string& other : initial_.objects) {
+      const auto at = world.layout.find(other);
+      if (other == goal.object || other == world.state.held || at == world.layout.end() || initial_.supports.count(other)) continue;
+      if (!footprintsOverlap(at->second.bounds, spot, 0.0) || at->second.bounds.max().z() < spot.min().z()) continue;
+      if (!world.state.movable.count(other)) {
+        throw SequencingFailure("the place for " + goal.object + " is taken by " + other + ", which is not movable");
+      }
+      setAside(world, other);
+    }
+    const std::string support = supportBelow(world.state, goal.object);
+    hold(world, goal.object);
+    ActionParams params;
+    params.position = *goal.position;
+    place(world, goal.object, params, false, support);
+    moveLayout(world.layout, goal.object, *goal.position, std::nullopt);
+  }
+
+  /// Moves `object` to the nearest free spot of its support, clear of every other object and of
+  /// every place an at_position goal wants for another object.
+  void setAside(World& world, const std::string& object) {
+    const std::string support = supportBelow(world.state, object);
+    const auto area = options_.supportAreas.find(support);
+    if (area == options_.supportAreas.end()) throw SequencingFailure("no free spot is known on " + support + " to set " + object + " aside");
+    const ObjectLayout layout = layoutOf(world, object);
+    std::vector<AlignedBox3> occupied;
+    for (const auto& [name, other] : world.layout) {
+      if (name != object && name != world.state.held && !initial_.supports.count(name)) occupied.push_back(other.bounds);
+    }
+    for (const Goal& goal : goals_) {
+      const auto owner = world.layout.find(goal.object);
+      if (goal.kind != GoalKind::kAtPosition || goal.object == object || owner == world.layout.end()) continue;
+      occupied.push_back(shifted(owner->second.bounds, Vector3(goal.position->x() - owner->second.origin.x(),
+                                                               goal.position->y() - owner->second.origin.y(), 0.0)));
+    }
+    const auto skipped = options_.skippedSpots.find(object);
+    const std::size_t skip = skipped == options_.skippedSpots.end() ? 0 : static_cast<std::size_t>(std::max(skipped->second, 0));
+    const std::vector<Vector3> spots =
+        freeSpots(layout.bounds.sizes(), area->second, occupied, layout.bounds.center(), options_.asideGap, skip + 1);
+    if (spots.size() <= skip) throw SequencingFailure("no free spot on " + support + " to set " + object + " aside");
+    const Vector3 spot = spots[skip];
+    const Vector3 origin(layout.origin.x() + spot.x() - layout.bounds.center().x(),
+                         layout.origin.y() + spot.y() - layout.bounds.center().y(), layout.origin.z());
+    hold(world, object);
+    ActionParams params;
+    params.position = origin;
+    place(world, object, params, false, support);
+    moveLayout(world.layout, object, origin, std::nullopt);
+  }
+
+  /// Picks `object` and puts it back where it stood turned by `angle` (in turnSteps steps).
+  void turn(const std::string& object, double angle, World& world) {
+    const auto found = options_.turnSteps.find(object);
+    const int steps = found == options_.turnSteps.end() ? 1 : std::max(found->second, 1);
+    for (int step = 0; step < steps; ++step) {
+      const std::string support = supportBelow(world.state, object);
+      hold(world, object);
+      const ObjectLayout layout = layoutOf(world, object);
+      ActionParams params;
+      params.position = layout.origin;
+      params.orientation = Quaternion(verticalTurn(angle / steps) * layout.orientation.toRotationMatrix());
+      place(world, object, params, false, support);
+      moveLayout(world.layout, object, layout.origin, angle / steps);
+    }
+  }
+
+
+
 
   /// Holds the object out at the handover position (picking it first).
   void handOver(std::size_t index, World& world) {
@@ -219,6 +335,9 @@ class Sequencer {
     world.actions.push_back(action);
     world.state.atConfiguration.clear();
     disturb(world, goal.object);
+    if (const auto at = world.layout.find(goal.object); at != world.layout.end()) {
+      moveLayout(world.layout, goal.object, at->second.origin + goal.displacement, std::nullopt);
+    }
     world.achieved.insert(index);
   }
 
@@ -264,6 +383,7 @@ class Sequencer {
     world.actions.push_back(action);
     if (inside) world.state.inside[object] = restingOn;
     else world.state.onTopOf[object] = restingOn;
+    if (params.relation) world.layout.erase(object);  // where exactly is the grounding's choice
     world.state.held.clear();
     world.state.atConfiguration.clear();
   }

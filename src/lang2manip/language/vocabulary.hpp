@@ -26,6 +26,10 @@ struct Verb {
   bool nudges = false;     ///< a small default push distance when none is given
   bool keeps = false;      ///< "keep X on Y", "leave X where it is": a condition, not a goal
   bool handsOver = false;  ///< "hand me X", "give X to me": held out at the handover position
+  bool swaps = false;      ///< "swap X and Y": each where the other stood
+  bool turns = false;      ///< "turn X by 90 degrees", "turn X to face Y"
+  bool points = false;     ///< "point X at Y", "orient X toward Y"
+  bool replaces = false;   ///< "replace Y with X": X where Y stood
 };
 
 struct VerbMatch {

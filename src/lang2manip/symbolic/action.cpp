@@ -1,6 +1,7 @@
 #include "lang2manip/symbolic/action.hpp"
 
 #include <array>
+#include <cmath>
 #include <sstream>
 #include <utility>
 
@@ -98,6 +99,18 @@ std::string describeGoal(const Goal& goal) {
       break;
     case GoalKind::kHandedOver:
       text << goal.object << " handed over";
+      break;
+    case GoalKind::kAtPosition: {
+      const Vector3 p = goal.position.value_or(Vector3::Zero());
+      text << goal.object << " at (" << std::round(p.x() * 1000.0) / 1000.0 << ", " << std::round(p.y() * 1000.0) / 1000.0 << ")";
+      if (!goal.target.empty()) text << " where " << goal.target << " stood";
+      break;
+    }
+    case GoalKind::kTurned:
+      text << goal.object << " turned by " << std::round(goal.angle * 1800.0 / 3.14159265358979323846) / 10.0 << " deg";
+      break;
+    case GoalKind::kFacing:
+      text << goal.object << " pointing at " << goal.target;
       break;
   }
   return text.str();

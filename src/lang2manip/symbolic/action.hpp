@@ -83,6 +83,15 @@ enum class GoalKind {
   kAtConfiguration,
   /// The robot holds `object` out to a person at handoverToolPosition() ("hand me the marker").
   kHandedOver,
+  /// `object` stands with its frame's origin at `position` (robot base frame; x and y are
+  /// checked, z follows the support it rests on); `target`, when set, names the object whose
+  /// place that was ("put the marker where the eraser is", "swap the marker and the eraser").
+  kAtPosition,
+  /// `object` turned by `angle` (rad, counter-clockwise seen from above) about the vertical from
+  /// its orientation at the start, standing where it stood.
+  kTurned,
+  /// The long side of `object` points at `target` (either end; seen from above).
+  kFacing,
 };
 
 /// Where the robot holds an object out to a person: the tool 0.40 m in front of the robot's base
@@ -98,6 +107,10 @@ struct Goal {
   std::optional<double> distance;
   Vector3 displacement = Vector3::Zero();
   std::string configuration;
+  /// kAtPosition: where the object frame's origin goes (robot base frame).
+  std::optional<Vector3> position;
+  /// kTurned: the turn about the vertical, rad (counter-clockwise seen from above).
+  double angle = 0.0;
 };
 
 struct Plan {

@@ -12,8 +12,10 @@ namespace {
 using nlohmann::json;
 
 constexpr GoalKind kGoalKinds[] = {GoalKind::kRelation, GoalKind::kHolding, GoalKind::kDisplaced,
-                                   GoalKind::kAtConfiguration, GoalKind::kHandedOver};
-const std::vector<std::string> kGoalFields{"kind", "object", "relation", "target", "distance", "displacement", "configuration"};
+                                   GoalKind::kAtConfiguration, GoalKind::kHandedOver, GoalKind::kAtPosition,
+                                   GoalKind::kTurned, GoalKind::kFacing};
+const std::vector<std::string> kGoalFields{"kind",         "object",        "relation", "target", "distance",
+                                           "displacement", "configuration", "position", "angle"};
 
 json nullableOf(const json& type, const std::string& description) {
   return {{"anyOf", {type, {{"type", "null"}}}}, {"description", description}};
@@ -31,7 +33,7 @@ class GoalReader {
     if (!item.is_object()) return fail(path, "expected a goal object, got " + shown(item));
     for (const auto& [name, value] : item.items()) {
       if (std::find(kGoalFields.begin(), kGoalFields.end(), name) == kGoalFields.end()) {
-        report(path + "." + name, "unknown field (valid fields: kind, object, relation, target, distance, displacement, configuration)");
+        report(path + "." + name, "unknown field (valid fields: kind, object, relation, target, distance, displacement, configuration, position, angle)");
       }
     }
     const std::optional<GoalKind> kind = readKind(item, path);
@@ -45,7 +47,12 @@ class GoalReader {
     goal.configuration = stringField(item, "configuration", path);
     if (const json* relation = given(item, "relation")) goal.relation = readRelation(*relation, path + ".relation");
     if (const json* distance = given(item, "distance")) goal.distance = readPositive(*distance, path + ".distance");
-    if (const json* displacement = given(item, "displacement")) goal.displacement = readDisplacement(*displacement, path + ".displacement");
+    if (const json* displacement = given(item, "displacement")) {
+      goal.displacement = readVector(*displacement, path + ".displacement");
+      if (goal.displacement.norm() == 0.0) report(path + ".displacement", "a displacement of zero moves nothing");
+    }
+    if (const json* position = given(item, "position")) goal.position = readVector(*position, path + ".position");
+    if (const json* angle = given(item, "angle")) goal.angle = readAngle(*angle, path + ".angle");
     if (problems_.size() != before) return std::nullopt;
     return goal;
   }
@@ -69,11 +76,16 @@ class GoalReader {
       case GoalKind::kHandedOver: return {"object"};
       case GoalKind::kDisplaced: return {"object", "displacement"};
       case GoalKind::kAtConfiguration: return {"configuration"};
+      case GoalKind::kAtPosition: return {"object", "position"};
+      case GoalKind::kTurned: return {"object", "angle"};
+      case GoalKind::kFacing: return {"object", "target"};
     }
     return {};
   }
   static std::vector<std::string> optionalFields(GoalKind kind) {
-    return kind == GoalKind::kRelation ? std::vector<std::string>{"distance"} : std::vector<std::string>{};
+    if (kind == GoalKind::kRelation) return {"distance"};
+    if (kind == GoalKind::kAtPosition) return {"target"};
+    return {};
   }
 
   void checkGiven(const json& item, const std::string& path, const std::vector<std::string>& required,
@@ -136,7 +148,17 @@ class GoalReader {
     return std::nullopt;
   }
 
-  Vector3 readDisplacement(const json& value, const std::string& path) {
+  double readAngle(const json& value, const std::string& path) {
+    constexpr double kTwoPi = 6.283185307179586;
+    if (value.is_number() && std::isfinite(value.get<double>()) && std::abs(value.get<double>()) <= kTwoPi &&
+        value.get<double>() != 0.0) {
+      return value.get<double>();
+    }
+    report(path, "expected a non-zero turn in radians within [-2 pi, 2 pi] (counter-clockwise seen from above), got " + shown(value));
+    return 0.0;
+  }
+
+  Vector3 readVector(const json& value, const std::string& path) {
     Vector3 v = Vector3::Zero();
     const bool asObject = value.is_object() && value.size() == 3 && value.contains("x") && value.contains("y") && value.contains("z");
     const bool asArray = value.is_array() && value.size() == 3;
@@ -149,7 +171,6 @@ class GoalReader {
       v[i] = component.get<double>();
     }
     if (!asObject && !asArray) report(path, "expected {x, y, z} in metres, got " + shown(value));
-    else if (v.norm() == 0.0) report(path, "a displacement of zero moves nothing");
     return v;
   }
 
@@ -166,6 +187,9 @@ std::string goalKindName(GoalKind kind) {
     case GoalKind::kDisplaced: return "displaced";
     case GoalKind::kAtConfiguration: return "at_configuration";
     case GoalKind::kHandedOver: return "handed_over";
+    case GoalKind::kAtPosition: return "at_position";
+    case GoalKind::kTurned: return "turned";
+    case GoalKind::kFacing: return "facing";
   }
   return "unknown";
 }
@@ -175,21 +199,23 @@ nlohmann::json goalStatementSchema() {
   for (const GoalKind kind : kGoalKinds) kinds.push_back(goalKindName(kind));
   json relations = spatialRelationNames();
   const json number = {{"type", "number"}};
+  const json vector = {{"type", "object"},
+                       {"properties", {{"x", number}, {"y", number}, {"z", number}}},
+                       {"required", {"x", "y", "z"}},
+                       {"additionalProperties", false}};
   const json goal = {
       {"type", "object"},
       {"description", "One condition of the final state"},
       {"properties",
-       {{"kind", {{"type", "string"}, {"enum", kinds}, {"description", "relation, holding, displaced, at_configuration or handed_over"}}},
+       {{"kind", {{"type", "string"}, {"enum", kinds}, {"description", "relation, holding, displaced, at_configuration, handed_over, at_position, turned or facing"}}},
         {"object", nullableOf({{"type", "string"}}, "The object the goal is about (null for at_configuration)")},
         {"relation", nullableOf({{"type", "string"}, {"enum", relations}}, "relation: where the object ends up relative to target")},
-        {"target", nullableOf({{"type", "string"}}, "relation: the reference object")},
+        {"target", nullableOf({{"type", "string"}}, "relation: the reference object; facing: what the object's long side points at; at_position: whose place it was (optional)")},
         {"distance", nullableOf(number, "relation: offset from target in metres, when the task gives one")},
-        {"displacement", nullableOf({{"type", "object"},
-                                     {"properties", {{"x", number}, {"y", number}, {"z", number}}},
-                                     {"required", {"x", "y", "z"}},
-                                     {"additionalProperties", false}},
-                                    "displaced: how far the object moves, metres, robot base frame")},
-        {"configuration", nullableOf({{"type", "string"}}, "at_configuration: the named configuration, e.g. home")}}},
+        {"displacement", nullableOf(vector, "displaced: how far the object moves, metres, robot base frame")},
+        {"configuration", nullableOf({{"type", "string"}}, "at_configuration: the named configuration, e.g. home")},
+        {"position", nullableOf(vector, "at_position: where the object frame's origin ends up, metres, robot base frame (x and y are checked)")},
+        {"angle", nullableOf(number, "turned: the turn about the vertical from where it started, radians, counter-clockwise seen from above")}}},
       {"required", kGoalFields},
       {"additionalProperties", false}};
   return nullableOf({{"type", "array"}, {"items", goal}}, "The final state the plan reaches (what the task asks for)");
@@ -201,14 +227,16 @@ nlohmann::json goalStatementJson(const std::vector<Goal>& goals) {
   for (const Goal& goal : goals) {
     const bool relation = goal.kind == GoalKind::kRelation;
     const bool displaced = goal.kind == GoalKind::kDisplaced;
+    const auto vectorJson = [](const Vector3& v) { return json{{"x", v.x()}, {"y", v.y()}, {"z", v.z()}}; };
     list.push_back({{"kind", goalKindName(goal.kind)},
                     {"object", goal.object.empty() ? json(nullptr) : json(goal.object)},
                     {"relation", relation && goal.relation ? json(spatialRelationName(*goal.relation)) : json(nullptr)},
                     {"target", goal.target.empty() ? json(nullptr) : json(goal.target)},
                     {"distance", relation && goal.distance ? json(*goal.distance) : json(nullptr)},
-                    {"displacement", displaced ? json{{"x", goal.displacement.x()}, {"y", goal.displacement.y()}, {"z", goal.displacement.z()}}
-                                               : json(nullptr)},
-                    {"configuration", goal.configuration.empty() ? json(nullptr) : json(goal.configuration)}});
+                    {"displacement", displaced ? vectorJson(goal.displacement) : json(nullptr)},
+                    {"configuration", goal.configuration.empty() ? json(nullptr) : json(goal.configuration)},
+                    {"position", goal.kind == GoalKind::kAtPosition && goal.position ? vectorJson(*goal.position) : json(nullptr)},
+                    {"angle", goal.kind == GoalKind::kTurned ? json(goal.angle) : json(nullptr)}});
   }
   return list;
 }

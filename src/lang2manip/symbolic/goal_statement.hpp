@@ -13,7 +13,8 @@
 
 namespace lang2manip {
 
-/// "relation", "holding", "displaced", "at_configuration", "handed_over".
+/// "relation", "holding", "displaced", "at_configuration", "handed_over", "at_position", "turned",
+/// "facing".
 std::string goalKindName(GoalKind kind);
 
 /// The JSON Schema (strict mode: every field given, null where it does not apply) of the

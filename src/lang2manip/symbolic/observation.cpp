@@ -214,6 +214,7 @@ nlohmann::json observeEnvironment(const Scene& scene, const ObservationOptions& 
   return {{"frames", "world frame z up; relations and base-frame positions use the base frame of robot " +
                          (mainRobot.empty() ? std::string("(none)") : mainRobot) +
                          ": x front, y left, z up; lengths in metres, angles in radians"},
+          {"conventions", spatialConventions(options.spatial, options.tolerances)},
           {"robot", mainRobot.empty() ? json(nullptr) : json(mainRobot)},
           {"robots", robots}, {"objects", objects},
           {"relations", relationsJson(scene, base, state, options.spatial)}};

@@ -104,6 +104,9 @@ std::string objectText(const json& object) {
 
 std::string observationText(const nlohmann::json& observation) {
   std::string text = "Frames: " + observation["frames"].get<std::string>() + ".\n";
+  if (const auto conventions = observation.find("conventions"); conventions != observation.end() && conventions->is_string()) {
+    text += "Conventions: " + conventions->get<std::string>() + ".\n";
+  }
   for (const json& robot : observation["robots"]) text += robotText(robot);
   text += "Objects (position = origin of the object frame):\n";
   for (const json& object : observation["objects"]) text += objectText(object);

@@ -1,5 +1,6 @@
 #include "lang2manip/symbolic/plan_json.hpp"
 
+#include <cmath>
 #include <sstream>
 
 #include "lang2manip/symbolic/goal_statement.hpp"
@@ -155,6 +156,15 @@ std::string describeAction(const SymbolicAction& action) {
   }
   if (!p.configuration.empty()) text << " to " << p.configuration;
   if (p.position) text << (action.type == ActionType::kPlace ? " at " : " to ") << vectorText(*p.position);
+  if (p.orientation) {
+    const Matrix3 rotation = p.orientation->normalized().toRotationMatrix();
+    if (rotation(2, 2) > 0.9998) {
+      text << " with yaw " << std::round(std::atan2(rotation(1, 0), rotation(0, 0)) * 180.0 / 3.14159265358979323846) << " deg";
+    } else {
+      text << " with orientation (w, x, y, z) = (" << p.orientation->w() << ", " << p.orientation->x() << ", " << p.orientation->y()
+           << ", " << p.orientation->z() << ")";
+    }
+  }
   if (action.type == ActionType::kPush && p.direction) {
     if (p.distance) text << ' ' << *p.distance << " m";
     text << " along " << vectorText(*p.direction);

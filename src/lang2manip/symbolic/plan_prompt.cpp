@@ -1,6 +1,7 @@
 #include "lang2manip/symbolic/plan_prompt.hpp"
 
 #include "lang2manip/symbolic/plan_json.hpp"
+#include "lang2manip/symbolic/spatial_relations.hpp"
 
 namespace lang2manip {
 namespace {
@@ -26,8 +27,9 @@ RULES.
 4. Push needs a free gripper.
 5. Give every field of every action; use null for values that do not apply.
 6. Answer with ONE JSON object that follows the schema below and nothing else: no prose, no code fences. Put any explanation in "reasoning".
-7. In "goals", state the final state the task asks for, one condition per entry: {"kind": "relation", "object", "relation", "target"} (an object in, on or beside another at the end), {"kind": "holding", "object"} (the robot still holds it), {"kind": "displaced", "object", "displacement": {x, y, z}} (moved by that many metres), {"kind": "at_configuration", "configuration"} (e.g. "home"), {"kind": "handed_over", "object"} (held out to the person: move it with params.position {"x": 0.40, "y": 0.0, "z": 0.25}, the handover position of the tool). Only the end state: not a step a later action undoes (a pick followed by a place of the same object is not "holding"). Every goal is checked against the world after the plan runs.
-8. If an earlier answer was rejected, read the failure, fix the plan and answer again with a complete plan.
+7. In "goals", state the final state the task asks for, one condition per entry: {"kind": "relation", "object", "relation", "target"} (an object in, on or beside another at the end), {"kind": "holding", "object"} (the robot still holds it), {"kind": "displaced", "object", "displacement": {x, y, z}} (moved by that many metres), {"kind": "at_configuration", "configuration"} (e.g. "home"), {"kind": "handed_over", "object"} (held out to the person: move it with params.position {"x": 0.40, "y": 0.0, "z": 0.25}, the handover position of the tool), {"kind": "at_position", "object", "position": {x, y, z}, "target"} (its frame's origin at that base-frame position; target: whose place it was, or null), {"kind": "turned", "object", "angle"} (turned about the vertical by that many radians from where it started, standing where it stood: place it at its own position with the turned orientation), {"kind": "facing", "object", "target"} (its long side points at target). Only the end state: not a step a later action undoes (a pick followed by a place of the same object is not "holding"). Every goal is checked against the world after the plan runs.
+8. To put an object where another one stands, or to swap two objects, first set the one in the way aside on a free spot of the support (a place at an explicit position clear of everything), then move the other, then bring the first where it belongs.
+9. If an earlier answer was rejected, read the failure, fix the plan and answer again with a complete plan.
 )";
 
 constexpr const char* kExample = R"(
@@ -50,7 +52,7 @@ std::string roleName(LlmMessage::Role role) { return role == LlmMessage::Role::k
 }  // namespace
 
 std::string planSystemPrompt(const std::vector<std::string>& planners) {
-  return std::string(kRole) + kGrammar + kRules + "\nSCHEMA of the answer (JSON Schema):\n" +
+  return std::string(kRole) + "SPATIAL CONVENTIONS: " + spatialConventions() + ".\n" + kGrammar + kRules + "\nSCHEMA of the answer (JSON Schema):\n" +
          planJsonSchema().dump() + "\n" + kExample + "\n" + planListLine(planners) +
          "(prompt version " + kPlanPromptVersion + ")\n";
 }

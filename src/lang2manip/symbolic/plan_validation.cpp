@@ -213,7 +213,10 @@ std::optional<bool> goalHolds(const SymbolicState& state, const Goal& goal) {
     case GoalKind::kAtConfiguration:
       return state.atConfiguration == goal.configuration;
     case GoalKind::kDisplaced:
-      return std::nullopt;
+    case GoalKind::kAtPosition:
+    case GoalKind::kTurned:
+    case GoalKind::kFacing:
+      return std::nullopt;  // geometric
     case GoalKind::kRelation:
       break;
   }

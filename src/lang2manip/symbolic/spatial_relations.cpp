@@ -7,6 +7,7 @@
 #include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/model/scene.hpp"
+#include "lang2manip/symbolic/object_heading.hpp"
 #include "lang2manip/symbolic/plan_validation.hpp"
 
 namespace lang2manip {
@@ -79,6 +80,46 @@ GoalCheck checkDisplaced(const Scene& scene, const Goal& goal, const GoalCheckOp
   return {error <= options.spatial.distanceTolerance, buffer};
 }
 
+/// The object frame's origin within distanceTolerance of the wanted position (x and y in the
+/// base frame).
+GoalCheck checkAtPosition(const Scene& scene, const Goal& goal, const GoalCheckOptions& options) {
+  if (!goal.position) throw InputError("goal \"" + describeGoal(goal) + "\": no position");
+  const Pose base = robotBaseFrame(scene, options.robot);
+  const Vector3 at = base.inverse() * objectNamed(scene, goal.object, "object").pose.translation();
+  const double off = (at - *goal.position).head<2>().norm();
+  char buffer[128];
+  std::snprintf(buffer, sizeof buffer, "%s stands at (%.3f, %.3f), %.3f m from the wanted position", goal.object.c_str(), at.x(), at.y(),
+                off);
+  return {off <= options.spatial.distanceTolerance, buffer};
+}
+
+/// Turned by the wanted angle about the vertical (up to the object's symmetry and
+/// kTurnTolerance), not tilted, and standing where it stood (within distanceTolerance).
+GoalCheck checkTurned(const Scene& scene, const Goal& goal, const GoalCheckOptions& options) {
+  if (options.initialScene == nullptr) throw InputError("goal \"" + describeGoal(goal) + "\": a turn needs the initial scene");
+  const SceneObject& before = objectNamed(*options.initialScene, goal.object, "object");
+  const SceneObject& after = objectNamed(scene, goal.object, "object");
+  const TurnBetween turn = turnBetween(before.pose.linear(), after.pose.linear());
+  const double symmetry = turnSymmetry(before);
+  const double error = std::abs(reducedAngle(turn.yaw - goal.angle, symmetry == 0.0 ? 2.0 * 3.14159265358979323846 : symmetry));
+  const double shift = (after.pose.translation() - before.pose.translation()).head<2>().norm();
+  const bool holds = error <= kTurnTolerance && turn.tilt <= kTurnTolerance && shift <= options.spatial.distanceTolerance;
+  return {holds, goal.object + " turned by " + degreesText(turn.yaw) + " (" + degreesText(error) + " from the wanted turn), tilted by " +
+                     degreesText(turn.tilt) + ", moved " + metresText(shift)};
+}
+
+/// The long side's line passes within kTurnTolerance of the target's centre (seen from above).
+GoalCheck checkFacing(const Scene& scene, const Goal& goal) {
+  const SceneObject& object = objectNamed(scene, goal.object, "object");
+  const SceneObject& target = objectNamed(scene, goal.target, "target");
+  const std::optional<double> side = longSideYaw(object, object.pose.linear());
+  if (!side) return {false, goal.object + " has no long side to point with"};
+  const Vector3 toward = target.worldBounds().center() - object.worldBounds().center();
+  const double bearing = std::atan2(toward.y(), toward.x());
+  const double error = std::abs(reducedAngle(bearing - *side, 3.14159265358979323846));
+  return {error <= kTurnTolerance, goal.object + "'s long side is " + degreesText(error) + " off the direction to " + goal.target};
+}
+
 std::string locationWords(const std::string& object, const SymbolicState& state) {
   if (state.held == object) return "held";
   if (auto it = state.inside.find(object); it != state.inside.end()) return "in " + it->second;
@@ -99,6 +140,18 @@ GoalCheck checkSymbolic(const Scene& scene, const Goal& goal, const GoalCheckOpt
 }
 
 }  // namespace
+
+std::string spatialConventions(const SpatialOptions& spatial, const SymbolicStateTolerances& tolerances) {
+  return "directions are in the robot's base frame: front = +x (away from the robot), left = +y, up = +z; "
+         "A left_of/right_of/in_front_of/behind B when the centre of A's bounding box is more than " +
+         metresText(spatial.directionMargin) + " further that way than B's centre; A next_to B when their boxes come within " +
+         metresText(spatial.nearDistance) + "; A on B when A's bottom rests within " + metresText(tolerances.contactGap) +
+         " of B's top (flat tops only: nothing rests on a round top or on a container, which takes things in); A in B when A's "
+         "centre lies in B's cavity; explicit distances, displacements and positions are met within " +
+         metresText(spatial.distanceTolerance) + "; turns are about the vertical, positive counter-clockwise seen from above "
+         "(toward the left), met within " + degreesText(kTurnTolerance) + "; a turn that leaves an object looking the same "
+         "(its shape's symmetry) is no turn";
+}
 
 Pose robotBaseFrame(const Scene& scene, const std::string& robot) {
   if (!robot.empty()) return scene.robot(robot).basePose;
@@ -121,6 +174,9 @@ std::vector<SpatialRelation> directionalRelations(const Vector3& offset, double 
 
 GoalCheck checkGoalInScene(const Scene& scene, const Goal& goal, const GoalCheckOptions& options) {
   if (goal.kind == GoalKind::kDisplaced) return checkDisplaced(scene, goal, options);
+  if (goal.kind == GoalKind::kAtPosition) return checkAtPosition(scene, goal, options);
+  if (goal.kind == GoalKind::kTurned) return checkTurned(scene, goal, options);
+  if (goal.kind == GoalKind::kFacing) return checkFacing(scene, goal);
   if (goal.kind == GoalKind::kHandedOver) {
     throw InputError("goal \"" + describeGoal(goal) + "\": where the tool is needs the robot's kinematics (verifyExecution checks it)");
   }

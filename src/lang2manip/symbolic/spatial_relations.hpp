@@ -24,6 +24,12 @@ struct SpatialOptions {
   double distanceTolerance = 0.02;
 };
 
+/// The spatial conventions in words, with the numbers of `spatial` and `tolerances`: which way
+/// front and left are, what each relation means in metres, which way a turn goes and how close
+/// a goal must be met. Stated in the observation and the system prompt; the offline planner, the
+/// plan validator and the goal checker use the same options.
+std::string spatialConventions(const SpatialOptions& spatial = {}, const SymbolicStateTolerances& tolerances = {});
+
 /// X_WB of `robot` (the scene's first robot when empty; identity for a scene without robots).
 /// Throws InputError for an unknown robot name.
 Pose robotBaseFrame(const Scene& scene, const std::string& robot);
@@ -55,8 +61,12 @@ struct GoalCheck {
 /// side relations from the bounding-box centres in the robot base frame (with an explicit
 /// distance, the offset along that side must match it within tolerance); next_to when the boxes
 /// are within nearDistance (or the explicit distance); displaced by comparing with
-/// options.initialScene. Throws InputError for unknown objects, or a displacement goal without
-/// an initial scene.
+/// options.initialScene; at_position when the object frame's origin is within distanceTolerance
+/// of the position (x, y in the base frame); turned when the turn about the vertical from
+/// options.initialScene matches up to the object's symmetry (turnSymmetry()) within
+/// kTurnTolerance, without tilt, the origin staying within distanceTolerance; facing when the
+/// long side's line points at the target's centre within kTurnTolerance. Throws InputError for
+/// unknown objects, or a displacement or turn goal without an initial scene.
 GoalCheck checkGoalInScene(const Scene& scene, const Goal& goal, const GoalCheckOptions& options = {});
 
 }  // namespace lang2manip

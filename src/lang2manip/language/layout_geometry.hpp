@@ -1,0 +1,44 @@
+#pragma once
+/// @file Geometry of where objects stand, for the sequencer (internal to the language module):
+/// free spots to set an object aside, the turn that points an object at another, what goals
+/// about places and turns need.
+
+#include <cstddef>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lang2manip/core/types.hpp"
+#include "lang2manip/language/sequencer.hpp"
+
+namespace lang2manip::language_detail {
+
+/// Centres (x, y; z = the area's top) where a footprint of `size` (x, y) fits inside `area`
+/// (`gap` from its edges) without coming within `gap` of any box of `occupied` (x and y
+/// compared), on a 2 cm grid, nearest to `near` first, each at least 5 cm from those before; at
+/// most `wanted` of them.
+std::vector<Vector3> freeSpots(const Vector3& size, const AlignedBox3& area, const std::vector<AlignedBox3>& occupied,
+                               const Vector3& near, double gap, std::size_t wanted);
+
+/// `box` moved by `by`.
+AlignedBox3 shifted(const AlignedBox3& box, const Vector3& by);
+
+/// Throws PlanningError when an at_position, turned or facing goal cannot be planned: no layout
+/// for its object (or target), no position, a turn that leaves the object looking the same
+/// (turnSymmetry()), an object without a long side to point with.
+void validatePoseGoal(const Goal& goal, const SequencingOptions& options);
+
+/// The smaller turn (rad) that makes the long side of `goal.object` point at `goal.target`;
+/// nullopt when where either stands is not in `layout`.
+std::optional<double> facingTurn(const std::map<std::string, ObjectLayout>& layout, const Goal& goal);
+
+/// Records in `layout` that `object` now has its origin at `origin`, turned by `turn` about the
+/// vertical through it when given (nothing when `object` has no layout).
+void moveLayout(std::map<std::string, ObjectLayout>& layout, const std::string& object, const Vector3& origin,
+                std::optional<double> turn);
+
+/// True when the x-y extents of `a` and `b` come within `gap` of each other.
+bool footprintsOverlap(const AlignedBox3& a, const AlignedBox3& b, double gap);
+
+}  // namespace lang2manip::language_detail

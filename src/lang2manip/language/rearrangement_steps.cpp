@@ -1,0 +1,227 @@
+// StepParser: rearrangements and turns: "swap X and Y", "put X where Y is", "replace Y with X",
+// "turn X by 90 degrees clockwise", "point X at Y".
+
+#include <cmath>
+#include <utility>
+
+#include "lang2manip/language/clause_parser.hpp"
+#include "lang2manip/language/clause_step.hpp"
+#include "lang2manip/symbolic/task_planner.hpp"
+
+namespace lang2manip::language_detail {
+namespace {
+
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
+/// The longest phrase of `phrases` at words[at]; 0 when none.
+std::size_t longestAt(const Words& words, std::size_t at, const std::vector<Words>& phrases) {
+  std::size_t best = 0;
+  for (const Words& phrase : phrases) {
+    if (phrase.size() > best && matchesAt(words, at, phrase)) best = phrase.size();
+  }
+  return best;
+}
+
+std::vector<Words> phrasesOf(std::initializer_list<const char*> texts) {
+  std::vector<Words> phrases;
+  for (const char* text : texts) phrases.push_back(tokenize(text));
+  return phrases;
+}
+
+/// A turn's size (rad, unsigned) and its length in words.
+struct TurnAmount {
+  double radians = 0.0;
+  std::size_t length = 0;
+};
+
+std::optional<TurnAmount> matchNamedTurn(const Words& words, std::size_t at) {
+  static const std::vector<std::pair<Words, double>> named = [] {
+    std::vector<std::pair<Words, double>> list;
+    const std::pair<const char*, double> table[] = {
+        {"a quarter turn", 90},      {"quarter turn", 90},         {"a quarter of a turn", 90}, {"a quarter", 90},
+        {"a half turn", 180},        {"half a turn", 180},         {"half turn", 180},          {"a half", 180},
+        {"around", 180},             {"round", 180},               {"all the way around", 180}, {"sideways", 90},
+        {"a full turn", 360},        {"a whole turn", 360},        {"full circle", 360},        {"thirty", 30},
+        {"forty five", 45},          {"fortyfive", 45},            {"sixty", 60},               {"ninety", 90},
+        {"a hundred and eighty", 180}, {"one hundred and eighty", 180}, {"a hundred eighty", 180},
+        {"one hundred eighty", 180}, {"a right angle", 90}};
+    for (const auto& [text, degrees] : table) list.emplace_back(tokenize(text), degrees);
+    return list;
+  }();
+  std::optional<TurnAmount> best;
+  for (const auto& [phrase, degrees] : named) {
+    if (matchesAt(words, at, phrase) && (!best || phrase.size() > best->length)) best = TurnAmount{degrees * kDegree, phrase.size()};
+  }
+  return best;
+}
+
+/// "90 degrees", "45 deg", "90°", "1.57 radians", "ninety degrees", "a quarter turn", "around";
+/// a bare number is in degrees.
+std::optional<TurnAmount> matchTurnAmount(const Words& words, std::size_t at) {
+  std::optional<TurnAmount> amount;
+  if (at < words.size()) {
+    if (const std::optional<double> number = numberValue(words[at])) amount = TurnAmount{*number * kDegree, 1};
+  }
+  if (!amount) amount = matchNamedTurn(words, at);
+  if (!amount) return std::nullopt;
+  const std::size_t unit = at + amount->length;
+  static const std::vector<Words> degrees = phrasesOf({"degrees", "degree", "deg", "degs", "\xc2\xb0"});
+  static const std::vector<Words> radians = phrasesOf({"radians", "radian", "rad", "rads"});
+  if (const std::size_t length = longestAt(words, unit, degrees)) {
+    amount->length += length;
+  } else if (const std::size_t radianLength = longestAt(words, unit, radians)) {
+    amount->radians /= kDegree;
+    amount->length += radianLength;
+  }
+  return amount;
+}
+
+/// +1 counter-clockwise (seen from above; "to the left"), -1 clockwise, with its length.
+std::optional<std::pair<double, std::size_t>> matchTurnSense(const Words& words, std::size_t at) {
+  static const std::vector<Words> counter = phrasesOf({"counterclockwise", "counter clockwise", "anticlockwise", "anti clockwise",
+                                                       "to the left", "left", "leftward", "leftwards", "ccw"});
+  static const std::vector<Words> clockwise = phrasesOf({"clockwise", "to the right", "right", "rightward", "rightwards", "cw"});
+  const std::size_t left = longestAt(words, at, counter);
+  const std::size_t right = longestAt(words, at, clockwise);
+  if (left == 0 && right == 0) return std::nullopt;
+  return left >= right ? std::make_pair(1.0, left) : std::make_pair(-1.0, right);
+}
+
+}  // namespace
+
+void StepParser::parseTurn(Step& step) {
+  parseObjects(step);
+  if (parsePointing(step, true)) return;
+  const Words& words = step.words;
+  std::optional<TurnAmount> amount;
+  std::optional<double> sense;
+  for (int part = 0; part < 2; ++part) {  // the amount and the sense, in either order
+    if (const auto found = matchTurnSense(words, step.at); found && !sense) {
+      sense = found->first;
+      step.at += found->second;
+    }
+    const std::size_t by = (step.next("by") || step.next("through")) ? 1 : 0;
+    if (const auto found = matchTurnAmount(words, step.at + by); found && !amount) {
+      amount = found;
+      step.at += by + found->length;
+    }
+  }
+  if (!amount) failStep(step, "say how far to " + step.verb.lemma + " it (\"by 90 degrees\", \"a quarter turn\") or what it should point at");
+  if (amount->radians <= 0.0) failStep(step, "a turn of zero leaves it as it was");
+  if (amount->radians >= 360.0 * kDegree - 1e-9) failStep(step, "a full turn (or more) leaves it as it was; say a turn below 360 degrees");
+  for (const std::string& object : step.objects) {
+    Goal goal;
+    goal.kind = GoalKind::kTurned;
+    goal.object = object;
+    goal.angle = sense.value_or(1.0) * amount->radians;
+    specification_.goals.push_back(goal);
+  }
+}
+
+bool StepParser::parsePointing(Step& step, bool afterTurn) {
+  static const std::vector<Words> connectors =
+      phrasesOf({"at", "to", "toward", "towards", "in the direction of", "to face", "to point at", "to point to", "to point toward",
+                 "to point towards", "so that it faces", "so it faces", "so that it points at", "so it points at",
+                 "so that it points to", "so it points to", "so that it points toward", "so it points toward",
+                 "so that it points towards", "so it points towards", "so that it is facing", "so it is facing", "facing",
+                 "so that they face", "so they face", "so that they point at", "so they point at", "to face toward",
+                 "to face towards"});
+  const std::size_t length = longestAt(step.words, step.at, connectors);
+  if (length == 0 || (afterTurn && (step.next("to") || step.next("at")) && length == 1)) return false;
+  const std::optional<NounPhrase> phrase = reader_.read(step.words, step.at + length);
+  if (!phrase) failStep(step, "expected what to point it at after \"" + joinWords(step.words, step.at, step.at + length) + "\"");
+  step.at = phrase->end;
+  const std::string target = groundTarget(step, *phrase, false);
+  for (const std::string& object : step.objects) {
+    Goal goal;
+    goal.kind = GoalKind::kFacing;
+    goal.object = object;
+    goal.target = target;
+    specification_.goals.push_back(goal);
+  }
+  return true;
+}
+
+void StepParser::parsePoint(Step& step) {
+  parseObjects(step);
+  if (!parsePointing(step, false)) failStep(step, "say what to " + step.verb.lemma + " it at (\"at the holder\")");
+}
+
+void StepParser::parseSwap(Step& step) {
+  static const std::vector<Words> placesOf =
+      phrasesOf({"the positions of", "the places of", "the spots of", "the locations of", "the position of", "the place of",
+                 "places of", "positions of", "places between", "places with"});
+  step.at += longestAt(step.words, step.at, placesOf);
+  std::vector<NounPhrase> list = reader_.readList(step.words, step.at);
+  if (list.empty()) failStep(step, "expected the two objects to " + step.verb.lemma);
+  step.at = list.back().end;
+  if (list.size() == 1 && (step.next("with") || step.next("and"))) {
+    const std::optional<NounPhrase> other = reader_.read(step.words, step.at + 1);
+    if (!other) failStep(step, "expected the object to " + step.verb.lemma + " it with");
+    list.push_back(*other);
+    step.at = other->end;
+  }
+  static const std::vector<Words> trailing = phrasesOf({"around", "round", "over", "places", "positions", "spots", "their places",
+                                                        "their positions", "places with each other", "with each other"});
+  step.at += longestAt(step.words, step.at, trailing);
+  std::vector<std::string> objects;
+  for (const NounPhrase& phrase : list) {
+    for (const std::string& name : reader_.ground(phrase, discourse_, false, {})) {
+      if (!containsWord(objects, name)) objects.push_back(name);
+    }
+  }
+  if (objects.size() != 2) failStep(step, "a swap exchanges the places of exactly two objects, not " + std::to_string(objects.size()));
+  step.objects = objects;
+  addPlaceGoal(objects[0], objects[1]);
+  addPlaceGoal(objects[1], objects[0]);
+}
+
+void StepParser::parseReplace(Step& step) {
+  parseObjects(step);
+  if (step.objects.size() != 1) failStep(step, "one object at a time can be replaced");
+  if (!step.next("with") && !step.next("by")) failStep(step, "say what to replace it with (\"with the eraser\")");
+  const std::optional<NounPhrase> phrase = reader_.read(step.words, step.at + 1);
+  if (!phrase) failStep(step, "expected the object to replace it with");
+  step.at = phrase->end;
+  const std::string replaced = step.objects.front();
+  const std::string replacement = groundTarget(step, *phrase, false);
+  addPlaceGoal(replacement, replaced);
+  step.objects = {replacement};
+}
+
+bool StepParser::parseWhereStands(Step& step) {
+  static const std::vector<Words> before =
+      phrasesOf({"where", "to where", "into where", "over to where", "back to where", "in the place of", "in place of",
+                 "to the place of", "at the place of", "into the place of", "in the position of", "to the position of",
+                 "at the position of", "into the position of", "in the spot of", "to the spot of", "on the spot of",
+                 "at the spot of", "to the location of", "at the location of", "in the location of"});
+  static const std::vector<Words> being = phrasesOf({"is", "stands", "was", "stood", "sits", "sat", "lies", "lay", "is standing",
+                                                     "is now", "is right now", "currently is", "is currently", "used to be",
+                                                     "is sitting", "is lying", "is placed", "is located"});
+  const std::size_t length = longestAt(step.words, step.at, before);
+  if (length == 0) return false;
+  const std::optional<NounPhrase> phrase = reader_.read(step.words, step.at + length);
+  if (!phrase) failStep(step, "expected the object whose place to take");
+  step.at = phrase->end + longestAt(step.words, phrase->end, being);
+  const std::string owner = groundTarget(step, *phrase, false);
+  if (step.objects.size() != 1) failStep(step, "only one object can stand where " + owner + " stands");
+  addPlaceGoal(step.objects.front(), owner);
+  return true;
+}
+
+void StepParser::addPlaceGoal(const std::string& object, const std::string& owner) {
+  if (object == owner) throwGroundingError(object, "cannot put " + object + " where it already stands");
+  const ObjectDescriptor& mover = reader_.descriptor(object);
+  const ObjectDescriptor& place = reader_.descriptor(owner);
+  Goal goal;
+  goal.kind = GoalKind::kAtPosition;
+  goal.object = object;
+  goal.target = owner;
+  const Vector3 centre = place.bounds.center();
+  goal.position = Vector3(mover.origin.x() + centre.x() - mover.bounds.center().x(),
+                          mover.origin.y() + centre.y() - mover.bounds.center().y(),
+                          mover.origin.z() + place.bounds.min().z() - mover.bounds.min().z());
+  specification_.goals.push_back(goal);
+}
+
+}  // namespace lang2manip::language_detail
