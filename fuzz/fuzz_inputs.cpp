@@ -136,6 +136,8 @@ InputOutcome feedLlmReplay(std::string_view input) {
 const std::vector<FuzzTarget>& fuzzTargets() {
   static const std::vector<FuzzTarget> targets = {
       {"plan_text", feedPlanText},
+      {"instruction", feedInstruction},
+      {"instruction_corpus", feedInstructionCorpus},
       {"llm_openai", feedOpenAiReply},
       {"llm_anthropic", feedAnthropicReply},
       {"llm_gemini", feedGeminiReply},

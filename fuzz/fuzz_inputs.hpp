@@ -44,6 +44,12 @@ InputOutcome feedOllamaReply(std::string_view input);
 /// An --llm-replay file (JSON Lines) -> the replay client.
 InputOutcome feedLlmReplay(std::string_view input);
 
+/// An instruction understood over the built-in Panda desk's objects and sequenced into a plan
+/// (a refusal is a PlanningError).
+InputOutcome feedInstruction(std::string_view input);
+/// An instruction corpus (data/corpus/instructions.tsv format).
+InputOutcome feedInstructionCorpus(std::string_view input);
+
 /// URDF text (meshes not loaded, so inputs need no sibling files).
 InputOutcome feedUrdf(std::string_view input);
 /// A xacro file (with inc.xacro and data.yaml beside it to include and load), expanded.

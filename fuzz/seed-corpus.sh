@@ -56,6 +56,12 @@ add_files kautham_problem "$kTextLimit" "$shared/kautham" -name '*.xml'
 add_files kautham_controls "$kTextLimit" "$repo/data" -name '*.cntr'
 add_files kautham_controls "$kTextLimit" "$shared/kautham" -name '*.cntr'
 add_files kautham_benchmark "$kTextLimit" "$shared/kautham" -name 'benchmark*.xml'
+add_files instruction_corpus "$kTextLimit" "$repo/data/corpus" -name '*.tsv'
+# One seed per corpus instruction (at most kMaxSeeds): the instruction target reads plain text.
+mkdir -p "$out_dir/instruction"
+awk -F '\t' -v n="$kMaxSeeds" -v out="$out_dir/instruction" \
+  '!/^#/ && NF == 3 && count < n { file = out "/corpus_" NR; printf "%s", $3 > file; close(file); count++ }' \
+  "$repo/data/corpus/instructions.tsv"
 for format in stl obj dae ply iv wrl; do
   add_files "mesh_$format" "$kMeshLimit" "$repo/tests/data/meshes" -iname "*.$format"
   add_files "mesh_$format" "$kMeshLimit" "$shared" -iname "*.$format"

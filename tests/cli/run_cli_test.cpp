@@ -327,6 +327,32 @@ TEST(BenchTaskCli, RandomizedTrialsPrintSuccessFeasibilityAndTheBaselineRatio) {
   EXPECT_THAT(run("bench task --baseline-ik nope").output, HasSubstr("nope"));
 }
 
+TEST(BenchInstructionsCli, ACorpusIsMeasuredPerClassWithItsFailuresNamed) {
+  const TempDirectory directory;
+  const fs::path corpus = directory.path() / "corpus.tsv";
+  std::ofstream(corpus) << "# two classes\ncontainer\texecute\tput the eraser in the holder\n"
+                           "rotate\trefuse\trotate the holder by 90 degrees\n"
+                           "rotate\texecute\tturn the holder upside down twice\n";
+  const RunResult result = run("bench instructions " + corpus.string() + " --problems panda_desk --json", false);
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  const json figures = json::parse(result.output, nullptr, false);
+  ASSERT_TRUE(figures.is_object()) << result.output;
+  EXPECT_EQ(figures["classes"]["container"]["execute"], 1);
+  if (kBudgets.empty()) {
+    EXPECT_EQ(figures["classes"]["container"]["executed_after_repair"], 1);
+  }
+  EXPECT_EQ(figures["classes"]["rotate"]["refuse"], 1);
+  EXPECT_EQ(figures["classes"]["rotate"]["refused_cleanly"], 1);
+  ASSERT_GE(figures["failures"].size(), 1u);
+  EXPECT_EQ(figures["failures"].back()["line"], 4);
+  const RunResult text = run("bench instructions " + corpus.string() + " --problems panda_desk --class rotate");
+  EXPECT_THAT(text.output, HasSubstr("first round  after repair"));
+  EXPECT_THAT(text.output, HasSubstr("line 4 [rotate, execute]"));
+  EXPECT_THAT(run("bench instructions " + corpus.string() + " --class nothing").output, HasSubstr("no instruction of class \"nothing\""));
+  EXPECT_THAT(run("bench instructions " + (directory.path() / "none.tsv").string()).output, HasSubstr("none.tsv"));
+  EXPECT_THAT(run("bench instructions " + corpus.string() + " --problems nowhere").output, HasSubstr("nowhere"));
+}
+
 TEST(RunCliBadInput, EveryArgumentErrorIsNamed) {
   const TempDirectory directory;
   const std::string out = " --out " + (directory.path() / "out").string();

@@ -9,6 +9,7 @@
 #include "lang2manip/language/instruction.hpp"
 #include "lang2manip/language/object_descriptor.hpp"
 #include "lang2manip/language/offline_task_planner.hpp"
+#include "lang2manip/symbolic/plan_json.hpp"
 #include "lang2manip/symbolic/repair_loop.hpp"
 #include "lang2manip/symbolic/spatial_relations.hpp"
 
@@ -55,6 +56,22 @@ TEST(RearrangementExecution, SwapsPlacesTurnsAndPointingOnEveryBuiltInRobot) {
       EXPECT_TRUE(outcome.repair.succeeded() && outcome.verification.success) << explain(outcome);
     }
   }
+}
+
+TEST(RearrangementExecution, AnObjectTheGripperCannotHoldIsRefusedBeforeAnythingMoves) {
+  const Scene scene = deskScene("panda");
+  TaskExecutor executor(scene, testSettings());
+  const Outcome outcome = runOffline(scene, executor, "put the holder where the eraser is");  // the eraser is set aside first
+  EXPECT_FALSE(outcome.repair.succeeded());
+  ASSERT_FALSE(executor.executions().empty());
+  for (const ExecutionRecord& record : executor.executions()) {
+    ASSERT_TRUE(record.failure.has_value());
+    EXPECT_EQ(record.failure->stage, "precondition");
+    EXPECT_EQ(record.failure->object, "holder");
+    EXPECT_NE(record.failure->reason.find("too wide for the gripper in every direction"), std::string::npos) << record.failure->reason;
+    for (const ActionExecution& action : record.actions) EXPECT_NE(action.status, ActionStatus::kSucceeded) << describeAction(action.action);
+  }
+  EXPECT_EQ(executor.executions().size(), 1u) << "nothing new to try after a precondition";
 }
 
 /// The offline planner's next plan for `task` after `failed` could not place its action `index`.

@@ -43,6 +43,9 @@ const std::pair<const char*, const char*> kReferences[] = {
     {"pick up the object that is left of the holder", "holding eraser"},
     {"place the object farthest away from the eraser next to the holder", "marker next_to holder"},
     {"put the tallest object next to the marker", "holder next_to marker"},
+    {"put everything except the eraser in the holder", "marker in holder"},
+    {"put all the objects but the marker into the holder", "eraser in holder"},
+    {"put everything other than the holder in the holder", "marker in holder; eraser in holder"},
 };
 
 /// Of the marker and the eraser, the one whose box is nearer to (or farther from) the holder's.

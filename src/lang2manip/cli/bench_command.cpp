@@ -11,6 +11,7 @@ void addBenchCommand(CLI::App& app, std::ostream& out) {
   addBenchMbmCommand(*bench, out);
   addBenchKauthamCommand(*bench, out);
   addBenchTaskCommand(*bench, out);
+  addBenchInstructionsCommand(*bench, out);
 }
 
 }  // namespace lang2manip

@@ -23,4 +23,8 @@ void addBenchKauthamCommand(CLI::App& bench, std::ostream& out);
 /// [--baseline-ik NAME] [--json]`: randomized trials of a task (docs/benchmarks.md, task level).
 void addBenchTaskCommand(CLI::App& bench, std::ostream& out);
 
+/// `lang2manip bench instructions [CORPUS] [--problems A,B] [--class NAME] [--spread M] [--turn RAD]
+/// [--seed N] [--failures N] [--json]`: an instruction corpus on the built-in desks, per class.
+void addBenchInstructionsCommand(CLI::App& bench, std::ostream& out);
+
 }  // namespace lang2manip

@@ -17,6 +17,7 @@
 #include "lang2manip/cli/bench_commands.hpp"
 #include "lang2manip/cli/bench_statistics.hpp"
 #include "lang2manip/cli/problem_loading.hpp"
+#include "lang2manip/cli/scene_randomization.hpp"
 #include "lang2manip/cli/task_run.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/core/random.hpp"
@@ -45,29 +46,6 @@ struct BenchTaskOptions {
   std::string baselineIk = "kdl";
   bool json = false;
 };
-
-/// The scene with every movable object shifted by up to `spread` in x and y and turned by up to
-/// `turn` about z, none overlapping another object's bounds; nullopt after 100 tries.
-std::optional<Scene> randomizedScene(const Scene& scene, const BenchTaskOptions& options, Random& random) {
-  for (int attempt = 0; attempt < 100; ++attempt) {
-    Scene trial = scene;
-    for (const SceneObject& object : scene.objects()) {
-      if (!object.movable) continue;
-      Pose& pose = trial.object(object.name).pose;
-      pose.translation() += Vector3(random.uniform(-options.spread, options.spread), random.uniform(-options.spread, options.spread), 0.0);
-      pose.linear() = Eigen::AngleAxisd(random.uniform(-options.turn, options.turn), Vector3::UnitZ()).toRotationMatrix() * pose.linear();
-    }
-    bool overlapping = false;
-    for (const SceneObject& a : trial.objects()) {
-      for (const SceneObject& b : trial.objects()) {
-        const AlignedBox3 common = a.worldBounds().intersection(b.worldBounds());
-        if (&a < &b && (a.movable || b.movable) && !common.isEmpty() && common.volume() > 1e-9) overlapping = true;
-      }
-    }
-    if (!overlapping) return trial;
-  }
-  return std::nullopt;
-}
 
 struct Figures {
   std::string label;
@@ -171,7 +149,7 @@ void runBench(const BenchTaskOptions& options, std::ostream& out) {
   Random random(static_cast<std::uint64_t>(options.seed));
   int skipped = 0;
   for (int i = 0; i < options.trials; ++i) {
-    const std::optional<Scene> scene = randomizedScene(loaded.problem.scene, options, random);
+    const std::optional<Scene> scene = randomizedScene(loaded.problem.scene, options.spread, options.turn, random);
     if (!scene) {
       ++skipped;
       continue;

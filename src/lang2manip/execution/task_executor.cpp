@@ -1,5 +1,7 @@
 #include "lang2manip/execution/task_executor.hpp"
 
+#include <cstdio>
+
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/execution/action_grounding.hpp"
 #include "lang2manip/symbolic/plan_json.hpp"
@@ -9,10 +11,52 @@ namespace lang2manip {
 TaskExecutor::TaskExecutor(Scene initial, ExecutionSettings settings)
     : initial_(std::move(initial)), arm_(initial_, std::move(settings)) {}
 
+namespace {
+
+/// The first pick of an object whose narrowest extent is wider than the gripper opens (no grasp
+/// can hold it, whatever the plan does first), with why; nullopt when there is none.
+std::optional<std::pair<std::size_t, std::string>> firstUnholdablePick(const Plan& plan, const Scene& scene,
+                                                                       const GripperGeometry& gripper) {
+  if (!gripper.hasGripper()) return std::nullopt;
+  for (std::size_t i = 0; i < plan.actions.size(); ++i) {
+    const SymbolicAction& action = plan.actions[i];
+    const SceneObject* object = action.type == ActionType::kPick ? scene.findObject(action.object) : nullptr;
+    if (object == nullptr || !object->movable || object->collisions.empty()) continue;  // others fail with their reason
+    const double narrowest = object->dimensions().minCoeff();
+    if (narrowest <= gripper.maxOpening) continue;
+    char text[160];
+    std::snprintf(text, sizeof text, ": too wide for the gripper in every direction (%.3f m at its narrowest, the gripper opens %.3f m)",
+                  narrowest, gripper.maxOpening);
+    return std::make_pair(i, action.object + text);
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 std::optional<GroundingFailure> TaskExecutor::execute(const Plan& plan, const StopCondition& stop) {
   ExecutionRecord record;
   Scene world = initial_;
   const GroundingContext context{arm_, record.counters, stop, &plan};
+  if (const auto unholdable = firstUnholdablePick(plan, initial_, arm_.gripper())) {
+    // Refused before anything moves: nothing the plan does first makes the object fit.
+    const auto [index, reason] = *unholdable;
+    for (std::size_t i = 0; i < plan.actions.size(); ++i) {
+      ActionExecution action;
+      action.index = i;
+      action.action = plan.actions[i];
+      if (i == index) {
+        action.status = ActionStatus::kFailed;
+        action.stage = "precondition";
+        action.reason = reason;
+      }
+      record.actions.push_back(std::move(action));
+    }
+    record.failure = GroundingFailure{index, "precondition", plan.actions[index].object, reason, {}};
+    record.finalScene = std::move(world);
+    executions_.push_back(std::move(record));
+    return executions_.back().failure;
+  }
   for (std::size_t i = 0; i < plan.actions.size(); ++i) {
     if (record.failure) {
       ActionExecution skipped;

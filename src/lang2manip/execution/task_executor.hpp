@@ -18,7 +18,9 @@ class TaskExecutor final : public PlanExecutor {
   /// settings).
   TaskExecutor(Scene initial, ExecutionSettings settings = {});
 
-  /// Executes `plan` from the initial world; the first action that failed, or nullopt.
+  /// Executes `plan` from the initial world; the first action that failed, or nullopt. A pick of
+  /// an object wider than the gripper opens in every direction fails at stage "precondition"
+  /// before any action runs (nothing the plan does first could make it fit).
   std::optional<GroundingFailure> execute(const Plan& plan, const StopCondition& stop) override;
 
   /// Told when each action starts and ends (kActionStarted, kActionFinished).

@@ -68,7 +68,8 @@ struct PlacementTarget {
   /// for next_to: the gap between the bounding boxes (as the goal check measures them).
   std::optional<double> distance;
   /// Explicit position of the object's frame in the robot base frame, and optionally its
-  /// orientation (base frame; default: the object's current world orientation).
+  /// orientation (base frame; default: the object's current world orientation, then the same
+  /// turned about the vertical by 90, 180 and 270 degrees).
   std::optional<Vector3> position;
   std::optional<Quaternion> orientation;
 };

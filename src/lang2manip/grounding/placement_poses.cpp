@@ -165,9 +165,11 @@ PoseSampling besideObject(const PoseSamplingInput& in, const SceneObject& refere
   return sampling;
 }
 
-PoseSampling atPose(const PoseSamplingInput& in, const PlacementTarget& target, const PlacementSettings& s) {
+/// The object at the target position with orientation `rotation` (world), set onto the support
+/// under it; a failure when nothing is there to rest on.
+PoseSampling atPoseTurned(const PoseSamplingInput& in, const PlacementTarget& target, const Matrix3& rotation, const PlacementSettings& s) {
   Pose pose = Pose::Identity();
-  pose.linear() = target.orientation ? (in.robotBase.linear() * target.orientation->normalized().toRotationMatrix()) : in.orientation.toRotationMatrix();
+  pose.linear() = rotation;
   pose.translation() = in.robotBase * *target.position;
   const AlignedBox3 bounds = boundsAtPose(*in.object, pose);
   const Vector3 bottom(bounds.center().x(), bounds.center().y(), bounds.min().z());
@@ -178,6 +180,22 @@ PoseSampling atPose(const PoseSamplingInput& in, const PlacementTarget& target, 
   pose.translation().z() += support->worldBounds().max().z() + s.releaseGap - bottom.z();
   PoseSampling sampling;
   sampling.poses.push_back({pose, support->name, describePlacementTarget(target)});
+  return sampling;
+}
+
+/// At an explicit position: in the requested orientation, or, when none is requested, in the
+/// object's current orientation first and then its other upright yaws (the position is what was
+/// asked for; the hand may need another yaw to reach it).
+PoseSampling atPose(const PoseSamplingInput& in, const PlacementTarget& target, const PlacementSettings& s) {
+  if (target.orientation) {
+    return atPoseTurned(in, target, in.robotBase.linear() * target.orientation->normalized().toRotationMatrix(), s);
+  }
+  PoseSampling sampling;
+  for (const Quaternion& q : uprightYaws(in.orientation)) {
+    PoseSampling one = atPoseTurned(in, target, q.toRotationMatrix(), s);
+    if (one.poses.empty()) return one;
+    sampling.poses.insert(sampling.poses.end(), one.poses.begin(), one.poses.end());
+  }
   return sampling;
 }
 

@@ -24,7 +24,49 @@ std::string verbList() {
 
 }  // namespace
 
+std::optional<Words> StepParser::inVerbFirstOrder(const Words& words) const {
+  static const std::vector<Words> causatives{{"make"}, {"have"}, {"let"}};
+  static const std::vector<Words> wishes{{"i", "want"}, {"i'd", "like"}, {"i", "would", "like"}, {"we", "want"}, {"i", "need"},
+                                         {"we", "need"}, {"i'd", "love"}, {"i", "wish"}};
+  static const std::vector<Words> placedVerbs{{"go"}, {"goes"}, {"belong"}, {"belongs"}, {"should", "be"}, {"should", "go"},
+                                              {"must", "be"}, {"must", "go"}, {"needs", "to", "be"}, {"need", "to", "be"},
+                                              {"has", "to", "be"}, {"have", "to", "be"}, {"should", "end", "up"}, {"end", "up"}};
+  const auto startsWith = [&words](const std::vector<Words>& phrases, std::size_t at) -> std::size_t {
+    std::size_t best = 0;
+    for (const Words& phrase : phrases) {
+      if (phrase.size() > best && matchesAt(words, at, phrase)) best = phrase.size();
+    }
+    return best;
+  };
+  const auto join = [&words](const Words& verb, std::size_t from, std::size_t to, std::size_t rest) {
+    Words rewritten = verb;
+    rewritten.insert(rewritten.end(), words.begin() + static_cast<std::ptrdiff_t>(from), words.begin() + static_cast<std::ptrdiff_t>(to));
+    rewritten.insert(rewritten.end(), words.begin() + static_cast<std::ptrdiff_t>(rest), words.end());
+    return rewritten;
+  };
+  std::size_t subject = startsWith(causatives, 0);  // "make the marker point at the holder"
+  const std::size_t wish = subject == 0 ? startsWith(wishes, 0) : 0;  // "I want the marker in the holder"
+  subject += wish;
+  const std::vector<NounPhrase> list = reader_.readList(words, subject);
+  if (list.empty() || (subject == 0 && vocabulary::matchVerb(words, 0))) return std::nullopt;
+  std::size_t end = list.back().end;
+  if (wish > 0 && matchesAt(words, end, {"to", "be"})) return join({"put"}, subject, end, end + 2);
+  if (wish > 0) return end == words.size() ? join({"hand", "me"}, subject, end, end) : join({"put"}, subject, end, end);
+  if (const std::size_t placed = startsWith(placedVerbs, end)) return join({"put"}, subject, end, end + placed);
+  if (const auto verb = vocabulary::matchVerb(words, end)) {  // "the marker and the eraser trade places"
+    const Words verbWords(words.begin() + static_cast<std::ptrdiff_t>(end), words.begin() + static_cast<std::ptrdiff_t>(end + verb->length));
+    return join(verbWords, subject, end, end + verb->length);
+  }
+  return std::nullopt;
+}
+
 void StepParser::parse(const Words& words, const StepModifiers& modifiers) {
+  if (!words.empty() && !sameAs(words, 0)) {
+    if (const std::optional<Words> reordered = inVerbFirstOrder(words)) {
+      parse(*reordered, modifiers);
+      return;
+    }
+  }
   Step step(words);
   step.firstGoal = specification_.goals.size();
   if (words.empty()) {
@@ -70,8 +112,12 @@ void StepParser::parsePredicate(Step& step) {
     parseKeep(step);
     return;
   }
-  if (step.verb.handsOver) {
+  if (step.verb.handsOver || (step.verb.places && handsToPerson(step))) {
     parseHandOver(step);
+    return;
+  }
+  if (step.verb.fills) {
+    parseFill(step);
     return;
   }
   if (step.verb.swaps || step.verb.turns || step.verb.points || step.verb.replaces) {
@@ -85,9 +131,21 @@ void StepParser::parsePredicate(Step& step) {
     failStep(step, "the only place to " + step.verb.lemma + " is home");
   }
   parseObjects(step);
-  if (!parseWhereStands(step) && !parseRelations(step) && !parseDisplacement(step)) parseWithoutPlace(step);
+  const bool placed = parsePutBack(step) || parseBetween(step) || parseWhereStands(step) || parseRelations(step) || parseDisplacement(step);
+  if (!placed) parseWithoutPlace(step);
   parseGappedRelations(step);
   skipSource(step);
+}
+
+bool StepParser::handsToPerson(const Step& step) const {
+  static const std::vector<Words> endings{{"to", "me"}, {"over", "to", "me"}, {"to", "us"}, {"over", "to", "us"}, {"to", "the", "user"},
+                                          {"to", "the", "person"}, {"to", "the", "human"}, {"to", "the", "operator"}, {"over", "here"}};
+  const Words& words = step.words;
+  if (step.next("me") || step.next("us")) return true;  // "bring me the marker"
+  for (const Words& ending : endings) {
+    if (words.size() >= ending.size() && matchesAt(words, words.size() - ending.size(), ending)) return true;
+  }
+  return false;
 }
 
 std::size_t StepParser::sameAs(const Words& words, std::size_t at) {
@@ -142,7 +200,7 @@ void StepParser::parseObjects(Step& step) {
   }
   // Particles: "pick it up", "put it down", "put it back in the holder" (but "push it back
   // 3 cm" and "move it away" are directions).
-  while (step.next("up") || step.next("down") ||
+  while (step.next("up") || step.next("down") || (step.next("over") && step.at + 1 == step.words.size()) ||
          ((step.next("back") || step.next("away")) &&
           vocabulary::matchRelation(step.words, step.at + 1))) {
     if (step.next("down")) step.putsDown = true;
@@ -185,7 +243,39 @@ void StepParser::skipSource(Step& step) {
 bool StepParser::parseRelations(Step& step) {
   bool any = false;
   while (parseRelation(step)) any = true;  // "on the desk next to the holder"
-  return any;
+  if (!any) return false;
+  auto& goals = specification_.goals;
+  // "every object on the desk in the holder": where the objects stand now, not a first place.
+  const std::size_t count = step.objects.size();
+  while (count > 0 && goals.size() >= step.firstGoal + 2 * count) {
+    const Goal& first = goals[step.firstGoal];
+    const bool restsAlready = first.relation == SpatialRelation::kOn &&
+                              std::all_of(step.objects.begin(), step.objects.end(), [&](const std::string& object) { return standsOn(object, first.target); });
+    const bool placedAfter = std::any_of(goals.begin() + static_cast<std::ptrdiff_t>(step.firstGoal + count), goals.end(), [](const Goal& goal) {
+      return goal.relation == SpatialRelation::kIn || goal.relation == SpatialRelation::kOn;
+    });
+    if (!restsAlready || !placedAfter) break;
+    goals.erase(goals.begin() + static_cast<std::ptrdiff_t>(step.firstGoal), goals.begin() + static_cast<std::ptrdiff_t>(step.firstGoal + count));
+  }
+  // "in the holder on the desk": where the holder stands, not a second place for the objects.
+  for (std::size_t i = step.firstGoal; i + step.objects.size() < goals.size(); ++i) {
+    const Goal& first = goals[i];
+    const Goal& second = goals[i + step.objects.size()];
+    const bool locative = second.relation == SpatialRelation::kOn && first.relation &&
+                          (*first.relation == SpatialRelation::kIn || *first.relation == SpatialRelation::kOn) &&
+                          standsOn(first.target, second.target);
+    if (locative) goals.erase(goals.begin() + static_cast<std::ptrdiff_t>(i + step.objects.size()));
+  }
+  refuseConflictingGoals({goals.begin() + static_cast<std::ptrdiff_t>(step.firstGoal), goals.end()}, joinWords(step.words));
+  return true;
+}
+
+bool StepParser::standsOn(const std::string& object, const std::string& support) const {
+  constexpr double kContactGap = 0.015;
+  const AlignedBox3& a = reader_.descriptor(object).bounds;
+  const AlignedBox3& b = reader_.descriptor(support).bounds;
+  const bool over = a.min().x() < b.max().x() && b.min().x() < a.max().x() && a.min().y() < b.max().y() && b.min().y() < a.max().y();
+  return object != support && over && std::abs(a.min().z() - b.max().z()) <= kContactGap;
 }
 
 bool StepParser::parseRelation(Step& step) {
@@ -210,6 +300,8 @@ bool StepParser::parseRelation(Step& step) {
   if (!relation) return false;
   const auto direction = vocabulary::matchDirection(words, at);
   if (direction && direction->length >= relation->length) return false;
+  const bool alongALine = matchesAt(words, at, {"away", "from"}) || matchesAt(words, at, {"closer", "to"}) || matchesAt(words, at, {"nearer", "to"});
+  if (distance && alongALine) return false;  // "2 cm away from the holder": a displacement
   const std::optional<NounPhrase> targetPhrase = reader_.read(words, at + relation->length);
   const bool stranded = at + relation->length == words.size();
   const bool inOrOn = relation->relation && !isDirectional(*relation->relation);
@@ -330,7 +422,25 @@ bool StepParser::parseDisplacement(Step& step) {
     distance = vocabulary::kSmallAmount;
     at += *small;
   }
-  const auto direction = vocabulary::matchDirection(words, at);
+  std::optional<vocabulary::DirectionMatch> direction;
+  std::string reference;  // "3 cm toward the holder": along the line to another object
+  bool away = false;
+  if (distance) {
+    static const std::vector<Words> toward{{"toward"}, {"towards"}, {"closer", "to"}, {"nearer", "to"}, {"in", "the", "direction", "of"}};
+    static const std::vector<Words> from{{"away", "from"}, {"further", "from"}, {"farther", "from"}};
+    std::size_t length = 0;
+    for (const Words& phrase : toward) length = matchesAt(words, at, phrase) ? std::max(length, phrase.size()) : length;
+    for (const Words& phrase : from) {
+      if (matchesAt(words, at, phrase) && phrase.size() > length) length = phrase.size(), away = true;
+    }
+    const std::optional<NounPhrase> target = length > 0 ? reader_.read(words, at + length) : std::nullopt;
+    if (target && target->pronoun == Pronoun::kNone && !matchesAt(words, at + length, {"the", "robot"}) &&
+        !matchesAt(words, at + length, {"you"})) {
+      reference = groundTarget(step, *target, false);
+      direction = vocabulary::DirectionMatch{Vector3::Zero(), target->end - at};
+    }
+  }
+  if (!direction) direction = vocabulary::matchDirection(words, at);
   if (!direction) return false;
   at += direction->length;
   if (!distance) {
@@ -344,6 +454,12 @@ bool StepParser::parseDisplacement(Step& step) {
       at = after + *small;
     } else if (step.verb.nudges) {
       distance = vocabulary::kSmallAmount;
+    }
+  }
+  if (words.size() > at + 1 && words[at] == ",") {  // "a bit to the left, about 4 cm": the amount said again
+    if (auto restated = vocabulary::matchLength(words, at + 1)) {
+      distance = restated->metres;
+      at += 1 + restated->length;
     }
   }
   if (!distance) {
@@ -360,6 +476,12 @@ bool StepParser::parseDisplacement(Step& step) {
     goal.kind = GoalKind::kDisplaced;
     goal.object = object;
     goal.displacement = direction->direction * *distance;
+    if (!reference.empty()) {
+      Vector3 line = reader_.descriptor(reference).position - reader_.descriptor(object).position;
+      line.z() = 0.0;
+      if (line.norm() < 1e-6) failStep(step, object + " and " + reference + " stand at the same place: no direction between them");
+      goal.displacement = line.normalized() * *distance * (away ? -1.0 : 1.0);
+    }
     specification_.goals.push_back(goal);
   }
   return true;

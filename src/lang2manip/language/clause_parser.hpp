@@ -37,6 +37,10 @@ class StepParser {
   StepParser(const NounPhraseReader& reader, TaskSpecification& specification)
       : reader_(reader), specification_(specification) {}
 
+  /// The step in verb-first order when it is said another way: "make X point at Y", "have X and
+  /// Y trade places" (causatives), "I want X in Y" (a wish; "I want X" alone: a handover), "X and
+  /// Y go in Z", "X should be on Y" (subject first); nullopt otherwise.
+  [[nodiscard]] std::optional<Words> inVerbFirstOrder(const Words& words) const;
   /// Parses one step (words without fillers, sequencing words and modifiers).
   void parse(const Words& words, const StepModifiers& modifiers);
 
@@ -60,8 +64,15 @@ class StepParser {
   void parseSwap(Step& step);
   /// "replace Y with X": X where Y stood (Y set aside).
   void parseReplace(Step& step);
+  /// "fill Y with X and Z": X and Z in Y.
+  void parseFill(Step& step);
+  /// True when the step hands its objects to a person ("bring me X", "bring X over to me").
+  [[nodiscard]] bool handsToPerson(const Step& step) const;
   /// "turn X by 90 degrees clockwise", "rotate X a quarter turn", "turn X to face Y".
   void parseTurn(Step& step);
+  /// "give X a quarter turn", "give it a 90 degree turn to the left" after the objects: turned
+  /// goals; false when no turn follows.
+  bool parseGivenTurn(Step& step);
   /// "point X at Y", "orient X toward Y".
   void parsePoint(Step& step);
   /// "... at/toward/to face Y" after the objects: facing goals; false when absent. After a turn
@@ -70,12 +81,21 @@ class StepParser {
   /// "... where Y is", "... in the place of Y" after the objects: an at_position goal; false
   /// when absent.
   bool parseWhereStands(Step& step);
+  /// "put it back", "put it back down where it was" (ending the step): at_position goals at
+  /// where the objects stand now; false when absent.
+  bool parsePutBack(Step& step);
+  /// "... between X and Y": an at_position goal halfway between their centres; false when absent.
+  bool parseBetween(Step& step);
+  /// "... to the eraser's place": an at_position goal; false when absent.
+  bool parsePossessivePlace(Step& step);
   /// Goal: `object` stands where `owner` stands now (its footprint centred on the owner's).
   void addPlaceGoal(const std::string& object, const std::string& owner);
   void parseObjects(Step& step);
   /// One or more relation phrases in a row; false when none.
   bool parseRelations(Step& step);
   bool parseRelation(Step& step);
+  /// True when `object` rests on top of `support` (their boxes, within 1.5 cm).
+  [[nodiscard]] bool standsOn(const std::string& object, const std::string& support) const;
   bool parseDisplacement(Step& step);
   void parseWithoutPlace(Step& step);
   void parseGappedRelations(Step& step);

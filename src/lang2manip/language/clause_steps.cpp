@@ -8,7 +8,7 @@
 namespace lang2manip::language_detail {
 
 void StepParser::parseHandOver(Step& step) {
-  static const std::vector<Words> person{{"me"}, {"us"}, {"the", "user"}, {"the", "person"}, {"the", "human"}, {"the", "operator"}};
+  static const std::vector<Words> person{{"me"}, {"us"}, {"the", "user"}, {"the", "person"}, {"the", "human"}, {"the", "operator"}, {"here"}};
   auto skipPerson = [&step](std::size_t from) {
     for (const Words& words : person) {
       if (matchesAt(step.words, from, words)) return from + words.size();
@@ -17,7 +17,9 @@ void StepParser::parseHandOver(Step& step) {
   };
   step.at = skipPerson(step.at);  // "hand me the marker"
   parseObjects(step);
+  if (parseGivenTurn(step)) return;  // "give the eraser a quarter turn"
   if (step.next("over")) ++step.at;
+  if (step.next("here")) ++step.at;
   if (step.next("to")) {
     const std::size_t after = skipPerson(step.at + 1);
     if (after == step.at + 1) failStep(step, "a handover goes to a person (\"to me\"), not to an object");

@@ -11,8 +11,8 @@
 namespace lang2manip::language_detail {
 
 /// Throws PlanningError when two goals of one step, asked for together ("in the holder and on the
-/// desk"), cannot hold together for the same object: in or on two different objects, or opposite
-/// sides of the same one.
+/// desk"), cannot hold together for the same object: in or on two different objects, in one
+/// object and beside another, or opposite sides of the same one.
 void refuseConflictingGoals(const std::vector<Goal>& stepGoals, const std::string& stepText);
 
 /// Throws PlanningError when a goal moves an object the instruction says to keep where it is

@@ -20,7 +20,20 @@ void refuseWhatCannotBeGrounded(const Words& words) {
   if (vocabulary::isQuestionWord(words.front())) {
     throwGroundingError(joinWords(words), "it is a question, not an instruction");
   }
+  static const std::vector<std::string> quantifiers{"everything", "all", "every", "each", "both", "objects", "things", "items", "anything"};
+  const auto afterQuantifier = [&](std::size_t at) {
+    for (std::size_t back = 1; back <= 4 && back <= at; ++back) {
+      if (std::find(quantifiers.begin(), quantifiers.end(), words[at - back]) != quantifiers.end()) return true;
+    }
+    return false;
+  };
   for (std::size_t at = 0; at < words.size(); ++at) {
+    // "everything except the holder": an exception to a quantifier, read by the noun phrases.
+    if (language_detail::NounPhraseReader::exceptionWords(words, at) > 0 && afterQuantifier(at)) continue;
+    const auto negatedClauseAt = [&](std::size_t back) {
+      return back <= at && language_detail::NounPhraseReader::negatedClauseWords(words, at - back) == back + 1;
+    };
+    if (negatedClauseAt(1) || negatedClauseAt(2)) continue;  // "the object that is not the eraser"
     if (vocabulary::isRefusedWord(words[at]) ||
         (words[at] == "do" && at + 1 < words.size() && words[at + 1] == "not")) {
       throwGroundingError(words[at], "the offline planner does not follow negation, exceptions, "
@@ -68,6 +81,9 @@ std::vector<Words> splitSteps(const Words& words) {
                ordinal && (steps.back().empty() || endsStep(words, at + *ordinal))) {
       split();
       at += *ordinal;
+    } else if (word == "," && at + 1 < words.size() && words[at + 1] == "and" && (startsStep(words, at + 2) || endsStep(words, at + 2))) {
+      split();  // "lift it, and put it down": a serial comma before the next step
+      at += 2;
     } else if (word == "," || word == "and") {
       if (startsStep(words, at + 1) || endsStep(words, at + 1)) split();
       else steps.back().push_back(word);
@@ -156,6 +172,10 @@ TaskSpecification understandInstruction(const std::string& text,
     throwGroundingError(text, "it asks for nothing the robot could do");
   }
   checkHoldingGoals(specification);
+  // A step said twice in a row ("I need the marker, hand it over") is done once.
+  specification.goals.erase(std::unique(specification.goals.begin(), specification.goals.end(),
+                                        [](const Goal& a, const Goal& b) { return describeGoal(a) == describeGoal(b); }),
+                            specification.goals.end());
   specification.steps = specification.goals;
   specification.goals = finalStateGoals(specification.steps);
   return specification;

@@ -15,7 +15,24 @@ constexpr double kPi = 3.14159265358979323846;
 
 AlignedBox3 shifted(const AlignedBox3& box, const Vector3& by) { return {box.min() + by, box.max() + by}; }
 
+/// Throws when moving the object by the goal's displacement takes its centre off every support
+/// it could rest on (unknown layouts pass: the grounding decides).
+void validateDisplacement(const Goal& goal, const SequencingOptions& options) {
+  const auto found = options.layout.find(goal.object);
+  if (found == options.layout.end() || options.supportAreas.empty()) return;
+  const Vector3 from = found->second.bounds.center();
+  const Vector3 to = from + goal.displacement;
+  const auto contains = [](const AlignedBox3& area, const Vector3& p) {
+    return p.x() >= area.min().x() && p.x() <= area.max().x() && p.y() >= area.min().y() && p.y() <= area.max().y();
+  };
+  for (const auto& [name, area] : options.supportAreas) {
+    if (contains(area, to) || !contains(area, from)) continue;
+    throw PlanningError("offline planner: cannot plan \"" + describeGoal(goal) + "\": it would take " + goal.object + " off " + name);
+  }
+}
+
 void validatePoseGoal(const Goal& goal, const SequencingOptions& options) {
+  if (goal.kind == GoalKind::kDisplaced) validateDisplacement(goal, options);
   if (goal.kind != GoalKind::kAtPosition && goal.kind != GoalKind::kTurned && goal.kind != GoalKind::kFacing) return;
   const std::string what = "offline planner: cannot plan \"" + describeGoal(goal) + "\": ";
   const auto found = options.layout.find(goal.object);

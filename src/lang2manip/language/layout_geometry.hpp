@@ -24,9 +24,10 @@ std::vector<Vector3> freeSpots(const Vector3& size, const AlignedBox3& area, con
 /// `box` moved by `by`.
 AlignedBox3 shifted(const AlignedBox3& box, const Vector3& by);
 
-/// Throws PlanningError when an at_position, turned or facing goal cannot be planned: no layout
-/// for its object (or target), no position, a turn that leaves the object looking the same
-/// (turnSymmetry()), an object without a long side to point with.
+/// Throws PlanningError when an at_position, turned, facing or displaced goal cannot be planned:
+/// no layout for its object (or target), no position, a turn that leaves the object looking the
+/// same (turnSymmetry()), an object without a long side to point with, a displacement that takes
+/// the object off the support it stands on.
 void validatePoseGoal(const Goal& goal, const SequencingOptions& options);
 
 /// The smaller turn (rad) that makes the long side of `goal.object` point at `goal.target`;

@@ -35,8 +35,8 @@ std::optional<SizeWord> sizeWord(const std::string& word) {
   static const std::vector<std::string> small{"small", "smaller", "smallest", "little", "tiny",
                                               "mini"};
   static const std::vector<std::string> tall{"tall", "taller", "tallest", "highest", "higher"};
-  static const std::vector<std::string> low{"shortest", "lowest", "flattest", "flatter"};
-  static const std::vector<std::string> longer{"longest", "longer"};
+  static const std::vector<std::string> low{"shortest", "lowest", "flattest", "flatter", "short", "shorter", "low", "lower", "flat"};
+  static const std::vector<std::string> longer{"longest", "longer", "long"};
   if (containsWord(big, word)) return SizeWord::kBig;
   if (containsWord(small, word)) return SizeWord::kSmall;
   if (containsWord(tall, word)) return SizeWord::kTall;
@@ -265,6 +265,10 @@ std::optional<NounPhrase> NounPhraseReader::read(const Words& words, std::size_t
       phrase.everything = true;
       phrase.quantity = Quantity::kAll;
       position += 1;
+      if (position < words.size() && (words[position] == "movable" || words[position] == "moveable" || words[position] == "loose")) {
+        phrase.movableOnly = true;  // "everything movable"
+        ++position;
+      }
     } else {
       phrase.pronoun = Pronoun::kThem;
       if (first == "both") phrase.quantity = Quantity::kExactly, phrase.count = 2;
@@ -327,9 +331,35 @@ std::optional<NounPhrase> NounPhraseReader::read(const Words& words, std::size_t
     }
   }
   position = readModifier(words, position, phrase);
+  const std::size_t negated = negatedClauseWords(words, position);  // "the object that is not the eraser"
+  if (const std::size_t exception = negated > 0 ? negated : exceptionWords(words, position);
+      exception > 0 && (negated > 0 || phrase.isPlural() || phrase.everything || phrase.quantity == Quantity::kAll)) {
+    phrase.except = readList(words, position + exception);
+    if (!phrase.except.empty()) position = phrase.except.back().end;
+  }
   phrase.end = position;
   phrase.text = joinWords(words, phrase.begin, phrase.end);
   return phrase;
+}
+
+std::size_t NounPhraseReader::exceptionWords(const Words& words, std::size_t at) {
+  static const std::vector<Words> phrases{{"except"}, {"except", "for"}, {"but"}, {"other", "than"}, {"apart", "from"},
+                                          {"excluding"}, {"save", "for"}, {"aside", "from"}};
+  std::size_t best = 0;
+  for (const Words& phrase : phrases) {
+    if (phrase.size() > best && matchesAt(words, at, phrase)) best = phrase.size();
+  }
+  return best;
+}
+
+std::size_t NounPhraseReader::negatedClauseWords(const Words& words, std::size_t at) {
+  static const std::vector<Words> phrases{{"that", "is", "not"}, {"which", "is", "not"}, {"that", "isn't"}, {"which", "isn't"},
+                                          {"that", "are", "not"}, {"which", "are", "not"}, {"that", "aren't"}, {"which", "aren't"}};
+  std::size_t best = 0;
+  for (const Words& phrase : phrases) {
+    if (phrase.size() > best && matchesAt(words, at, phrase)) best = phrase.size();
+  }
+  return best;
 }
 
 bool NounPhraseReader::headIsAmbiguous(const NounPhrase& phrase) const {
@@ -349,11 +379,31 @@ std::size_t NounPhraseReader::readModifier(const Words& words, std::size_t at, N
   if (phrase.pronoun != Pronoun::kNone || phrase.unknownNoun || at >= words.size()) return at;
   std::size_t p = at;
   bool relativeClause = false;
-  for (const Words& lead : {Words{"that", "is"}, Words{"which", "is"}, Words{"that", "are"}, Words{"which", "are"}}) {
-    if (matchesAt(words, p, lead)) {
-      p += lead.size();
-      relativeClause = true;
-      break;
+  static const std::vector<Words> leads{{"that", "is"},     {"which", "is"},   {"that", "are"},     {"which", "are"},  {"lying"},
+                                        {"sitting"},        {"standing"},      {"resting"},         {"located"},       {"placed"},
+                                        {"that", "lies"},   {"that", "sits"},  {"that", "stands"},  {"that", "rests"}, {"that", "is", "lying"},
+                                        {"that", "is", "sitting"}, {"that", "is", "standing"}, {"that", "are", "lying"}};
+  std::size_t leadLength = 0;
+  for (const Words& lead : leads) {
+    if (lead.size() > leadLength && matchesAt(words, p, lead)) leadLength = lead.size();
+  }
+  if (leadLength > 0) {
+    p += leadLength;
+    relativeClause = true;
+  }
+  // "the object (that is) furthest to the left": the leftmost.
+  for (const Words& side : {Words{"furthest", "to", "the", "left"}, Words{"farthest", "to", "the", "left"}, Words{"most", "to", "the", "left"},
+                            Words{"furthest", "left"}, Words{"farthest", "left"}}) {
+    if (matchesAt(words, p, side) && phrase.place == PlaceWord::kNone) {
+      phrase.place = PlaceWord::kLeft;
+      return p + side.size();
+    }
+  }
+  for (const Words& side : {Words{"furthest", "to", "the", "right"}, Words{"farthest", "to", "the", "right"}, Words{"most", "to", "the", "right"},
+                            Words{"furthest", "right"}, Words{"farthest", "right"}}) {
+    if (matchesAt(words, p, side) && phrase.place == PlaceWord::kNone) {
+      phrase.place = PlaceWord::kRight;
+      return p + side.size();
     }
   }
   NounModifier modifier;

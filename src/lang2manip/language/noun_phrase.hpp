@@ -66,6 +66,8 @@ struct NounPhrase {
   /// "movable": only objects that can be picked.
   bool movableOnly = false;
   std::optional<NounModifier> modifier;
+  /// "everything except the holder", "all objects but the marker": left out of what it names.
+  std::vector<NounPhrase> except;
 
   [[nodiscard]] bool isPlural() const;
 };
@@ -92,6 +94,12 @@ class NounPhraseReader {
 
   /// The noun phrase starting at words[at], or nullopt when none starts there.
   [[nodiscard]] std::optional<NounPhrase> read(const Words& words, std::size_t at) const;
+  /// The length of an exception phrase at words[at] ("except", "but", "other than", "apart
+  /// from", "excluding"); 0 when none.
+  [[nodiscard]] static std::size_t exceptionWords(const Words& words, std::size_t at);
+  /// The length of a negated relative clause at words[at] ("that is not", "which isn't"); 0 when
+  /// none. What follows names objects left out.
+  [[nodiscard]] static std::size_t negatedClauseWords(const Words& words, std::size_t at);
   /// A list "A, B and C" starting at words[at] (empty when none); nouns left out are borrowed
   /// from a neighbour ("the red and the blue block").
   [[nodiscard]] std::vector<NounPhrase> readList(const Words& words, std::size_t at) const;

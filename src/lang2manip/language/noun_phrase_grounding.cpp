@@ -97,8 +97,12 @@ std::vector<std::string> NounPhraseReader::ground(const NounPhrase& phrase,
     throwGroundingError(phrase.text, "no object matches (objects: " + objectList() + ")");
   }
   std::vector<std::string> byNoun = candidates(phrase, discourse, asTarget);
+  std::vector<std::string> exceptions;
+  for (const NounPhrase& exception : phrase.except) {
+    for (const std::string& name : ground(exception, discourse, false, {})) exceptions.push_back(name);
+  }
   std::erase_if(byNoun, [&](const std::string& name) {
-    return containsWord(excluded, name) || (phrase.movableOnly && !descriptor(name).movable);
+    return containsWord(excluded, name) || containsWord(exceptions, name) || (phrase.movableOnly && !descriptor(name).movable);
   });
   const bool relative = phrase.modifier && phrase.modifier->kind == NounModifier::Kind::kRelation;
   std::vector<std::string> names = narrow(phrase, relative ? applyModifier(phrase, byNoun, discourse) : byNoun);

@@ -1,6 +1,7 @@
 // StepParser: rearrangements and turns: "swap X and Y", "put X where Y is", "replace Y with X",
 // "turn X by 90 degrees clockwise", "point X at Y".
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -12,6 +13,8 @@ namespace lang2manip::language_detail {
 namespace {
 
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
+/// "turn it a little": a turn of this many degrees.
+constexpr double kSmallTurnDegrees = 15.0;
 
 /// The longest phrase of `phrases` at words[at]; 0 when none.
 std::size_t longestAt(const Words& words, std::size_t at, const std::vector<Words>& phrases) {
@@ -58,6 +61,8 @@ std::optional<TurnAmount> matchNamedTurn(const Words& words, std::size_t at) {
 /// "90 degrees", "45 deg", "90°", "1.57 radians", "ninety degrees", "a quarter turn", "around";
 /// a bare number is in degrees.
 std::optional<TurnAmount> matchTurnAmount(const Words& words, std::size_t at) {
+  const std::size_t approximately = vocabulary::matchApproximation(words, at);
+  at += approximately;
   std::optional<TurnAmount> amount;
   if (at < words.size()) {
     if (const std::optional<double> number = numberValue(words[at])) amount = TurnAmount{*number * kDegree, 1};
@@ -73,6 +78,7 @@ std::optional<TurnAmount> matchTurnAmount(const Words& words, std::size_t at) {
     amount->radians /= kDegree;
     amount->length += radianLength;
   }
+  amount->length += approximately;
   return amount;
 }
 
@@ -95,7 +101,14 @@ void StepParser::parseTurn(Step& step) {
   const Words& words = step.words;
   std::optional<TurnAmount> amount;
   std::optional<double> sense;
-  for (int part = 0; part < 2; ++part) {  // the amount and the sense, in either order
+  static const std::vector<Words> slightly = phrasesOf({"a little", "a bit", "slightly", "a little bit", "a touch"});
+  bool small = false;
+  for (int part = 0; part < 3; ++part) {  // the amount and the sense, in either order
+    if (const std::size_t length = longestAt(words, step.at, slightly)) {
+      small = true;
+      step.at += length;
+    }
+    if (step.next(",")) ++step.at;
     if (const auto found = matchTurnSense(words, step.at); found && !sense) {
       sense = found->first;
       step.at += found->second;
@@ -106,6 +119,7 @@ void StepParser::parseTurn(Step& step) {
       step.at += by + found->length;
     }
   }
+  if (!amount && small) amount = TurnAmount{kSmallTurnDegrees * kDegree, 0};
   if (!amount) failStep(step, "say how far to " + step.verb.lemma + " it (\"by 90 degrees\", \"a quarter turn\") or what it should point at");
   if (amount->radians <= 0.0) failStep(step, "a turn of zero leaves it as it was");
   if (amount->radians >= 360.0 * kDegree - 1e-9) failStep(step, "a full turn (or more) leaves it as it was; say a turn below 360 degrees");
@@ -116,6 +130,35 @@ void StepParser::parseTurn(Step& step) {
     goal.angle = sense.value_or(1.0) * amount->radians;
     specification_.goals.push_back(goal);
   }
+}
+
+bool StepParser::parseGivenTurn(Step& step) {
+  const Words& words = step.words;
+  std::size_t at = step.at;
+  static const std::vector<Words> article = phrasesOf({"a", "an", "a turn of", "a rotation of", "a spin of"});
+  std::optional<TurnAmount> amount = matchTurnAmount(words, at);
+  if (!amount) {
+    at += longestAt(words, at, article);
+    amount = matchTurnAmount(words, at);
+  }
+  if (!amount) return false;
+  at += amount->length;
+  static const std::vector<Words> noun = phrasesOf({"turn", "rotation", "spin", "twist"});
+  at += longestAt(words, at, noun);
+  std::optional<double> sense;
+  if (const auto found = matchTurnSense(words, at)) {
+    sense = found->first;
+    at += found->second;
+  }
+  step.at = at;
+  for (const std::string& object : step.objects) {
+    Goal goal;
+    goal.kind = GoalKind::kTurned;
+    goal.object = object;
+    goal.angle = sense.value_or(1.0) * amount->radians;
+    specification_.goals.push_back(goal);
+  }
+  return true;
 }
 
 bool StepParser::parsePointing(Step& step, bool afterTurn) {
@@ -176,6 +219,24 @@ void StepParser::parseSwap(Step& step) {
   addPlaceGoal(objects[1], objects[0]);
 }
 
+void StepParser::parseFill(Step& step) {
+  const std::optional<NounPhrase> container = reader_.read(step.words, step.at);
+  if (!container) failStep(step, "expected what to fill");
+  step.at = container->end;
+  const std::string target = groundTarget(step, *container, true);
+  if (!step.next("with")) failStep(step, "say what to fill " + target + " with (\"with the marker\")");
+  ++step.at;
+  const std::vector<NounPhrase> list = reader_.readList(step.words, step.at);
+  if (list.empty()) failStep(step, "expected the object(s) to fill " + target + " with");
+  step.at = list.back().end;
+  for (const NounPhrase& phrase : list) {
+    for (const std::string& name : reader_.ground(phrase, discourse_, false, {}, false, {target})) {
+      if (!containsWord(step.objects, name)) step.objects.push_back(name);
+    }
+  }
+  addRelationGoals(step, RelationSpec{SpatialRelation::kIn, target, std::nullopt});
+}
+
 void StepParser::parseReplace(Step& step) {
   parseObjects(step);
   if (step.objects.size() != 1) failStep(step, "one object at a time can be replaced");
@@ -194,18 +255,100 @@ bool StepParser::parseWhereStands(Step& step) {
       phrasesOf({"where", "to where", "into where", "over to where", "back to where", "in the place of", "in place of",
                  "to the place of", "at the place of", "into the place of", "in the position of", "to the position of",
                  "at the position of", "into the position of", "in the spot of", "to the spot of", "on the spot of",
-                 "at the spot of", "to the location of", "at the location of", "in the location of"});
+                 "at the spot of", "to the location of", "at the location of", "in the location of", "to the spot where",
+                 "to the place where", "to the position where", "in the spot where", "in the place where", "at the spot where",
+                 "at the place where", "at the position where", "into the spot where", "on the spot where", "onto the spot where"});
   static const std::vector<Words> being = phrasesOf({"is", "stands", "was", "stood", "sits", "sat", "lies", "lay", "is standing",
                                                      "is now", "is right now", "currently is", "is currently", "used to be",
                                                      "is sitting", "is lying", "is placed", "is located"});
   const std::size_t length = longestAt(step.words, step.at, before);
-  if (length == 0) return false;
+  if (length == 0) return parsePossessivePlace(step);
   const std::optional<NounPhrase> phrase = reader_.read(step.words, step.at + length);
   if (!phrase) failStep(step, "expected the object whose place to take");
   step.at = phrase->end + longestAt(step.words, phrase->end, being);
   const std::string owner = groundTarget(step, *phrase, false);
   if (step.objects.size() != 1) failStep(step, "only one object can stand where " + owner + " stands");
   addPlaceGoal(step.objects.front(), owner);
+  return true;
+}
+
+bool StepParser::parsePutBack(Step& step) {
+  static const std::vector<Words> back = phrasesOf(
+      {"back", "back down", "back where it was", "back down where it was", "down where it was", "where it was", "back where it came from",
+       "back in its place", "back to its place", "back in place", "back into place", "back to where it was", "back to its spot",
+       "back to its position", "back where they were", "back down where they were", "where they were", "back in their places",
+       "back to their places", "down again", "back down again", "back where it started", "back to where it started"});
+  const std::size_t length = longestAt(step.words, step.at, back);
+  if (length == 0 || step.at + length != step.words.size()) return false;
+  step.at += length;
+  for (const std::string& object : step.objects) {
+    const ObjectDescriptor& descriptor = reader_.descriptor(object);
+    Goal goal;
+    goal.kind = GoalKind::kAtPosition;
+    goal.object = object;
+    goal.position = descriptor.origin;
+    specification_.goals.push_back(goal);
+  }
+  return true;
+}
+
+bool StepParser::parseBetween(Step& step) {
+  static const std::vector<Words> between = phrasesOf({"between", "in between", "halfway between", "midway between", "in the middle between"});
+  const std::size_t length = longestAt(step.words, step.at, between);
+  if (length == 0) return false;
+  const std::vector<NounPhrase> list = reader_.readList(step.words, step.at + length);
+  std::vector<std::string> ends;
+  for (const NounPhrase& phrase : list) {
+    for (const std::string& name : reader_.ground(phrase, discourse_, true, step.objects)) {
+      if (!containsWord(ends, name)) ends.push_back(name);
+    }
+  }
+  if (ends.size() != 2) failStep(step, "\"between\" needs two objects, got " + std::to_string(ends.size()));
+  if (containsWord(step.objects, ends[0]) || containsWord(step.objects, ends[1])) failStep(step, "an object cannot go between itself and another");
+  if (step.objects.size() != 1) failStep(step, "only one object fits between " + ends[0] + " and " + ends[1]);
+  step.at = list.back().end;
+  const ObjectDescriptor& mover = reader_.descriptor(step.objects.front());
+  const ObjectDescriptor& a = reader_.descriptor(ends[0]);
+  const ObjectDescriptor& b = reader_.descriptor(ends[1]);
+  const Vector3 middle = (a.bounds.center() + b.bounds.center()) / 2.0;
+  Goal goal;
+  goal.kind = GoalKind::kAtPosition;
+  goal.object = step.objects.front();
+  goal.position = Vector3(mover.origin.x() + middle.x() - mover.bounds.center().x(), mover.origin.y() + middle.y() - mover.bounds.center().y(),
+                          mover.origin.z() + std::min(a.bounds.min().z(), b.bounds.min().z()) - mover.bounds.min().z());
+  specification_.goals.push_back(goal);
+  return true;
+}
+
+bool StepParser::parsePossessivePlace(Step& step) {
+  static const std::vector<Words> prepositions = phrasesOf({"to", "at", "in", "into", "on", "onto", "over to", "back to"});
+  static const std::vector<std::string> places{"place", "position", "spot", "location", "old place", "former place"};
+  const std::size_t preposition = longestAt(step.words, step.at, prepositions);
+  if (preposition == 0) return false;
+  // "the eraser's place": the phrase read with the possessive's "'s" dropped.
+  Words plain = step.words;
+  std::size_t owner = plain.size();
+  for (std::size_t i = step.at + preposition; i < plain.size(); ++i) {
+    const std::string& word = plain[i];
+    if (word.size() > 2 && word.compare(word.size() - 2, 2, "'s") == 0) {
+      plain[i] = word.substr(0, word.size() - 2);
+      owner = i;
+      break;
+    }
+  }
+  if (owner + 1 >= plain.size()) return false;
+  std::size_t placeLength = 0;
+  for (const std::string& place : places) {
+    const Words words = tokenize(place);
+    if (matchesAt(plain, owner + 1, words)) placeLength = std::max(placeLength, words.size());
+  }
+  if (placeLength == 0) return false;
+  const std::optional<NounPhrase> phrase = reader_.read(plain, step.at + preposition);
+  if (!phrase || phrase->end != owner + 1) return false;
+  const std::string name = groundTarget(step, *phrase, false);
+  if (step.objects.size() != 1) failStep(step, "only one object can stand where " + name + " stands");
+  step.at = owner + 1 + placeLength;
+  addPlaceGoal(step.objects.front(), name);
   return true;
 }
 

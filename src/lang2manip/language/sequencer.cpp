@@ -171,7 +171,8 @@ class Sequencer {
       case GoalKind::kAtConfiguration: return state.atConfiguration == goal.configuration;
       case GoalKind::kAtPosition: {
         const auto at = world.layout.find(goal.object);
-        return at != world.layout.end() && goal.position && (at->second.origin - *goal.position).head<2>().norm() <= kSamePlace;
+        return at != world.layout.end() && goal.position && world.state.held != goal.object &&
+               (at->second.origin - *goal.position).head<2>().norm() <= kSamePlace;
       }
       case GoalKind::kTurned: return world.achieved.count(index) > 0;
       case GoalKind::kFacing: {
@@ -325,6 +326,16 @@ class Sequencer {
 
   void push(std::size_t index, World& world) {
     const Goal& goal = goals_[index];
+    const auto layout = world.layout.find(goal.object);
+    if (world.state.held == goal.object && layout != world.layout.end()) {  // "lift it and move it 10 cm left": carried
+      const Vector3 origin = layout->second.origin + goal.displacement;
+      ActionParams params;
+      params.position = origin;
+      place(world, goal.object, params, false, supportBelow(world.state, goal.object));
+      moveLayout(world.layout, goal.object, origin, std::nullopt);
+      world.achieved.insert(index);
+      return;
+    }
     freeGripper(world);
     SymbolicAction action;
     action.type = ActionType::kPush;

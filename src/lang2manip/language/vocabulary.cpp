@@ -52,7 +52,7 @@ const PhraseTable<Verb>& verbTable() {
       {"bring", makeVerb("bring", {&V::places})},
       {"transfer", makeVerb("transfer", {&V::places})},
       {"relocate", makeVerb("relocate", {&V::places})},
-      {"carry", makeVerb("carry", {&V::places})},
+      {"carry", makeVerb("carry", {&V::places, &V::picks})},
       {"store", makeVerb("store", {&V::places})},
       {"stick", makeVerb("stick", {&V::places})},
       {"deposit", makeVerb("deposit", {&V::places})},
@@ -98,6 +98,12 @@ const PhraseTable<Verb>& verbTable() {
       {"aim", makeVerb("aim", {&V::points})},
       {"direct", makeVerb("direct", {&V::points})},
       {"replace", makeVerb("replace", {&V::replaces})},
+      {"lower", makeVerb("lower", {&V::places})},
+      {"load", makeVerb("load", {&V::places})},
+      {"collect", makeVerb("collect", {&V::places})},
+      {"gather", makeVerb("gather", {&V::places})},
+      {"put away", makeVerb("put", {&V::places})},
+      {"fill", makeVerb("fill", {&V::fills})},
       {"go", makeVerb("go", {&V::goesHome})},
       {"head", makeVerb("head", {&V::goesHome})},
       {"come", makeVerb("come", {&V::goesHome})},
@@ -269,13 +275,21 @@ std::optional<DirectionMatch> matchDirection(const Words& words, std::size_t at)
   return std::nullopt;
 }
 
+std::size_t matchApproximation(const Words& words, std::size_t at) {
+  static const std::vector<std::string> words_{"about", "around", "roughly", "approximately", "approx", "some", "~", "circa", "nearly", "almost"};
+  if (at + 1 >= words.size() || !numberValue(words[at + 1])) return 0;
+  return std::find(words_.begin(), words_.end(), words[at]) != words_.end() ? 1 : 0;
+}
+
 std::optional<LengthMatch> matchLength(const Words& words, std::size_t at) {
+  const std::size_t approximately = matchApproximation(words, at);
+  at += approximately;
   if (at >= words.size()) return std::nullopt;
   const std::optional<double> number = numberValue(words[at]);
   if (!number) return std::nullopt;
   const auto unit = unitTable().match(words, at + 1);
   if (!unit) return std::nullopt;
-  return LengthMatch{*number * unit->first, 1 + unit->second};
+  return LengthMatch{*number * unit->first, approximately + 1 + unit->second};
 }
 
 std::optional<std::size_t> matchSmallAmount(const Words& words, std::size_t at) {

@@ -30,6 +30,7 @@ struct Verb {
   bool turns = false;      ///< "turn X by 90 degrees", "turn X to face Y"
   bool points = false;     ///< "point X at Y", "orient X toward Y"
   bool replaces = false;   ///< "replace Y with X": X where Y stood
+  bool fills = false;      ///< "fill Y with X": X in Y
 };
 
 struct VerbMatch {
@@ -65,6 +66,8 @@ struct LengthMatch {
   std::size_t length = 0;
 };
 std::optional<LengthMatch> matchLength(const Words& words, std::size_t at);
+/// 1 when words[at] is an approximation ("about", "roughly", "around", ...) before a number, else 0.
+std::size_t matchApproximation(const Words& words, std::size_t at);
 
 /// "a bit", "a little", "slightly", "a little bit": a small amount.
 std::optional<std::size_t> matchSmallAmount(const Words& words, std::size_t at);

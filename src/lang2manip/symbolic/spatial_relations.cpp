@@ -87,6 +87,7 @@ GoalCheck checkAtPosition(const Scene& scene, const Goal& goal, const GoalCheckO
   const Pose base = robotBaseFrame(scene, options.robot);
   const Vector3 at = base.inverse() * objectNamed(scene, goal.object, "object").pose.translation();
   const double off = (at - *goal.position).head<2>().norm();
+  if (scene.findAttachment(goal.object) != nullptr) return {false, goal.object + " is held, not standing anywhere"};
   char buffer[128];
   std::snprintf(buffer, sizeof buffer, "%s stands at (%.3f, %.3f), %.3f m from the wanted position", goal.object.c_str(), at.x(), at.y(),
                 off);
@@ -99,6 +100,7 @@ GoalCheck checkTurned(const Scene& scene, const Goal& goal, const GoalCheckOptio
   if (options.initialScene == nullptr) throw InputError("goal \"" + describeGoal(goal) + "\": a turn needs the initial scene");
   const SceneObject& before = objectNamed(*options.initialScene, goal.object, "object");
   const SceneObject& after = objectNamed(scene, goal.object, "object");
+  if (scene.findAttachment(goal.object) != nullptr) return {false, goal.object + " is held, not standing turned"};
   const TurnBetween turn = turnBetween(before.pose.linear(), after.pose.linear());
   const double symmetry = turnSymmetry(before);
   const double error = std::abs(reducedAngle(turn.yaw - goal.angle, symmetry == 0.0 ? 2.0 * 3.14159265358979323846 : symmetry));
@@ -112,6 +114,7 @@ GoalCheck checkTurned(const Scene& scene, const Goal& goal, const GoalCheckOptio
 GoalCheck checkFacing(const Scene& scene, const Goal& goal) {
   const SceneObject& object = objectNamed(scene, goal.object, "object");
   const SceneObject& target = objectNamed(scene, goal.target, "target");
+  if (scene.findAttachment(goal.object) != nullptr) return {false, goal.object + " is held, not standing pointed"};
   const std::optional<double> side = longSideYaw(object, object.pose.linear());
   if (!side) return {false, goal.object + " has no long side to point with"};
   const Vector3 toward = target.worldBounds().center() - object.worldBounds().center();
