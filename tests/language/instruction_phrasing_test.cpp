@@ -54,6 +54,14 @@ const std::pair<const char*, const char*> kPhrasings[] = {
     {"put every object on the desk in the holder", "marker in holder; eraser in holder"},
     {"put the marker in the holder on the desk", "marker in holder"},
     {"lift the marker and move it 10 cm to the left", "marker displaced by (0, 0.1, 0)"},
+    {"put the cylindrical object in the holder", "marker in holder"},
+    {"put the box-shaped thing in the holder", "eraser in holder"},
+    {"put the pen-like object in the holder", "marker in holder"},
+    {"put the marker in the holder and then the other one", "marker in holder; eraser in holder"},
+    {"put the eraser in the holder, then the remaining object", "eraser in holder; marker in holder"},
+    {"point the marker to the left", "marker pointing along yaw 90 deg"},
+    {"rotate the eraser so that it points forward", "eraser pointing along yaw 0 deg"},
+    {"align the marker with the eraser", "marker pointing along yaw 0 deg"},
 };
 
 TEST(InstructionPhrasing, MoreWaysOfSayingTheSameAreUnderstoodAndPlanned) {

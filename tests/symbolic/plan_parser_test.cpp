@@ -153,8 +153,13 @@ TEST(PlanParserTest, PlaceTurnAndPointingGoalsRoundTrip) {
   EXPECT_THAT(problems, Contains(HasSubstr("goals[0].position: missing; a at_position goal needs it")));
   EXPECT_THAT(problems, Contains(HasSubstr("goals[1].angle: expected a non-zero turn in radians within [-2 pi, 2 pi]")));
   EXPECT_THAT(problems, Contains(HasSubstr("goals[2].angle: expected a non-zero turn")));
-  EXPECT_THAT(problems, Contains(HasSubstr("goals[3].target: missing; a facing goal needs it")));
-  EXPECT_THAT(problems, Contains(HasSubstr("goals[4].angle: must be null for a facing goal")));
+  EXPECT_THAT(problems, Contains(HasSubstr("goals[3]: a facing goal needs a target to point at or an angle")));
+  EXPECT_THAT(problems, Contains(HasSubstr("goals[4]: a facing goal needs a target to point at or an angle (the heading of its long side), not both")));
+  document["goals"] = {{{"kind", "facing"}, {"object", "marker"}, {"angle", 0.0}}};
+  const Plan heading = parsePlan(document, parserDeskContext());
+  ASSERT_EQ(heading.goals.size(), 1U);
+  EXPECT_EQ(describeGoal(heading.goals[0]), "marker pointing along yaw 0 deg");
+  EXPECT_EQ(toJson(heading)["goals"][0]["angle"], 0.0);
 }
 
 TEST(PlanParserTest, PlannerNamesAreCheckedOnlyWhenTheContextListsThem) {

@@ -24,41 +24,6 @@ std::string verbList() {
 
 }  // namespace
 
-std::optional<Words> StepParser::inVerbFirstOrder(const Words& words) const {
-  static const std::vector<Words> causatives{{"make"}, {"have"}, {"let"}};
-  static const std::vector<Words> wishes{{"i", "want"}, {"i'd", "like"}, {"i", "would", "like"}, {"we", "want"}, {"i", "need"},
-                                         {"we", "need"}, {"i'd", "love"}, {"i", "wish"}};
-  static const std::vector<Words> placedVerbs{{"go"}, {"goes"}, {"belong"}, {"belongs"}, {"should", "be"}, {"should", "go"},
-                                              {"must", "be"}, {"must", "go"}, {"needs", "to", "be"}, {"need", "to", "be"},
-                                              {"has", "to", "be"}, {"have", "to", "be"}, {"should", "end", "up"}, {"end", "up"}};
-  const auto startsWith = [&words](const std::vector<Words>& phrases, std::size_t at) -> std::size_t {
-    std::size_t best = 0;
-    for (const Words& phrase : phrases) {
-      if (phrase.size() > best && matchesAt(words, at, phrase)) best = phrase.size();
-    }
-    return best;
-  };
-  const auto join = [&words](const Words& verb, std::size_t from, std::size_t to, std::size_t rest) {
-    Words rewritten = verb;
-    rewritten.insert(rewritten.end(), words.begin() + static_cast<std::ptrdiff_t>(from), words.begin() + static_cast<std::ptrdiff_t>(to));
-    rewritten.insert(rewritten.end(), words.begin() + static_cast<std::ptrdiff_t>(rest), words.end());
-    return rewritten;
-  };
-  std::size_t subject = startsWith(causatives, 0);  // "make the marker point at the holder"
-  const std::size_t wish = subject == 0 ? startsWith(wishes, 0) : 0;  // "I want the marker in the holder"
-  subject += wish;
-  const std::vector<NounPhrase> list = reader_.readList(words, subject);
-  if (list.empty() || (subject == 0 && vocabulary::matchVerb(words, 0))) return std::nullopt;
-  std::size_t end = list.back().end;
-  if (wish > 0 && matchesAt(words, end, {"to", "be"})) return join({"put"}, subject, end, end + 2);
-  if (wish > 0) return end == words.size() ? join({"hand", "me"}, subject, end, end) : join({"put"}, subject, end, end);
-  if (const std::size_t placed = startsWith(placedVerbs, end)) return join({"put"}, subject, end, end + placed);
-  if (const auto verb = vocabulary::matchVerb(words, end)) {  // "the marker and the eraser trade places"
-    const Words verbWords(words.begin() + static_cast<std::ptrdiff_t>(end), words.begin() + static_cast<std::ptrdiff_t>(end + verb->length));
-    return join(verbWords, subject, end, end + verb->length);
-  }
-  return std::nullopt;
-}
 
 void StepParser::parse(const Words& words, const StepModifiers& modifiers) {
   if (!words.empty() && !sameAs(words, 0)) {
@@ -137,16 +102,6 @@ void StepParser::parsePredicate(Step& step) {
   skipSource(step);
 }
 
-bool StepParser::handsToPerson(const Step& step) const {
-  static const std::vector<Words> endings{{"to", "me"}, {"over", "to", "me"}, {"to", "us"}, {"over", "to", "us"}, {"to", "the", "user"},
-                                          {"to", "the", "person"}, {"to", "the", "human"}, {"to", "the", "operator"}, {"over", "here"}};
-  const Words& words = step.words;
-  if (step.next("me") || step.next("us")) return true;  // "bring me the marker"
-  for (const Words& ending : endings) {
-    if (words.size() >= ending.size() && matchesAt(words, words.size() - ending.size(), ending)) return true;
-  }
-  return false;
-}
 
 std::size_t StepParser::sameAs(const Words& words, std::size_t at) {
   static const std::vector<Words> phrases{
@@ -410,82 +365,6 @@ void StepParser::addStackGoals(Step& step, const std::optional<std::string>& bas
   }
 }
 
-bool StepParser::parseDisplacement(Step& step) {
-  const Words& words = step.words;
-  std::size_t at = step.at;
-  if (words.size() > at && words[at] == "by") ++at;
-  std::optional<double> distance;
-  if (auto length = vocabulary::matchLength(words, at)) {
-    distance = length->metres;
-    at += length->length;
-  } else if (auto small = vocabulary::matchSmallAmount(words, at)) {
-    distance = vocabulary::kSmallAmount;
-    at += *small;
-  }
-  std::optional<vocabulary::DirectionMatch> direction;
-  std::string reference;  // "3 cm toward the holder": along the line to another object
-  bool away = false;
-  if (distance) {
-    static const std::vector<Words> toward{{"toward"}, {"towards"}, {"closer", "to"}, {"nearer", "to"}, {"in", "the", "direction", "of"}};
-    static const std::vector<Words> from{{"away", "from"}, {"further", "from"}, {"farther", "from"}};
-    std::size_t length = 0;
-    for (const Words& phrase : toward) length = matchesAt(words, at, phrase) ? std::max(length, phrase.size()) : length;
-    for (const Words& phrase : from) {
-      if (matchesAt(words, at, phrase) && phrase.size() > length) length = phrase.size(), away = true;
-    }
-    const std::optional<NounPhrase> target = length > 0 ? reader_.read(words, at + length) : std::nullopt;
-    if (target && target->pronoun == Pronoun::kNone && !matchesAt(words, at + length, {"the", "robot"}) &&
-        !matchesAt(words, at + length, {"you"})) {
-      reference = groundTarget(step, *target, false);
-      direction = vocabulary::DirectionMatch{Vector3::Zero(), target->end - at};
-    }
-  }
-  if (!direction) direction = vocabulary::matchDirection(words, at);
-  if (!direction) return false;
-  at += direction->length;
-  if (!distance) {
-    std::size_t after = at;
-    if (words.size() > after && words[after] == "by") ++after;
-    if (auto length = vocabulary::matchLength(words, after)) {
-      distance = length->metres;
-      at = after + length->length;
-    } else if (auto small = vocabulary::matchSmallAmount(words, after)) {
-      distance = vocabulary::kSmallAmount;
-      at = after + *small;
-    } else if (step.verb.nudges) {
-      distance = vocabulary::kSmallAmount;
-    }
-  }
-  if (words.size() > at + 1 && words[at] == ",") {  // "a bit to the left, about 4 cm": the amount said again
-    if (auto restated = vocabulary::matchLength(words, at + 1)) {
-      distance = restated->metres;
-      at += 1 + restated->length;
-    }
-  }
-  if (!distance) {
-    throwGroundingError(joinWords(words, 0, at),
-                        "say how far (e.g. \"5 cm " + joinWords(words, at - direction->length, at) +
-                            "\")");
-  }
-  if (!step.verb.pushes && !step.verb.places) {
-    failStep(step, "\"" + step.verb.lemma + "\" cannot move an object by a distance");
-  }
-  step.at = at;
-  for (const std::string& object : step.objects) {
-    Goal goal;
-    goal.kind = GoalKind::kDisplaced;
-    goal.object = object;
-    goal.displacement = direction->direction * *distance;
-    if (!reference.empty()) {
-      Vector3 line = reader_.descriptor(reference).position - reader_.descriptor(object).position;
-      line.z() = 0.0;
-      if (line.norm() < 1e-6) failStep(step, object + " and " + reference + " stand at the same place: no direction between them");
-      goal.displacement = line.normalized() * *distance * (away ? -1.0 : 1.0);
-    }
-    specification_.goals.push_back(goal);
-  }
-  return true;
-}
 
 void StepParser::parseWithoutPlace(Step& step) {
   if (step.verb.stacks) {

@@ -73,8 +73,11 @@ class StepParser {
   /// "give X a quarter turn", "give it a 90 degree turn to the left" after the objects: turned
   /// goals; false when no turn follows.
   bool parseGivenTurn(Step& step);
-  /// "point X at Y", "orient X toward Y".
+  /// "point X at Y", "orient X toward Y", "point X forward", "align X with Y".
   void parsePoint(Step& step);
+  /// Facing goals for the step's objects: pointing at `target`, or, when it is empty, with the
+  /// long side along the base-frame yaw `heading`.
+  void addFacingGoals(const Step& step, const std::string& target, double heading);
   /// "... at/toward/to face Y" after the objects: facing goals; false when absent. After a turn
   /// verb a bare "to"/"at" is not read as pointing ("turn it to the left").
   bool parsePointing(Step& step, bool afterTurn);

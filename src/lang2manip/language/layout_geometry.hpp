@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -30,14 +31,27 @@ AlignedBox3 shifted(const AlignedBox3& box, const Vector3& by);
 /// the object off the support it stands on.
 void validatePoseGoal(const Goal& goal, const SequencingOptions& options);
 
-/// The smaller turn (rad) that makes the long side of `goal.object` point at `goal.target`;
-/// nullopt when where either stands is not in `layout`.
+/// The smaller turn (rad) that makes the long side of `goal.object` point at `goal.target` (or,
+/// without a target, lie along the base-frame yaw `goal.angle`); nullopt when where they stand is
+/// not in `layout`.
 std::optional<double> facingTurn(const std::map<std::string, ObjectLayout>& layout, const Goal& goal);
 
 /// Records in `layout` that `object` now has its origin at `origin`, turned by `turn` about the
 /// vertical through it when given (nothing when `object` has no layout).
 void moveLayout(std::map<std::string, ObjectLayout>& layout, const std::string& object, const Vector3& origin,
                 std::optional<double> turn);
+
+/// The objects of `objects` (in that order) standing where `spot` is (footprints overlapping, not
+/// below it), other than `ignored` and the supports.
+std::vector<std::string> standingIn(const std::map<std::string, ObjectLayout>& layout, const AlignedBox3& spot,
+                                    const std::vector<std::string>& objects, const std::vector<std::string>& ignored,
+                                    const std::set<std::string>& supports);
+
+/// What a free spot must keep clear of: the footprint of every object standing (other than
+/// `ignored` and the supports) and every place an at_position goal of `goals` wants for an
+/// object other than those ignored.
+std::vector<AlignedBox3> placesTaken(const std::map<std::string, ObjectLayout>& layout, const std::vector<Goal>& goals,
+                                     const std::vector<std::string>& ignored, const std::set<std::string>& supports);
 
 /// True when the x-y extents of `a` and `b` come within `gap` of each other.
 bool footprintsOverlap(const AlignedBox3& a, const AlignedBox3& b, double gap);

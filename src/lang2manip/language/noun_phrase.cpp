@@ -230,8 +230,34 @@ bool NounPhraseReader::adjectiveBeforeNoun(const Words& words, std::size_t at) c
   return false;
 }
 
+/// Shape words at words[at] ("cylindrical", "box shaped") with the shapes they allow and their
+/// length; nullopt when none.
+std::optional<std::pair<std::vector<std::string>, std::size_t>> shapeWords(const Words& words, std::size_t at) {
+  static const std::vector<std::pair<Words, std::vector<std::string>>> table{
+      {{"cylindrical"}, {"cylinder"}}, {{"tubular"}, {"cylinder"}},          {{"round"}, {"cylinder", "sphere"}},
+      {{"rounded"}, {"cylinder", "sphere"}}, {{"spherical"}, {"sphere"}},     {{"ball", "shaped"}, {"sphere"}},
+      {{"box", "shaped"}, {"box"}},      {{"boxy"}, {"box"}},                 {{"rectangular"}, {"box"}},
+      {{"cuboid"}, {"box"}},             {{"block", "shaped"}, {"box"}},      {{"brick", "shaped"}, {"box"}},
+      {{"cylinder", "shaped"}, {"cylinder"}}, {{"angular"}, {"box"}}};
+  std::optional<std::pair<std::vector<std::string>, std::size_t>> best;
+  for (const auto& [phrase, shapes] : table) {
+    if (matchesAt(words, at, phrase) && (!best || phrase.size() > best->second)) best = std::make_pair(shapes, phrase.size());
+  }
+  return best;
+}
+
 bool NounPhraseReader::readAdjective(const Words& words, std::size_t& at, NounPhrase& phrase) const {
   const std::string& word = words[at];
+  if (const auto shape = shapeWords(words, at)) {
+    phrase.shapes = shape->first;
+    at += shape->second;
+    return true;
+  }
+  if (word == "remaining" || word == "leftover" || word == "rest") {
+    phrase.other = true;  // "the remaining object": one not mentioned yet
+    ++at;
+    return true;
+  }
   if (auto colour = colourWord(word)) {
     phrase.colours.push_back(*colour);
   } else if (auto size = sizeWord(word)) {
@@ -292,6 +318,12 @@ std::optional<NounPhrase> NounPhraseReader::read(const Words& words, std::size_t
       if (auto noun = matchNoun(words, position, length)) {
         phrase.noun = std::move(noun);
         position += length;
+        // "the pen-like object", "the marker shaped thing": the noun before says which.
+        static const std::vector<std::string> like{"like", "shaped", "looking", "style"};
+        static const std::vector<std::string> generic{"object", "thing", "item", "one"};
+        if (position + 1 < words.size() && containsWord(like, words[position]) && containsWord(generic, words[position + 1])) {
+          position += 2;
+        }
         break;
       }
       if (!readAdjective(words, position, phrase)) break;
@@ -342,25 +374,7 @@ std::optional<NounPhrase> NounPhraseReader::read(const Words& words, std::size_t
   return phrase;
 }
 
-std::size_t NounPhraseReader::exceptionWords(const Words& words, std::size_t at) {
-  static const std::vector<Words> phrases{{"except"}, {"except", "for"}, {"but"}, {"other", "than"}, {"apart", "from"},
-                                          {"excluding"}, {"save", "for"}, {"aside", "from"}};
-  std::size_t best = 0;
-  for (const Words& phrase : phrases) {
-    if (phrase.size() > best && matchesAt(words, at, phrase)) best = phrase.size();
-  }
-  return best;
-}
 
-std::size_t NounPhraseReader::negatedClauseWords(const Words& words, std::size_t at) {
-  static const std::vector<Words> phrases{{"that", "is", "not"}, {"which", "is", "not"}, {"that", "isn't"}, {"which", "isn't"},
-                                          {"that", "are", "not"}, {"which", "are", "not"}, {"that", "aren't"}, {"which", "aren't"}};
-  std::size_t best = 0;
-  for (const Words& phrase : phrases) {
-    if (phrase.size() > best && matchesAt(words, at, phrase)) best = phrase.size();
-  }
-  return best;
-}
 
 bool NounPhraseReader::headIsAmbiguous(const NounPhrase& phrase) const {
   if (phrase.isPlural() || phrase.size != SizeWord::kNone || phrase.place != PlaceWord::kNone) return false;
@@ -375,81 +389,6 @@ bool NounPhraseReader::headIsAmbiguous(const NounPhrase& phrase) const {
   return count > 1;
 }
 
-std::size_t NounPhraseReader::readModifier(const Words& words, std::size_t at, NounPhrase& phrase) const {
-  if (phrase.pronoun != Pronoun::kNone || phrase.unknownNoun || at >= words.size()) return at;
-  std::size_t p = at;
-  bool relativeClause = false;
-  static const std::vector<Words> leads{{"that", "is"},     {"which", "is"},   {"that", "are"},     {"which", "are"},  {"lying"},
-                                        {"sitting"},        {"standing"},      {"resting"},         {"located"},       {"placed"},
-                                        {"that", "lies"},   {"that", "sits"},  {"that", "stands"},  {"that", "rests"}, {"that", "is", "lying"},
-                                        {"that", "is", "sitting"}, {"that", "is", "standing"}, {"that", "are", "lying"}};
-  std::size_t leadLength = 0;
-  for (const Words& lead : leads) {
-    if (lead.size() > leadLength && matchesAt(words, p, lead)) leadLength = lead.size();
-  }
-  if (leadLength > 0) {
-    p += leadLength;
-    relativeClause = true;
-  }
-  // "the object (that is) furthest to the left": the leftmost.
-  for (const Words& side : {Words{"furthest", "to", "the", "left"}, Words{"farthest", "to", "the", "left"}, Words{"most", "to", "the", "left"},
-                            Words{"furthest", "left"}, Words{"farthest", "left"}}) {
-    if (matchesAt(words, p, side) && phrase.place == PlaceWord::kNone) {
-      phrase.place = PlaceWord::kLeft;
-      return p + side.size();
-    }
-  }
-  for (const Words& side : {Words{"furthest", "to", "the", "right"}, Words{"farthest", "to", "the", "right"}, Words{"most", "to", "the", "right"},
-                            Words{"furthest", "right"}, Words{"farthest", "right"}}) {
-    if (matchesAt(words, p, side) && phrase.place == PlaceWord::kNone) {
-      phrase.place = PlaceWord::kRight;
-      return p + side.size();
-    }
-  }
-  NounModifier modifier;
-  std::size_t length = 0;
-  for (const Words& nearest : {Words{"closest", "to"}, Words{"nearest", "to"}, Words{"nearest"}}) {
-    if (length == 0 && matchesAt(words, p, nearest)) modifier.kind = NounModifier::Kind::kNearestTo, length = nearest.size();
-  }
-  for (const Words& farthest : {Words{"farthest", "away", "from"}, Words{"furthest", "away", "from"}, Words{"farthest", "from"},
-                                Words{"furthest", "from"}}) {
-    if (length == 0 && matchesAt(words, p, farthest)) modifier.kind = NounModifier::Kind::kFarthestFrom, length = farthest.size();
-  }
-  const bool ambiguous = headIsAmbiguous(phrase);
-  if (length != 0 && !(ambiguous || phrase.isPlural())) return at;  // "put the marker closest to ...": a place
-  if (length == 0 && ambiguous && (matchesAt(words, p, {"on", "the", "left"}) || matchesAt(words, p, {"on", "the", "right"})) &&
-      !matchesAt(words, p + 3, {"of"})) {
-    phrase.place = words[p + 2] == "left" ? PlaceWord::kLeft : PlaceWord::kRight;  // "the thing on the right"
-    return p + 3;
-  }
-  if (length == 0) {
-    const auto relation = vocabulary::matchRelation(words, p);
-    const bool beside = relation && relation->relation && *relation->relation != SpatialRelation::kIn &&
-                        *relation->relation != SpatialRelation::kOn;
-    // "in"/"on" say where the objects are only in a relative clause ("everything that is on the desk").
-    const bool where = relation && relation->relation && relativeClause;
-    if (!(beside || where) || !(ambiguous || phrase.isPlural())) return at;
-    modifier.relation = *relation->relation;
-    length = relation->length;
-  }
-  for (const Words& robot : {Words{"the", "robot", "base"}, Words{"the", "robot"}, Words{"the", "base"}, Words{"you"}}) {
-    if (matchesAt(words, p + length, robot)) {
-      phrase.modifier = std::move(modifier);  // no reference phrase: the robot
-      return p + length + robot.size();
-    }
-  }
-  const std::optional<NounPhrase> reference = read(words, p + length);
-  if (!reference) return at;
-  // A plural phrase's place is where they go ("put the blocks next to the box") unless the
-  // step goes on with another place.
-  if (modifier.kind == NounModifier::Kind::kRelation && !ambiguous && !relativeClause &&
-      !vocabulary::matchRelation(words, reference->end)) {
-    return at;
-  }
-  modifier.reference = {*reference};
-  phrase.modifier = std::move(modifier);
-  return reference->end;
-}
 
 std::vector<NounPhrase> NounPhraseReader::readList(const Words& words, std::size_t at) const {
   std::vector<NounPhrase> list;

@@ -65,6 +65,8 @@ struct NounPhrase {
   bool unknownNoun = false;
   /// "movable": only objects that can be picked.
   bool movableOnly = false;
+  /// Shape words ("cylindrical", "box-shaped"): the shapes it may have (ObjectDescriptor::shape).
+  std::vector<std::string> shapes;
   std::optional<NounModifier> modifier;
   /// "everything except the holder", "all objects but the marker": left out of what it names.
   std::vector<NounPhrase> except;

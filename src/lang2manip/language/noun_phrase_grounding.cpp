@@ -185,12 +185,14 @@ std::vector<std::string> NounPhraseReader::candidates(const NounPhrase& phrase,
                                                       const Discourse& discourse,
                                                       bool asTarget) const {
   std::vector<std::string> names;
+  bool namedOne = false;  // "one" stands for a noun that named a single object ("the marker")
   if (phrase.noun) {
     names = phrase.noun->objects;
   } else if (phrase.one && !(discourse.lastObjectNoun.empty() && discourse.lastTargetNoun.empty())) {
     const bool targetNoun = asTarget ? !discourse.lastTargetNoun.empty()
                                      : discourse.lastObjectNoun.empty();
     names = targetNoun ? discourse.lastTargetNoun : discourse.lastObjectNoun;
+    namedOne = names.size() == 1;
   } else {
     for (const ObjectDescriptor& object : objects_) names.push_back(object.name);
     if (phrase.everything || !asTarget) {
@@ -198,9 +200,13 @@ std::vector<std::string> NounPhraseReader::candidates(const NounPhrase& phrase,
     }
   }
   if (phrase.other) {
-    std::erase_if(names, [&discourse](const std::string& name) {
-      return containsWord(discourse.mentioned, name);
-    });
+    const auto mentioned = [&discourse](const std::string& name) { return containsWord(discourse.mentioned, name); };
+    std::erase_if(names, mentioned);
+    if (names.empty() && phrase.one && namedOne) {  // "the marker ..., then the other one": another movable object
+      for (const ObjectDescriptor& object : objects_) {
+        if (object.movable && !mentioned(object.name)) names.push_back(object.name);
+      }
+    }
   }
   return names;
 }
@@ -208,7 +214,8 @@ std::vector<std::string> NounPhraseReader::candidates(const NounPhrase& phrase,
 std::vector<std::string> NounPhraseReader::narrow(const NounPhrase& phrase,
                                                   std::vector<std::string> names) const {
   std::erase_if(names, [this, &phrase](const std::string& name) {
-    return !hasColours(descriptor(name), phrase.colours);
+    const ObjectDescriptor& object = descriptor(name);
+    return !hasColours(object, phrase.colours) || (!phrase.shapes.empty() && !containsWord(phrase.shapes, object.shape));
   });
   if ((phrase.size == SizeWord::kNone && phrase.place == PlaceWord::kNone) || names.size() < 2) {
     return names;

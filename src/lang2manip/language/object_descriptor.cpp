@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "lang2manip/language/words.hpp"
+#include "lang2manip/symbolic/object_heading.hpp"
 
 namespace lang2manip {
 namespace {
@@ -121,6 +122,16 @@ Pose robotBase(const Scene& scene, const std::string& robot) {
   return Pose::Identity();
 }
 
+/// "box", "cylinder" or "sphere" for an object of one such collision shape, else empty.
+std::string shapeName(const SceneObject& object) {
+  if (object.collisions.size() != 1) return {};
+  const Geometry& geometry = object.collisions.front().geometry;
+  if (std::holds_alternative<Box>(geometry)) return "box";
+  if (std::holds_alternative<Cylinder>(geometry)) return "cylinder";
+  if (std::holds_alternative<Sphere>(geometry)) return "sphere";
+  return {};
+}
+
 }  // namespace
 
 std::string nearestColourName(const Vector3& rgb) {
@@ -175,6 +186,8 @@ std::vector<ObjectDescriptor> describeObjects(const Scene& scene, const std::str
     const AlignedBox3 world = object.worldBounds();
     for (int corner = 0; corner < 8; ++corner) descriptor.bounds.extend(worldToBase * world.corner(static_cast<AlignedBox3::CornerType>(corner)));
     descriptor.origin = worldToBase * object.pose.translation();
+    descriptor.shape = shapeName(object);
+    if (const auto side = longSideYaw(object, worldToBase.linear() * object.pose.linear())) descriptor.longSideYaw = *side;
     descriptor.movable = object.movable;
     descriptor.role = object.role;
     descriptors.push_back(std::move(descriptor));

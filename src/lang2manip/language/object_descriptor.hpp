@@ -3,6 +3,7 @@
 /// its colour, size and place. Built from a Scene; the instruction parser grounds noun phrases
 /// against these descriptors only.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,11 @@ struct ObjectDescriptor {
   AlignedBox3 bounds;
   /// The origin of its frame in the robot's base frame, metres.
   Vector3 origin = Vector3::Zero();
+  /// "box", "cylinder" or "sphere" when its collision geometry is one such shape; empty otherwise.
+  std::string shape;
+  /// The yaw of its long side in the robot's base frame, in [0, pi) (see longSideYaw()); none for
+  /// a square or round footprint.
+  std::optional<double> longSideYaw;
   bool movable = false;
   ObjectRole role = ObjectRole::kNone;
 };

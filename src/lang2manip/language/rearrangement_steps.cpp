@@ -161,6 +161,27 @@ bool StepParser::parseGivenTurn(Step& step) {
   return true;
 }
 
+/// A direction to point along, as the yaw of a line in the base frame (front and back are one
+/// line, so are left and right), with its length; nullopt when none.
+std::optional<std::pair<double, std::size_t>> matchHeading(const Words& words, std::size_t at) {
+  static const std::vector<std::pair<Words, double>> table = [] {
+    std::vector<std::pair<Words, double>> list;
+    const std::pair<const char*, double> entries[] = {
+        {"forward", 0.0}, {"forwards", 0.0}, {"ahead", 0.0}, {"straight ahead", 0.0}, {"away from the robot", 0.0},
+        {"away from you", 0.0}, {"toward the robot", 0.0}, {"towards the robot", 0.0}, {"toward you", 0.0}, {"towards you", 0.0},
+        {"at the robot", 0.0}, {"at you", 0.0}, {"backward", 0.0}, {"backwards", 0.0}, {"to the front", 0.0}, {"to the back", 0.0},
+        {"front", 0.0}, {"to the left", 90.0}, {"to the right", 90.0}, {"left", 90.0}, {"right", 90.0}, {"sideways", 90.0},
+        {"to the side", 90.0}, {"the left", 90.0}, {"the right", 90.0}};
+    for (const auto& [text, degrees] : entries) list.emplace_back(tokenize(text), degrees * kDegree);
+    return list;
+  }();
+  std::optional<std::pair<double, std::size_t>> best;
+  for (const auto& [phrase, yaw] : table) {
+    if (matchesAt(words, at, phrase) && (!best || phrase.size() > best->second)) best = std::make_pair(yaw, phrase.size());
+  }
+  return best;
+}
+
 bool StepParser::parsePointing(Step& step, bool afterTurn) {
   static const std::vector<Words> connectors =
       phrasesOf({"at", "to", "toward", "towards", "in the direction of", "to face", "to point at", "to point to", "to point toward",
@@ -168,21 +189,45 @@ bool StepParser::parsePointing(Step& step, bool afterTurn) {
                  "so that it points to", "so it points to", "so that it points toward", "so it points toward",
                  "so that it points towards", "so it points towards", "so that it is facing", "so it is facing", "facing",
                  "so that they face", "so they face", "so that they point at", "so they point at", "to face toward",
-                 "to face towards"});
-  const std::size_t length = longestAt(step.words, step.at, connectors);
-  if (length == 0 || (afterTurn && (step.next("to") || step.next("at")) && length == 1)) return false;
+                 "to face towards", "so that it points", "so it points", "to point", "so they point", "so that they point"});
+  static const std::vector<Words> alignments = phrasesOf({"with", "parallel to", "parallel with", "in line with", "the same way as"});
+  std::size_t length = longestAt(step.words, step.at, connectors);
+  if (afterTurn && (length == 0 || (length == 1 && (step.next("to") || step.next("at"))))) {
+    if (length == 0 || !matchHeading(step.words, step.at + 1)) return false;
+  }
+  const std::optional<std::pair<double, std::size_t>> heading =
+      matchHeading(step.words, step.at + length) ? matchHeading(step.words, step.at + length) : (afterTurn ? std::nullopt : matchHeading(step.words, step.at));
+  if (heading) {  // "point the marker forward", "so that it points to the left"
+    const std::size_t from = matchHeading(step.words, step.at + length) ? step.at + length : step.at;
+    step.at = from + heading->second;
+    addFacingGoals(step, "", heading->first);
+    return true;
+  }
+  if (length == 0 && step.verb.lemma == "align") length = longestAt(step.words, step.at, alignments);
+  if (length == 0) return false;
   const std::optional<NounPhrase> phrase = reader_.read(step.words, step.at + length);
   if (!phrase) failStep(step, "expected what to point it at after \"" + joinWords(step.words, step.at, step.at + length) + "\"");
   step.at = phrase->end;
   const std::string target = groundTarget(step, *phrase, false);
+  if (step.verb.lemma == "align") {  // "align the marker with the eraser": along the eraser's long side
+    const std::optional<double> side = reader_.descriptor(target).longSideYaw;
+    if (!side) failStep(step, target + " has no long side to align with (its footprint is square or round)");
+    addFacingGoals(step, "", *side);
+    return true;
+  }
+  addFacingGoals(step, target, 0.0);
+  return true;
+}
+
+void StepParser::addFacingGoals(const Step& step, const std::string& target, double heading) {
   for (const std::string& object : step.objects) {
     Goal goal;
     goal.kind = GoalKind::kFacing;
     goal.object = object;
     goal.target = target;
+    if (target.empty()) goal.angle = heading;
     specification_.goals.push_back(goal);
   }
-  return true;
 }
 
 void StepParser::parsePoint(Step& step) {

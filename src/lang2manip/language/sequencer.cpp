@@ -15,7 +15,9 @@ using language_detail::facingTurn;
 using language_detail::footprintsOverlap;
 using language_detail::freeSpots;
 using language_detail::moveLayout;
+using language_detail::placesTaken;
 using language_detail::shifted;
+using language_detail::standingIn;
 using language_detail::validatePoseGoal;
 
 /// A goal order that does not work; the search tries another.
@@ -80,7 +82,7 @@ class Sequencer {
       if (goal.kind == GoalKind::kDisplaced && goal.displacement.norm() <= 0.0) {
         throw PlanningError("offline planner: " + describeGoal(goal) + " moves it nowhere");
       }
-      if (goal.kind == GoalKind::kFacing) requireObject(goal.target);
+      if (goal.kind == GoalKind::kFacing && !goal.target.empty()) requireObject(goal.target);
       validatePoseGoal(goal, options_);
     }
   }
@@ -221,10 +223,7 @@ class Sequencer {
     const ObjectLayout& mine = layoutOf(world, goal.object);
     const Vector3 shift(goal.position->x() - mine.origin.x(), goal.position->y() - mine.origin.y(), 0.0);
     const AlignedBox3 spot = shifted(mine.bounds, shift);
-    for (const std::string& other : initial_.objects) {
-      const auto at = world.layout.find(other);
-      if (other == goal.object || other == world.state.held || at == world.layout.end() || initial_.supports.count(other)) continue;
-      if (!footprintsOverlap(at->second.bounds, spot, 0.0) || at->second.bounds.max().z() < spot.min().z()) continue;
+    for (const std::string& other : standingIn(world.layout, spot, initial_.objects, {goal.object, world.state.held}, initial_.supports)) {
       if (!world.state.movable.count(other)) {
         throw SequencingFailure("the place for " + goal.object + " is taken by " + other + ", which is not movable");
       }
@@ -245,16 +244,7 @@ class Sequencer {
     const auto area = options_.supportAreas.find(support);
     if (area == options_.supportAreas.end()) throw SequencingFailure("no free spot is known on " + support + " to set " + object + " aside");
     const ObjectLayout layout = layoutOf(world, object);
-    std::vector<AlignedBox3> occupied;
-    for (const auto& [name, other] : world.layout) {
-      if (name != object && name != world.state.held && !initial_.supports.count(name)) occupied.push_back(other.bounds);
-    }
-    for (const Goal& goal : goals_) {
-      const auto owner = world.layout.find(goal.object);
-      if (goal.kind != GoalKind::kAtPosition || goal.object == object || owner == world.layout.end()) continue;
-      occupied.push_back(shifted(owner->second.bounds, Vector3(goal.position->x() - owner->second.origin.x(),
-                                                               goal.position->y() - owner->second.origin.y(), 0.0)));
-    }
+    const std::vector<AlignedBox3> occupied = placesTaken(world.layout, goals_, {object, world.state.held}, initial_.supports);
     const auto skipped = options_.skippedSpots.find(object);
     const std::size_t skip = skipped == options_.skippedSpots.end() ? 0 : static_cast<std::size_t>(std::max(skipped->second, 0));
     const std::vector<Vector3> spots =

@@ -97,6 +97,8 @@ const PhraseTable<Verb>& verbTable() {
       {"orientate", makeVerb("orient", {&V::points})},
       {"aim", makeVerb("aim", {&V::points})},
       {"direct", makeVerb("direct", {&V::points})},
+      {"align", makeVerb("align", {&V::points})},
+      {"line up", makeVerb("align", {&V::points})},
       {"replace", makeVerb("replace", {&V::replaces})},
       {"lower", makeVerb("lower", {&V::places})},
       {"load", makeVerb("load", {&V::places})},

@@ -110,7 +110,11 @@ std::string describeGoal(const Goal& goal) {
       text << goal.object << " turned by " << std::round(goal.angle * 1800.0 / 3.14159265358979323846) / 10.0 << " deg";
       break;
     case GoalKind::kFacing:
-      text << goal.object << " pointing at " << goal.target;
+      if (goal.target.empty()) {
+        text << goal.object << " pointing along yaw " << std::round(goal.angle * 1800.0 / 3.14159265358979323846) / 10.0 << " deg";
+      } else {
+        text << goal.object << " pointing at " << goal.target;
+      }
       break;
   }
   return text.str();

@@ -90,7 +90,8 @@ enum class GoalKind {
   /// `object` turned by `angle` (rad, counter-clockwise seen from above) about the vertical from
   /// its orientation at the start, standing where it stood.
   kTurned,
-  /// The long side of `object` points at `target` (either end; seen from above).
+  /// The long side of `object` points at `target` (either end; seen from above), or, when
+  /// `target` is empty, lies along the base-frame yaw `angle` ("point it forward": 0).
   kFacing,
 };
 
@@ -109,7 +110,8 @@ struct Goal {
   std::string configuration;
   /// kAtPosition: where the object frame's origin goes (robot base frame).
   std::optional<Vector3> position;
-  /// kTurned: the turn about the vertical, rad (counter-clockwise seen from above).
+  /// kTurned: the turn about the vertical, rad (counter-clockwise seen from above); kFacing
+  /// without a target: the heading of the long side, rad (base frame, 0 = front).
   double angle = 0.0;
 };
 

@@ -52,7 +52,10 @@ class GoalReader {
       if (goal.displacement.norm() == 0.0) report(path + ".displacement", "a displacement of zero moves nothing");
     }
     if (const json* position = given(item, "position")) goal.position = readVector(*position, path + ".position");
-    if (const json* angle = given(item, "angle")) goal.angle = readAngle(*angle, path + ".angle");
+    if (const json* angle = given(item, "angle")) goal.angle = readAngle(*angle, path + ".angle", goal.kind == GoalKind::kFacing);
+    if (goal.kind == GoalKind::kFacing && (given(item, "target") == nullptr) == (given(item, "angle") == nullptr)) {
+      report(path, "a facing goal needs a target to point at or an angle (the heading of its long side), not both");
+    }
     if (problems_.size() != before) return std::nullopt;
     return goal;
   }
@@ -78,13 +81,14 @@ class GoalReader {
       case GoalKind::kAtConfiguration: return {"configuration"};
       case GoalKind::kAtPosition: return {"object", "position"};
       case GoalKind::kTurned: return {"object", "angle"};
-      case GoalKind::kFacing: return {"object", "target"};
+      case GoalKind::kFacing: return {"object"};
     }
     return {};
   }
   static std::vector<std::string> optionalFields(GoalKind kind) {
     if (kind == GoalKind::kRelation) return {"distance"};
     if (kind == GoalKind::kAtPosition) return {"target"};
+    if (kind == GoalKind::kFacing) return {"target", "angle"};
     return {};
   }
 
@@ -148,11 +152,15 @@ class GoalReader {
     return std::nullopt;
   }
 
-  double readAngle(const json& value, const std::string& path) {
+  double readAngle(const json& value, const std::string& path, bool heading) {
     constexpr double kTwoPi = 6.283185307179586;
     if (value.is_number() && std::isfinite(value.get<double>()) && std::abs(value.get<double>()) <= kTwoPi &&
-        value.get<double>() != 0.0) {
+        (heading || value.get<double>() != 0.0)) {
       return value.get<double>();
+    }
+    if (heading) {
+      report(path, "expected a heading in radians within [-2 pi, 2 pi] (base frame, 0 = front), got " + shown(value));
+      return 0.0;
     }
     report(path, "expected a non-zero turn in radians within [-2 pi, 2 pi] (counter-clockwise seen from above), got " + shown(value));
     return 0.0;
@@ -215,7 +223,7 @@ nlohmann::json goalStatementSchema() {
         {"displacement", nullableOf(vector, "displaced: how far the object moves, metres, robot base frame")},
         {"configuration", nullableOf({{"type", "string"}}, "at_configuration: the named configuration, e.g. home")},
         {"position", nullableOf(vector, "at_position: where the object frame's origin ends up, metres, robot base frame (x and y are checked)")},
-        {"angle", nullableOf(number, "turned: the turn about the vertical from where it started, radians, counter-clockwise seen from above")}}},
+        {"angle", nullableOf(number, "turned: the turn about the vertical from where it started, radians, counter-clockwise seen from above; facing without a target: the heading of the long side, radians, base frame (0 = front)")}}},
       {"required", kGoalFields},
       {"additionalProperties", false}};
   return nullableOf({{"type", "array"}, {"items", goal}}, "The final state the plan reaches (what the task asks for)");
@@ -236,7 +244,7 @@ nlohmann::json goalStatementJson(const std::vector<Goal>& goals) {
                     {"displacement", displaced ? vectorJson(goal.displacement) : json(nullptr)},
                     {"configuration", goal.configuration.empty() ? json(nullptr) : json(goal.configuration)},
                     {"position", goal.kind == GoalKind::kAtPosition && goal.position ? vectorJson(*goal.position) : json(nullptr)},
-                    {"angle", goal.kind == GoalKind::kTurned ? json(goal.angle) : json(nullptr)}});
+                    {"angle", goal.kind == GoalKind::kTurned || (goal.kind == GoalKind::kFacing && goal.target.empty()) ? json(goal.angle) : json(nullptr)}});
   }
   return list;
 }

@@ -110,9 +110,18 @@ GoalCheck checkTurned(const Scene& scene, const Goal& goal, const GoalCheckOptio
                      degreesText(turn.tilt) + ", moved " + metresText(shift)};
 }
 
-/// The long side's line passes within kTurnTolerance of the target's centre (seen from above).
-GoalCheck checkFacing(const Scene& scene, const Goal& goal) {
+/// The long side's line passes within kTurnTolerance of the target's centre (seen from above), or
+/// lies along the wanted heading (base frame).
+GoalCheck checkFacing(const Scene& scene, const Goal& goal, const GoalCheckOptions& options) {
   const SceneObject& object = objectNamed(scene, goal.object, "object");
+  if (goal.target.empty()) {
+    if (scene.findAttachment(goal.object) != nullptr) return {false, goal.object + " is held, not standing pointed"};
+    const Matrix3 toBase = robotBaseFrame(scene, options.robot).linear().transpose();
+    const std::optional<double> side = longSideYaw(object, toBase * object.pose.linear());
+    if (!side) return {false, goal.object + " has no long side to point with"};
+    const double error = std::abs(reducedAngle(goal.angle - *side, 3.14159265358979323846));
+    return {error <= kTurnTolerance, goal.object + "'s long side is " + degreesText(error) + " off the wanted direction"};
+  }
   const SceneObject& target = objectNamed(scene, goal.target, "target");
   if (scene.findAttachment(goal.object) != nullptr) return {false, goal.object + " is held, not standing pointed"};
   const std::optional<double> side = longSideYaw(object, object.pose.linear());
@@ -179,7 +188,7 @@ GoalCheck checkGoalInScene(const Scene& scene, const Goal& goal, const GoalCheck
   if (goal.kind == GoalKind::kDisplaced) return checkDisplaced(scene, goal, options);
   if (goal.kind == GoalKind::kAtPosition) return checkAtPosition(scene, goal, options);
   if (goal.kind == GoalKind::kTurned) return checkTurned(scene, goal, options);
-  if (goal.kind == GoalKind::kFacing) return checkFacing(scene, goal);
+  if (goal.kind == GoalKind::kFacing) return checkFacing(scene, goal, options);
   if (goal.kind == GoalKind::kHandedOver) {
     throw InputError("goal \"" + describeGoal(goal) + "\": where the tool is needs the robot's kinematics (verifyExecution checks it)");
   }
