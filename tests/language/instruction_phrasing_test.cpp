@@ -62,6 +62,11 @@ const std::pair<const char*, const char*> kPhrasings[] = {
     {"point the marker to the left", "marker pointing along yaw 90 deg"},
     {"rotate the eraser so that it points forward", "eraser pointing along yaw 0 deg"},
     {"align the marker with the eraser", "marker pointing along yaw 0 deg"},
+    {"tidy up: put everything into the holder", "marker in holder; eraser in holder"},
+    {"clear the desk by putting everything into the holder", "marker in holder; eraser in holder"},
+    {"put the eraser in the holder instead of on top of it", "eraser in holder"},
+    {"put the marker on the desk and the eraser on the desk next to it", "marker on desk; eraser next_to marker"},
+    {"push the eraser 5 cm left and then 3 cm forward", "eraser displaced by (0.03, 0.05, 0)"},
 };
 
 TEST(InstructionPhrasing, MoreWaysOfSayingTheSameAreUnderstoodAndPlanned) {
@@ -121,6 +126,7 @@ TEST(InstructionPhrasing, ContradictionsAndImpossibleMovesAreRefusedWithTheReaso
       {"put the marker and the eraser between the holder and the desk", "only one object fits between"},
       {"fill the holder", "say what to fill holder with"},
       {"put the marker in the holder but not the eraser", "could not ground \"but\""},
+      {"tidy up the desk", "it asks for nothing the robot could do"},
   };
   for (const auto& [instruction, reason] : cases) {
     SCOPED_TRACE(instruction);

@@ -29,6 +29,14 @@ std::optional<Words> StepParser::inVerbFirstOrder(const Words& words) const {
     rewritten.insert(rewritten.end(), words.begin() + static_cast<std::ptrdiff_t>(rest), words.end());
     return rewritten;
   };
+  for (std::size_t by = 1; by + 1 < words.size(); ++by) {  // "clear the desk by putting everything in the holder"
+    const std::string& gerund = words[by + 1];
+    if (words[by] != "by" || gerund.size() < 5 || gerund.compare(gerund.size() - 3, 3, "ing") != 0) continue;
+    const std::string base = gerund.substr(0, gerund.size() - 3);
+    for (const std::string& stem : {base, base + "e", base.size() > 2 && base[base.size() - 1] == base[base.size() - 2] ? base.substr(0, base.size() - 1) : base}) {
+      if (vocabulary::matchVerb(Words{stem}, 0)) return join(Words{stem}, by + 2, by + 2, by + 2);
+    }
+  }
   std::size_t subject = startsWith(causatives, 0);  // "make the marker point at the holder"
   const std::size_t wish = subject == 0 ? startsWith(wishes, 0) : 0;  // "I want the marker in the holder"
   subject += wish;

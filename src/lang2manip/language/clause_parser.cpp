@@ -26,6 +26,8 @@ std::string verbList() {
 
 
 void StepParser::parse(const Words& words, const StepModifiers& modifiers) {
+  clauseBefore_.clear();
+  clauseStart_ = specification_.goals.size();
   if (!words.empty() && !sameAs(words, 0)) {
     if (const std::optional<Words> reordered = inVerbFirstOrder(words)) {
       parse(*reordered, modifiers);
@@ -53,10 +55,11 @@ void StepParser::parse(const Words& words, const StepModifiers& modifiers) {
 
 void StepParser::readVerb(Step& step) {
   const Words& words = step.words;
+  const bool displacementOnly = vocabulary::matchLength(words, 0) || vocabulary::matchDirection(words, 0);
   if (auto verb = vocabulary::matchVerb(words, 0)) {
     step.verb = verb->verb;
     step.at = verb->length;
-  } else if (lastVerb_ && reader_.read(words, 0)) {
+  } else if (lastVerb_ && (reader_.read(words, 0) || (displacementOnly && lastVerb_->pushes))) {
     step.verb = *lastVerb_;  // "..., then the eraser"
     step.elliptical = true;
   } else {
@@ -77,6 +80,10 @@ void StepParser::parsePredicate(Step& step) {
     parseKeep(step);
     return;
   }
+  if (step.verb.summarizes) {  // "tidy up: put everything in the holder": a heading, the steps say how
+    step.at = step.words.size();
+    return;
+  }
   if (step.verb.handsOver || (step.verb.places && handsToPerson(step))) {
     parseHandOver(step);
     return;
@@ -95,11 +102,50 @@ void StepParser::parsePredicate(Step& step) {
   if (!step.verb.places && !step.verb.picks && !step.verb.pushes) {
     failStep(step, "the only place to " + step.verb.lemma + " is home");
   }
-  parseObjects(step);
-  const bool placed = parsePutBack(step) || parseBetween(step) || parseWhereStands(step) || parseRelations(step) || parseDisplacement(step);
-  if (!placed) parseWithoutPlace(step);
+  if (step.elliptical && !reader_.read(step.words, step.at) && !discourse_.lastObjects.empty()) {
+    step.objects = discourse_.lastObjects;  // "push it 5 cm left, then 3 cm forward": the same objects again
+  } else {
+    parseObjects(step);
+  }
+  if (!parsePlacement(step)) parseWithoutPlace(step);
   parseGappedRelations(step);
+  parseGappedPlacements(step);
   skipSource(step);
+  skipRejectedAlternative(step);
+}
+
+void StepParser::skipRejectedAlternative(Step& step) {
+  if (!matchesAt(step.words, step.at, {"instead", "of"}) && !matchesAt(step.words, step.at, {"rather", "than"})) return;
+  std::size_t at = step.at + 2;
+  if (const auto relation = vocabulary::matchRelation(step.words, at)) at += relation->length;  // "instead of on top of it"
+  const std::optional<NounPhrase> phrase = reader_.read(step.words, at);
+  if (!phrase) failStep(step, "expected what not to do after \"" + joinWords(step.words, step.at, step.at + 2) + "\"");
+  step.at = phrase->end;
+}
+
+bool StepParser::parsePlacement(Step& step) {
+  return parsePutBack(step) || parseBetween(step) || parseWhereStands(step) || parseRelations(step) || parseDisplacement(step);
+}
+
+void StepParser::parseGappedPlacements(Step& step) {
+  // "put the marker where the eraser is and the eraser where the marker was"
+  while (step.next("and") || step.next(",")) {
+    const std::size_t restart = step.at;
+    std::size_t at = step.at + 1;
+    if (matchesAt(step.words, at, {"and"})) ++at;
+    const std::vector<NounPhrase> list = reader_.readList(step.words, at);
+    if (list.empty()) return;
+    const std::vector<std::string> previous = step.objects;
+    step.at = list.back().end;
+    clauseBefore_ = previous;
+    clauseStart_ = specification_.goals.size();
+    step.objects = groundList(step, list);
+    if (!parsePlacement(step)) {
+      step.at = restart;
+      step.objects = previous;
+      return;
+    }
+  }
 }
 
 
@@ -290,8 +336,13 @@ bool StepParser::parseRelation(Step& step) {
 }
 
 std::string StepParser::groundTarget(Step& step, const NounPhrase& phrase, bool intoSomething) {
-  const std::vector<std::string> targets =
-      reader_.ground(phrase, discourse_, true, step.objects, intoSomething);
+  std::vector<std::string> targets = reader_.ground(phrase, discourse_, true, step.objects, intoSomething);
+  // "and the eraser on the desk next to it": "it" is not the desk this clause already named but
+  // the object of the clause before.
+  const bool namedInClause = targets.size() == 1 && phrase.pronoun == Pronoun::kIt &&
+                             std::any_of(specification_.goals.begin() + static_cast<std::ptrdiff_t>(clauseStart_), specification_.goals.end(),
+                                         [&](const Goal& goal) { return goal.target == targets.front() && containsWord(step.objects, goal.object); });
+  if (namedInClause && clauseBefore_.size() == 1) targets = clauseBefore_;
   if (targets.size() != 1) {
     throwGroundingError(phrase.text, "a relation needs one target object, but it names " +
                                          std::to_string(targets.size()));
@@ -415,12 +466,22 @@ void StepParser::parseGappedRelations(Step& step) {
     if (list.empty()) return;
     step.at = list.back().end;
     std::vector<std::string> previous = step.objects;
+    clauseBefore_ = previous;
+    clauseStart_ = specification_.goals.size();
     step.objects = groundList(step, list);
     if (step.atEnd() && lastRelation_) {
       addRelationGoals(step, *lastRelation_);  // "..., and the eraser too"
       return;
     }
-    if (!parseRelation(step)) {
+    const std::size_t firstOfClause = specification_.goals.size();
+    if (parseRelation(step)) {  // "and the eraser on the desk next to it"
+      while (parseRelation(step)) {
+      }
+      refuseConflictingGoals({specification_.goals.begin() + static_cast<std::ptrdiff_t>(firstOfClause), specification_.goals.end()},
+                             joinWords(step.words));
+      continue;
+    }
+    {
       step.at = restart;
       step.objects = previous;
       return;

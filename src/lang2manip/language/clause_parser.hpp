@@ -102,6 +102,14 @@ class StepParser {
   bool parseDisplacement(Step& step);
   void parseWithoutPlace(Step& step);
   void parseGappedRelations(Step& step);
+  /// Where the step's objects go, in any of the forms (put back, between, where another stands,
+  /// relations, a displacement); false when none follows.
+  bool parsePlacement(Step& step);
+  /// "..., and the eraser where the marker was": more objects with their own placement.
+  void parseGappedPlacements(Step& step);
+  /// "... instead of on top of it", "... rather than on the desk": the alternative the step
+  /// rejects, skipped.
+  void skipRejectedAlternative(Step& step);
   void skipSource(Step& step);
   void finish(Step& step, const StepModifiers& modifiers);
 
@@ -127,6 +135,10 @@ class StepParser {
   std::optional<RelationSpec> lastRelation_;
   /// The relation of the previous step, repeated by a step without verb and place.
   std::optional<RelationSpec> lastStepRelation_;
+  /// Within a step of several clauses ("the marker on the desk and the eraser on the desk next to
+  /// it"): the objects of the clause before and where the current clause's goals begin.
+  std::vector<std::string> clauseBefore_;
+  std::size_t clauseStart_ = 0;
 };
 
 }  // namespace lang2manip::language_detail

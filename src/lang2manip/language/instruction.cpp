@@ -1,6 +1,7 @@
 #include "lang2manip/language/instruction.hpp"
 
 #include <algorithm>
+#include <map>
 
 #include "lang2manip/language/clause_parser.hpp"
 #include "lang2manip/language/goal_conflicts.hpp"
@@ -34,6 +35,7 @@ void refuseWhatCannotBeGrounded(const Words& words) {
       return back <= at && language_detail::NounPhraseReader::negatedClauseWords(words, at - back) == back + 1;
     };
     if (negatedClauseAt(1) || negatedClauseAt(2)) continue;  // "the object that is not the eraser"
+    if (words[at] == "instead" && at > 0 && at + 1 < words.size() && words[at + 1] == "of") continue;  // the rejected alternative is skipped
     if (vocabulary::isRefusedWord(words[at]) ||
         (words[at] == "do" && at + 1 < words.size() && words[at + 1] == "not")) {
       throwGroundingError(words[at], "the offline planner does not follow negation, exceptions, "
@@ -137,7 +139,7 @@ bool supersedes(const Goal& later, const Goal& earlier) {
     case GoalKind::kFacing:
       return involves(later, earlier.object) && later.kind != GoalKind::kDisplaced && later.kind != GoalKind::kAtConfiguration;
     case GoalKind::kAtConfiguration: return true;
-    case GoalKind::kDisplaced: return false;
+    case GoalKind::kDisplaced: return involves(later, earlier.object) && later.kind == GoalKind::kDisplaced;
   }
   return false;
 }
@@ -146,10 +148,19 @@ bool supersedes(const Goal& later, const Goal& earlier) {
 /// supersedes, in order ("pick up the marker and put it in the holder": marker in holder).
 std::vector<Goal> finalStateGoals(const std::vector<Goal>& goals) {
   std::vector<Goal> kept;
+  std::map<std::string, Vector3> displacedBefore;  // "5 cm left, then 3 cm forward": moved by both
   for (std::size_t i = 0; i < goals.size(); ++i) {
     const bool isStep = std::any_of(goals.begin() + static_cast<std::ptrdiff_t>(i) + 1, goals.end(),
                                     [&](const Goal& later) { return supersedes(later, goals[i]); });
-    if (!isStep) kept.push_back(goals[i]);
+    Goal goal = goals[i];
+    if (goal.kind == GoalKind::kDisplaced) {
+      const auto before = displacedBefore.find(goal.object);
+      if (before != displacedBefore.end()) goal.displacement += before->second;
+      displacedBefore[goal.object] = goal.displacement;
+    } else if (!goal.object.empty()) {
+      displacedBefore.erase(goal.object);
+    }
+    if (!isStep) kept.push_back(goal);
   }
   return kept;
 }

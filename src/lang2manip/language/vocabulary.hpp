@@ -31,6 +31,7 @@ struct Verb {
   bool points = false;     ///< "point X at Y", "orient X toward Y"
   bool replaces = false;   ///< "replace Y with X": X where Y stood
   bool fills = false;      ///< "fill Y with X": X in Y
+  bool summarizes = false; ///< "tidy up: ...": names the task the other steps spell out
 };
 
 struct VerbMatch {
