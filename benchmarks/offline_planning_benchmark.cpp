@@ -38,6 +38,12 @@ const char* const kInstructions[] = {
     "move the marker 5 cm to the left",
     "push the eraser 3 cm forward",
     "put the marker in the holder, then go home",
+    "swap the marker and the eraser",
+    "put the marker where the eraser is",
+    "rotate the eraser by 90 degrees",
+    "point the marker at the holder",
+    "put everything except the eraser in the holder",
+    "hand me the marker",
 };
 
 enum class Variant { kFirstRound, kWithRepair };
