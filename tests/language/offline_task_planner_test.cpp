@@ -162,6 +162,38 @@ TEST(OfflineTaskPlannerTest, FailureItCannotAnswerIsAnError) {
   EXPECT_NE(message.find("the failure is not about an object the plan picks"), std::string::npos) << message;
 }
 
+/// `attempt` failing at the place of `object` (its second action on it), blocked by `blockers`.
+PlanAttempt blockedPlacement(const Plan& plan, const std::string& object, const std::vector<std::string>& blockers) {
+  PlanAttempt attempt = groundingFailure(plan, object, "placement", blockers);
+  std::size_t index = attempt.grounding->actionIndex + 1;
+  while (index < plan.actions.size() && plan.actions[index].object != object) ++index;
+  attempt.grounding->actionIndex = index;
+  return attempt;
+}
+
+TEST(OfflineTaskPlannerTest, APlacementBlockedByWhatThePlanPutThereFirstIsTriedInTheOtherOrder) {
+  OfflineTaskPlanner planner;
+  const Scene scene = test::deskScene();
+  PlanningRequest request = requestFor(scene, "put the marker and the eraser in the holder");
+  const Plan first = firstPlan(planner, request);
+  ASSERT_EQ(first.actions.size(), 4u);
+  ASSERT_EQ(first.actions[0].object, "marker");
+  request.earlierAttempts = {blockedPlacement(first, "eraser", {"marker"})};
+  const Plan second = firstPlan(planner, request);
+  ASSERT_EQ(second.actions.size(), 4u);
+  EXPECT_EQ(second.actions[0].object, "eraser") << "the eraser goes in first now";
+  EXPECT_EQ(second.actions[2].object, "marker");
+  // Both orders failed: nothing new.
+  request.earlierAttempts.push_back(blockedPlacement(second, "marker", {"eraser"}));
+  EXPECT_NE(planningErrorOf(planner, request).find("both orders of putting things into holder failed"), std::string::npos);
+  // An order the user gave is kept.
+  PlanningRequest ordered = requestFor(scene, "first put the marker in the holder, then put the eraser in the holder");
+  const Plan orderedPlan = firstPlan(planner, ordered);
+  ordered.earlierAttempts = {blockedPlacement(orderedPlan, "eraser", {"marker"})};
+  EXPECT_NE(planningErrorOf(planner, ordered).find("the instruction fixes the order in which things go into holder"), std::string::npos)
+      << planningErrorOf(planner, ordered);
+}
+
 TEST(OfflineTaskPlannerTest, APushThatFailedBecomesAPickAndPlaceByTheSameDisplacement) {
   OfflineTaskPlanner planner;
   const Scene scene = test::deskScene();

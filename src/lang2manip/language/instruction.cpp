@@ -69,7 +69,8 @@ bool endsStep(const Words& words, std::size_t at) {
 }
 
 /// Splits at sentence punctuation, sequencing words, and at "and" or "," before a verb.
-std::vector<Words> splitSteps(const Words& words) {
+/// The steps of `words`; `ordered` is set when a sequencing word or an ordinal joins them.
+std::vector<Words> splitSteps(const Words& words, bool& ordered) {
   std::vector<Words> steps(1);
   auto split = [&steps] {
     if (!steps.back().empty()) steps.emplace_back();
@@ -78,10 +79,12 @@ std::vector<Words> splitSteps(const Words& words) {
     const std::string& word = words[at];
     if (auto sequence = vocabulary::matchSequenceWord(words, at)) {
       split();
+      ordered = true;
       at += *sequence;
     } else if (auto ordinal = vocabulary::matchStepOrdinal(words, at);
                ordinal && (steps.back().empty() || endsStep(words, at + *ordinal))) {
       split();
+      ordered = true;
       at += *ordinal;
     } else if (word == "," && at + 1 < words.size() && words[at + 1] == "and" && (startsStep(words, at + 2) || endsStep(words, at + 2))) {
       split();  // "lift it, and put it down": a serial comma before the next step
@@ -174,7 +177,7 @@ TaskSpecification understandInstruction(const std::string& text,
   const language_detail::NounPhraseReader reader(objects);
   TaskSpecification specification;
   language_detail::StepParser parser(reader, specification);
-  for (Words& step : splitSteps(withoutFillers(words))) {
+  for (Words& step : splitSteps(withoutFillers(words), specification.orderGiven)) {
     const language_detail::StepModifiers modifiers = language_detail::extractModifiers(step);
     parser.parse(step, modifiers);
   }

@@ -34,6 +34,9 @@ struct TaskSpecification {
   /// "leave the eraser where it is": a zero displacement). Not goals: an instruction whose goals
   /// move a kept object is refused as contradicting itself.
   std::vector<Goal> kept;
+  /// True when the instruction orders its steps ("first ..., then ...", "after that", "finally"):
+  /// the plan keeps that order; otherwise a repair may change it.
+  bool orderGiven = false;
 };
 
 /// Understands `text` over `objects` (see describeObjects()).

@@ -90,7 +90,42 @@ struct Answers {
   std::set<std::string> pickedInsteadOfPushed;
   std::map<std::string, int> skippedSpots;
   std::map<std::string, int> turnSteps;
+  /// Targets whose objects go there in the reverse order (one placed earlier blocked a later one).
+  std::set<std::string> reversedTargets;
 };
+
+/// The target of the failed place of `attempt` when every position there was taken by objects
+/// the plan had put there before; empty otherwise.
+std::string targetFilledBeforehand(const PlanAttempt& attempt) {
+  if (!attempt.plan || !attempt.grounding || attempt.grounding->blockingObjects.empty()) return {};
+  const std::vector<SymbolicAction>& actions = attempt.plan->actions;
+  const std::size_t index = attempt.grounding->actionIndex;
+  if (index >= actions.size() || actions[index].type != ActionType::kPlace || !actions[index].params.relation) return {};
+  const std::string& target = actions[index].params.target;
+  for (const std::string& blocker : attempt.grounding->blockingObjects) {
+    const bool placedThere = std::any_of(actions.begin(), actions.begin() + static_cast<std::ptrdiff_t>(index), [&](const SymbolicAction& a) {
+      return a.type == ActionType::kPlace && a.object == blocker && a.params.target == target;
+    });
+    if (!placedThere) return {};
+  }
+  return target;
+}
+
+/// `specification` with the objects of the goals into each of `targets` in the reverse order
+/// (each goal keeps its place in the list; only which object it is about changes).
+void reverseOrderInto(const std::set<std::string>& targets, TaskSpecification& specification) {
+  for (std::vector<Goal>* goals : {&specification.goals, &specification.steps}) {
+    for (const std::string& target : targets) {
+      std::vector<std::size_t> indices;
+      for (std::size_t i = 0; i < goals->size(); ++i) {
+        if ((*goals)[i].kind == GoalKind::kRelation && (*goals)[i].target == target) indices.push_back(i);
+      }
+      for (std::size_t i = 0, j = indices.size(); i + 1 < j; ++i, --j) {
+        std::swap((*goals)[indices[i]].object, (*goals)[indices[j - 1]].object);
+      }
+    }
+  }
+}
 
 constexpr int kMostSpotsSkipped = 3;
 constexpr int kMostTurnSteps = 4;
@@ -135,6 +170,16 @@ Answers applyEarlierAttempts(const PlanningRequest& request, TaskSpecification& 
       continue;
     }
     if (answerPlaceAtPosition(attempt, specification, answers)) continue;
+    if (const std::string target = targetFilledBeforehand(attempt); !target.empty()) {
+      // Blocked by what the plan put there first: the other order, unless the user gave one.
+      if (specification.orderGiven) {
+        nothingNewToTry("the instruction fixes the order in which things go into " + target, attempt.failure);
+      }
+      if (!answers.reversedTargets.insert(target).second) {
+        nothingNewToTry("both orders of putting things into " + target + " failed", attempt.failure);
+      }
+      continue;
+    }
     const std::string& object = objectToRegrasp(attempt);
     if (requested.count(object)) {
       nothingNewToTry("the instruction asks for a " + graspDirectionName(requested.at(object)) +
@@ -241,6 +286,7 @@ Plan OfflineTaskPlanner::plan(const PlanningRequest& request, const StopConditio
   const SymbolicState state = observeSymbolicState(scene);
   SequencingOptions options = sequencingOptionsFor(scene, request.robot);
   const Answers answers = applyEarlierAttempts(request, specification);
+  reverseOrderInto(answers.reversedTargets, specification);
   options.skippedSpots = answers.skippedSpots;
   options.turnSteps = answers.turnSteps;
   Plan plan = carryInsteadOfPushing(sequenceGoals(specification, state, options), answers.pickedInsteadOfPushed,

@@ -1,8 +1,11 @@
 #pragma once
 /// @file The offline task planner (the default, deterministic, no network): understands the
 /// instruction over the scene's objects, observes the symbolic state from geometry and
-/// sequences the goals into a plan. After grounding failures reported in earlier attempts it
-/// tries other grasp directions instead of repeating a plan.
+/// sequences the goals into a plan. It answers the grounding failures of earlier attempts from
+/// their data, never their words: another grasp direction, carrying instead of a push that failed,
+/// the next free spot for an object set aside, a turn in more steps, the other order of filling a
+/// container whose earlier object blocked a later one (unless the instruction orders its steps);
+/// and says "nothing new to try" with the reason otherwise.
 
 #include <string>
 
