@@ -7,7 +7,12 @@
 #include <string>
 
 #include "grounding/grounding_test_support.hpp"
+#include "lang2manip/execution/execution_verification.hpp"
 #include "lang2manip/execution/task_executor.hpp"
+#include "lang2manip/language/instruction.hpp"
+#include "lang2manip/language/object_descriptor.hpp"
+#include "lang2manip/language/offline_task_planner.hpp"
+#include "lang2manip/symbolic/repair_loop.hpp"
 
 namespace lang2manip::test {
 
@@ -18,6 +23,30 @@ constexpr bool kSanitizedBuild = true;
 #else
 constexpr bool kSanitizedBuild = false;
 #endif
+
+/// A task run by the offline planner through the repair loop, and its last execution verified.
+struct OfflineRun {
+  RepairResult repair;
+  ExecutionVerification verification;
+};
+
+/// `task` planned offline with repair on `executor`'s scene; the last execution is verified against
+/// the goals the instruction states.
+inline OfflineRun runOffline(TaskExecutor& executor, const std::string& task) {
+  const Scene& scene = executor.initialScene();
+  OfflineTaskPlanner planner;
+  PlanningRequest request;
+  request.task = task;
+  request.scene = &scene;
+  request.robot = executor.arm().robotName();
+  OfflineRun run;
+  run.repair = planWithRepair(planner, request, &executor, RepairOptions{}, StopCondition::never());
+  if (!executor.executions().empty()) {
+    const std::vector<Goal> goals = understandInstruction(task, describeObjects(scene, request.robot)).goals;
+    run.verification = verifyExecution(executor.arm(), scene, executor.lastExecution(), goals);
+  }
+  return run;
+}
 
 /// A box object (see boxObject()) that is fixed in place.
 inline SceneObject fixedBox(const std::string& name, const Vector3& size, const Vector3& bottomCentre) {

@@ -18,26 +18,9 @@ namespace {
 
 constexpr const char* kPaperTask = "put the marker and eraser in the holder";
 
-struct TaskRun {
-  RepairResult repair;
-  ExecutionVerification verification;
-};
+using TaskRun = OfflineRun;
 
-TaskRun runPaperTask(TaskExecutor& executor, const std::string& task = kPaperTask) {
-  const Scene& scene = executor.initialScene();
-  OfflineTaskPlanner planner;
-  PlanningRequest request;
-  request.task = task;
-  request.scene = &scene;
-  request.robot = executor.arm().robotName();
-  TaskRun run;
-  run.repair = planWithRepair(planner, request, &executor, RepairOptions{}, StopCondition::never());
-  if (!executor.executions().empty()) {
-    const auto goals = understandInstruction(task, describeObjects(scene, request.robot)).goals;
-    run.verification = verifyExecution(executor.arm(), scene, executor.lastExecution(), goals);
-  }
-  return run;
-}
+TaskRun runPaperTask(TaskExecutor& executor, const std::string& task = kPaperTask) { return runOffline(executor, task); }
 
 struct RobotArm {
   std::string robot;

@@ -16,25 +16,7 @@
 namespace lang2manip::test {
 namespace {
 
-struct Outcome {
-  RepairResult repair;
-  ExecutionVerification verification;
-};
-
-Outcome runOffline(const Scene& scene, TaskExecutor& executor, const std::string& task) {
-  OfflineTaskPlanner planner;
-  PlanningRequest request;
-  request.task = task;
-  request.scene = &scene;
-  request.robot = executor.arm().robotName();
-  Outcome outcome;
-  outcome.repair = planWithRepair(planner, request, &executor, RepairOptions{}, StopCondition::never());
-  if (!executor.executions().empty()) {
-    const std::vector<Goal> goals = understandInstruction(task, describeObjects(scene, request.robot)).goals;
-    outcome.verification = verifyExecution(executor.arm(), scene, executor.lastExecution(), goals);
-  }
-  return outcome;
-}
+using Outcome = OfflineRun;
 
 std::string explain(const Outcome& outcome) {
   std::string text = outcome.repair.failure;
@@ -52,7 +34,7 @@ TEST(RearrangementExecution, SwapsPlacesTurnsAndPointingOnEveryBuiltInRobot) {
     for (const char* task : tasks) {
       SCOPED_TRACE(std::string(robot) + ": " + task);
       TaskExecutor executor(scene, testSettings(arm));
-      const Outcome outcome = runOffline(scene, executor, task);
+      const Outcome outcome = runOffline(executor, task);
       EXPECT_TRUE(outcome.repair.succeeded() && outcome.verification.success) << explain(outcome);
     }
   }
@@ -61,7 +43,7 @@ TEST(RearrangementExecution, SwapsPlacesTurnsAndPointingOnEveryBuiltInRobot) {
 TEST(RearrangementExecution, AnObjectTheGripperCannotHoldIsRefusedBeforeAnythingMoves) {
   const Scene scene = deskScene("panda");
   TaskExecutor executor(scene, testSettings());
-  const Outcome outcome = runOffline(scene, executor, "put the holder where the eraser is");  // the eraser is set aside first
+  const Outcome outcome = runOffline(executor, "put the holder where the eraser is");  // the eraser is set aside first
   EXPECT_FALSE(outcome.repair.succeeded());
   ASSERT_FALSE(executor.executions().empty());
   for (const ExecutionRecord& record : executor.executions()) {

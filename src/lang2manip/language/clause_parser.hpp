@@ -73,6 +73,9 @@ class StepParser {
   /// "give X a quarter turn", "give it a 90 degree turn to the left" after the objects: turned
   /// goals; false when no turn follows.
   bool parseGivenTurn(Step& step);
+  /// Turned goals by `angle` (rad, counter-clockwise) for the step's objects; a turn of zero or a
+  /// full turn is refused.
+  void addTurnGoals(const Step& step, double angle);
   /// "point X at Y", "orient X toward Y", "point X forward", "align X with Y".
   void parsePoint(Step& step);
   /// Facing goals for the step's objects: pointing at `target`, or, when it is empty, with the

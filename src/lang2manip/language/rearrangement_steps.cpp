@@ -121,13 +121,17 @@ void StepParser::parseTurn(Step& step) {
   }
   if (!amount && small) amount = TurnAmount{kSmallTurnDegrees * kDegree, 0};
   if (!amount) failStep(step, "say how far to " + step.verb.lemma + " it (\"by 90 degrees\", \"a quarter turn\") or what it should point at");
-  if (amount->radians <= 0.0) failStep(step, "a turn of zero leaves it as it was");
-  if (amount->radians >= 360.0 * kDegree - 1e-9) failStep(step, "a full turn (or more) leaves it as it was; say a turn below 360 degrees");
+  addTurnGoals(step, sense.value_or(1.0) * amount->radians);
+}
+
+void StepParser::addTurnGoals(const Step& step, double angle) {
+  if (angle == 0.0) failStep(step, "a turn of zero leaves it as it was");
+  if (std::abs(angle) >= 360.0 * kDegree - 1e-9) failStep(step, "a full turn (or more) leaves it as it was; say a turn below 360 degrees");
   for (const std::string& object : step.objects) {
     Goal goal;
     goal.kind = GoalKind::kTurned;
     goal.object = object;
-    goal.angle = sense.value_or(1.0) * amount->radians;
+    goal.angle = angle;
     specification_.goals.push_back(goal);
   }
 }
@@ -151,13 +155,7 @@ bool StepParser::parseGivenTurn(Step& step) {
     at += found->second;
   }
   step.at = at;
-  for (const std::string& object : step.objects) {
-    Goal goal;
-    goal.kind = GoalKind::kTurned;
-    goal.object = object;
-    goal.angle = sense.value_or(1.0) * amount->radians;
-    specification_.goals.push_back(goal);
-  }
+  addTurnGoals(step, sense.value_or(1.0) * amount->radians);
   return true;
 }
 
