@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "lang2manip/planning/planner_registry.hpp"
+#include "lang2manip/planning/planner_catalog.hpp"
 
 #include <algorithm>
 

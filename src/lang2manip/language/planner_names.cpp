@@ -3,7 +3,7 @@
 #include <cctype>
 #include <utility>
 
-#include "lang2manip/planning/planner_registry.hpp"
+#include "lang2manip/planning/planner_catalog.hpp"
 
 namespace lang2manip {
 namespace {

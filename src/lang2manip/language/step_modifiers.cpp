@@ -3,7 +3,7 @@
 
 #include "lang2manip/language/clause_parser.hpp"
 #include "lang2manip/language/planner_names.hpp"
-#include "lang2manip/planning/planner_registry.hpp"
+#include "lang2manip/planning/planner_catalog.hpp"
 
 namespace lang2manip::language_detail {
 namespace {
