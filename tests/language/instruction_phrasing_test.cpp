@@ -67,6 +67,9 @@ const std::pair<const char*, const char*> kPhrasings[] = {
     {"put the eraser in the holder instead of on top of it", "eraser in holder"},
     {"put the marker on the desk and the eraser on the desk next to it", "marker on desk; eraser next_to marker"},
     {"push the eraser 5 cm left and then 3 cm forward", "eraser displaced by (0.03, 0.05, 0)"},
+    {"pick up the marker and put it where the eraser is", "marker at (0.38, 0.17) where eraser stood"},
+    {"swap the marker and the eraser, then rotate the eraser by 90 degrees",
+     "marker at (0.38, 0.17) where eraser stood; eraser at (0.42, -0.18) where marker stood; eraser turned by 90 deg"},
 };
 
 TEST(InstructionPhrasing, MoreWaysOfSayingTheSameAreUnderstoodAndPlanned) {

@@ -60,10 +60,10 @@ void validatePoseGoal(const Goal& goal, const SequencingOptions& options) {
 
 std::optional<double> facingTurn(const std::map<std::string, ObjectLayout>& layout, const Goal& goal) {
   const auto mine = layout.find(goal.object);
-  if (mine == layout.end() || !mine->second.longSideYaw) return std::nullopt;
+  if (mine == layout.end() || mine->second.placeUnknown || !mine->second.longSideYaw) return std::nullopt;
   if (goal.target.empty()) return reducedAngle(goal.angle - *mine->second.longSideYaw, kPi);  // along a heading
   const auto target = layout.find(goal.target);
-  if (target == layout.end()) return std::nullopt;
+  if (target == layout.end() || target->second.placeUnknown) return std::nullopt;
   const Vector3 toward = target->second.bounds.center() - mine->second.bounds.center();
   return reducedAngle(std::atan2(toward.y(), toward.x()) - *mine->second.longSideYaw, kPi);
 }
@@ -74,22 +74,24 @@ std::vector<std::string> standingIn(const std::map<std::string, ObjectLayout>& l
   std::vector<std::string> standing;
   for (const std::string& name : objects) {
     const auto at = layout.find(name);
-    if (at == layout.end() || supports.count(name) || std::find(ignored.begin(), ignored.end(), name) != ignored.end()) continue;
+    if (at == layout.end() || at->second.placeUnknown || supports.count(name) ||
+        std::find(ignored.begin(), ignored.end(), name) != ignored.end()) {
+      continue;
+    }
     if (footprintsOverlap(at->second.bounds, spot, 0.0) && at->second.bounds.max().z() >= spot.min().z()) standing.push_back(name);
   }
   return standing;
 }
 
 std::vector<AlignedBox3> placesTaken(const std::map<std::string, ObjectLayout>& layout, const std::vector<Goal>& goals,
-                                     const std::vector<std::string>& ignored, const std::set<std::string>& supports) {
-  const auto isIgnored = [&ignored](const std::string& name) { return std::find(ignored.begin(), ignored.end(), name) != ignored.end(); };
+                                     const std::string& object, const std::string& held, const std::set<std::string>& supports) {
   std::vector<AlignedBox3> taken;
   for (const auto& [name, other] : layout) {
-    if (!isIgnored(name) && !supports.count(name)) taken.push_back(other.bounds);
+    if (name != object && name != held && !supports.count(name) && !other.placeUnknown) taken.push_back(other.bounds);
   }
   for (const Goal& goal : goals) {
     const auto owner = layout.find(goal.object);
-    if (goal.kind != GoalKind::kAtPosition || !goal.position || isIgnored(goal.object) || owner == layout.end()) continue;
+    if (goal.kind != GoalKind::kAtPosition || !goal.position || goal.object == object || owner == layout.end()) continue;
     const Vector3& origin = owner->second.origin;
     taken.push_back(shifted(owner->second.bounds, Vector3(goal.position->x() - origin.x(), goal.position->y() - origin.y(), 0.0)));
   }
@@ -113,6 +115,7 @@ void moveLayout(std::map<std::string, ObjectLayout>& layouts, const std::string&
   }
   layout.origin = origin;
   layout.bounds = AlignedBox3(centre - half, centre + half);
+  layout.placeUnknown = false;
 }
 
 bool footprintsOverlap(const AlignedBox3& a, const AlignedBox3& b, double gap) {

@@ -47,11 +47,11 @@ std::vector<std::string> standingIn(const std::map<std::string, ObjectLayout>& l
                                     const std::vector<std::string>& objects, const std::vector<std::string>& ignored,
                                     const std::set<std::string>& supports);
 
-/// What a free spot must keep clear of: the footprint of every object standing (other than
-/// `ignored` and the supports) and every place an at_position goal of `goals` wants for an
-/// object other than those ignored.
+/// What a free spot for `object` must keep clear of: the footprint of every object standing
+/// (other than `object`, the `held` one and the supports) and every place an at_position goal of
+/// `goals` wants for another object (the held one's too).
 std::vector<AlignedBox3> placesTaken(const std::map<std::string, ObjectLayout>& layout, const std::vector<Goal>& goals,
-                                     const std::vector<std::string>& ignored, const std::set<std::string>& supports);
+                                     const std::string& object, const std::string& held, const std::set<std::string>& supports);
 
 /// True when the x-y extents of `a` and `b` come within `gap` of each other.
 bool footprintsOverlap(const AlignedBox3& a, const AlignedBox3& b, double gap);

@@ -173,7 +173,7 @@ class Sequencer {
       case GoalKind::kAtConfiguration: return state.atConfiguration == goal.configuration;
       case GoalKind::kAtPosition: {
         const auto at = world.layout.find(goal.object);
-        return at != world.layout.end() && goal.position && world.state.held != goal.object &&
+        return at != world.layout.end() && goal.position && world.state.held != goal.object && !at->second.placeUnknown &&
                (at->second.origin - *goal.position).head<2>().norm() <= kSamePlace;
       }
       case GoalKind::kTurned: return world.achieved.count(index) > 0;
@@ -244,7 +244,7 @@ class Sequencer {
     const auto area = options_.supportAreas.find(support);
     if (area == options_.supportAreas.end()) throw SequencingFailure("no free spot is known on " + support + " to set " + object + " aside");
     const ObjectLayout layout = layoutOf(world, object);
-    const std::vector<AlignedBox3> occupied = placesTaken(world.layout, goals_, {object, world.state.held}, initial_.supports);
+    const std::vector<AlignedBox3> occupied = placesTaken(world.layout, goals_, object, world.state.held, initial_.supports);
     const auto skipped = options_.skippedSpots.find(object);
     const std::size_t skip = skipped == options_.skippedSpots.end() ? 0 : static_cast<std::size_t>(std::max(skipped->second, 0));
     const std::vector<Vector3> spots =
@@ -268,6 +268,7 @@ class Sequencer {
       const std::string support = supportBelow(world.state, object);
       hold(world, object);
       const ObjectLayout layout = layoutOf(world, object);
+      if (layout.placeUnknown) throw SequencingFailure("where " + object + " stands is chosen by the grounding: it cannot be turned in place");
       ActionParams params;
       params.position = layout.origin;
       params.orientation = Quaternion(verticalTurn(angle / steps) * layout.orientation.toRotationMatrix());
@@ -384,7 +385,9 @@ class Sequencer {
     world.actions.push_back(action);
     if (inside) world.state.inside[object] = restingOn;
     else world.state.onTopOf[object] = restingOn;
-    if (params.relation) world.layout.erase(object);  // where exactly is the grounding's choice
+    if (const auto at = world.layout.find(object); params.relation && at != world.layout.end()) {
+      at->second.placeUnknown = true;  // where exactly is the grounding's choice
+    }
     world.state.held.clear();
     world.state.atConfiguration.clear();
   }

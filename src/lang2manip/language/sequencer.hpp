@@ -29,6 +29,9 @@ struct ObjectLayout {
   std::optional<double> longSideYaw;
   /// The smallest turn about the vertical that leaves it looking the same (see turnSymmetry()).
   double turnSymmetry = 2.0 * 3.14159265358979323846;
+  /// Set once the plan puts the object somewhere by a relation (the grounding chooses where): its
+  /// size and orientation stay known, its place does not (it takes no place from others).
+  bool placeUnknown = false;
 };
 
 struct SequencingOptions {
