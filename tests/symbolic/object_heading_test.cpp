@@ -126,6 +126,9 @@ TEST(PoseGoals, AtPositionTurnedAndFacingAreCheckedFromGeometry) {
   EXPECT_TRUE(checkGoalInScene(after, turned, options).holds);
   turnedBar.pose.translation().x() += 0.05;  // turned, but somewhere else
   EXPECT_FALSE(checkGoalInScene(sceneWith(turnedBar, cube), turned, options).holds);
+  turned.position = turnedBar.pose.translation();  // where the instruction put it before the turn (no robot: base = world)
+  EXPECT_TRUE(checkGoalInScene(sceneWith(turnedBar, cube), turned, options).holds);
+  turned.position.reset();
   EXPECT_THROW((void)checkGoalInScene(after, turned, {}), InputError);  // needs the initial scene
 
   Goal facing;

@@ -137,7 +137,9 @@ bool supersedes(const Goal& later, const Goal& earlier) {
     case GoalKind::kHolding:
     case GoalKind::kHandedOver: return involves(later, earlier.object);
     case GoalKind::kRelation:
-    case GoalKind::kAtPosition:
+    case GoalKind::kAtPosition:  // a turn in place keeps where it stands
+      return involves(later, earlier.object) && later.kind != GoalKind::kDisplaced && later.kind != GoalKind::kAtConfiguration &&
+             later.kind != GoalKind::kTurned && later.kind != GoalKind::kFacing;
     case GoalKind::kTurned:
     case GoalKind::kFacing:
       return involves(later, earlier.object) && later.kind != GoalKind::kDisplaced && later.kind != GoalKind::kAtConfiguration;
@@ -190,6 +192,17 @@ TaskSpecification understandInstruction(const std::string& text,
   specification.goals.erase(std::unique(specification.goals.begin(), specification.goals.end(),
                                         [](const Goal& a, const Goal& b) { return describeGoal(a) == describeGoal(b); }),
                             specification.goals.end());
+  // A turn after the object was put somewhere ("swap them, then rotate the eraser") is made there.
+  for (std::size_t i = 0; i < specification.goals.size(); ++i) {
+    Goal& turn = specification.goals[i];
+    if (turn.kind != GoalKind::kTurned) continue;
+    for (std::size_t j = i; j-- > 0;) {
+      const Goal& before = specification.goals[j];
+      if (before.object != turn.object) continue;
+      if (before.kind == GoalKind::kAtPosition) turn.position = before.position;
+      break;
+    }
+  }
   specification.steps = specification.goals;
   specification.goals = finalStateGoals(specification.steps);
   return specification;

@@ -108,7 +108,8 @@ struct Goal {
   std::optional<double> distance;
   Vector3 displacement = Vector3::Zero();
   std::string configuration;
-  /// kAtPosition: where the object frame's origin goes (robot base frame).
+  /// kAtPosition: where the object frame's origin goes (robot base frame); kTurned: where it
+  /// stands turned, when the instruction put it there first (else where it stood).
   std::optional<Vector3> position;
   /// kTurned: the turn about the vertical, rad (counter-clockwise seen from above); kFacing
   /// without a target: the heading of the long side, rad (base frame, 0 = front).

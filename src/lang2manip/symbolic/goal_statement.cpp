@@ -89,6 +89,7 @@ class GoalReader {
     if (kind == GoalKind::kRelation) return {"distance"};
     if (kind == GoalKind::kAtPosition) return {"target"};
     if (kind == GoalKind::kFacing) return {"target", "angle"};
+    if (kind == GoalKind::kTurned) return {"position"};
     return {};
   }
 
@@ -222,7 +223,7 @@ nlohmann::json goalStatementSchema() {
         {"distance", nullableOf(number, "relation: offset from target in metres, when the task gives one")},
         {"displacement", nullableOf(vector, "displaced: how far the object moves, metres, robot base frame")},
         {"configuration", nullableOf({{"type", "string"}}, "at_configuration: the named configuration, e.g. home")},
-        {"position", nullableOf(vector, "at_position: where the object frame's origin ends up, metres, robot base frame (x and y are checked)")},
+        {"position", nullableOf(vector, "at_position: where the object frame's origin ends up, metres, robot base frame (x and y are checked); turned: where it stands turned when the plan moved it first (null: where it stood)")},
         {"angle", nullableOf(number, "turned: the turn about the vertical from where it started, radians, counter-clockwise seen from above; facing without a target: the heading of the long side, radians, base frame (0 = front)")}}},
       {"required", kGoalFields},
       {"additionalProperties", false}};
@@ -243,7 +244,7 @@ nlohmann::json goalStatementJson(const std::vector<Goal>& goals) {
                     {"distance", relation && goal.distance ? json(*goal.distance) : json(nullptr)},
                     {"displacement", displaced ? vectorJson(goal.displacement) : json(nullptr)},
                     {"configuration", goal.configuration.empty() ? json(nullptr) : json(goal.configuration)},
-                    {"position", goal.kind == GoalKind::kAtPosition && goal.position ? vectorJson(*goal.position) : json(nullptr)},
+                    {"position", (goal.kind == GoalKind::kAtPosition || goal.kind == GoalKind::kTurned) && goal.position ? vectorJson(*goal.position) : json(nullptr)},
                     {"angle", goal.kind == GoalKind::kTurned || (goal.kind == GoalKind::kFacing && goal.target.empty()) ? json(goal.angle) : json(nullptr)}});
   }
   return list;

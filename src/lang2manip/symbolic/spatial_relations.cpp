@@ -104,7 +104,10 @@ GoalCheck checkTurned(const Scene& scene, const Goal& goal, const GoalCheckOptio
   const TurnBetween turn = turnBetween(before.pose.linear(), after.pose.linear());
   const double symmetry = turnSymmetry(before);
   const double error = std::abs(reducedAngle(turn.yaw - goal.angle, symmetry == 0.0 ? 2.0 * 3.14159265358979323846 : symmetry));
-  const double shift = (after.pose.translation() - before.pose.translation()).head<2>().norm();
+  // Where it stands: where it stood, or where the instruction put it before turning it.
+  const Vector3 origin = robotBaseFrame(scene, options.robot).inverse() * after.pose.translation();
+  const double shift = goal.position ? (origin - *goal.position).head<2>().norm()
+                                     : (after.pose.translation() - before.pose.translation()).head<2>().norm();
   const bool holds = error <= kTurnTolerance && turn.tilt <= kTurnTolerance && shift <= options.spatial.distanceTolerance;
   return {holds, goal.object + " turned by " + degreesText(turn.yaw) + " (" + degreesText(error) + " from the wanted turn), tilted by " +
                      degreesText(turn.tilt) + ", moved " + metresText(shift)};
