@@ -25,7 +25,11 @@ TEST(MotionPlanner, SolvesSimplifiesAndReturnsAVerifiedTrajectory) {
   EXPECT_TRUE(plan.path.front().isApprox(planarStart()));
   EXPECT_TRUE(plan.path.back().isApprox(planarGoal()));
   EXPECT_EQ(planner.verifyPath(plan.path), "");
-  EXPECT_LE(plan.statistics.lengthAfterSimplification, plan.statistics.lengthBeforeSimplification + 1e-9);
+  // Simplification only shortens; a segment planned again after failing the fine verification
+  // (segment repair, rare) may make the final path longer than the planner's.
+  if (plan.statistics.repairedSegments == 0) {
+    EXPECT_LE(plan.statistics.lengthAfterSimplification, plan.statistics.lengthBeforeSimplification + 1e-9);
+  }
   EXPECT_GT(plan.statistics.stateChecks + plan.statistics.motionChecks, 0);
   EXPECT_GT(plan.statistics.vertices, 1);
   ASSERT_FALSE(plan.trajectory.points.empty());

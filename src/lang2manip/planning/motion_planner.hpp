@@ -64,7 +64,8 @@ struct MotionPlanStatistics {
   long edges = 0;
   long stateChecks = 0;
   long motionChecks = 0;
-  /// Path length in planning-space units before and after simplification.
+  /// Path length in planning-space units before and after simplification (after: of the path
+  /// returned, repaired segments included, which may make it longer than before).
   double lengthBeforeSimplification = 0.0;
   double lengthAfterSimplification = 0.0;
   /// Solutions rejected by verification (each followed by planning again in the time left).
