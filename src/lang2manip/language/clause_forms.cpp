@@ -1,5 +1,6 @@
 // StepParser: steps said in other forms (subject first, wishes, causatives; handing to a person
-// by a placing verb) and displacements ("5 cm to the left", "3 cm toward the holder").
+// by a placing verb), displacements ("5 cm to the left", "3 cm toward the holder"), clauses with
+// their own placement, rejected alternatives ("instead of ...") and where a target stands.
 
 #include <algorithm>
 
@@ -139,6 +140,44 @@ bool StepParser::parseDisplacement(Step& step) {
     specification_.goals.push_back(goal);
   }
   return true;
+}
+
+void StepParser::parseGappedPlacements(Step& step) {
+  // "put the marker where the eraser is and the eraser where the marker was"
+  while (step.next("and") || step.next(",")) {
+    const std::size_t restart = step.at;
+    std::size_t at = step.at + 1;
+    if (matchesAt(step.words, at, {"and"})) ++at;
+    const std::vector<NounPhrase> list = reader_.readList(step.words, at);
+    if (list.empty()) return;
+    const std::vector<std::string> previous = step.objects;
+    step.at = list.back().end;
+    clauseBefore_ = previous;
+    clauseStart_ = specification_.goals.size();
+    step.objects = groundList(step, list);
+    if (!parsePlacement(step)) {
+      step.at = restart;
+      step.objects = previous;
+      return;
+    }
+  }
+}
+
+void StepParser::skipRejectedAlternative(Step& step) {
+  if (!matchesAt(step.words, step.at, {"instead", "of"}) && !matchesAt(step.words, step.at, {"rather", "than"})) return;
+  std::size_t at = step.at + 2;
+  if (const auto relation = vocabulary::matchRelation(step.words, at)) at += relation->length;  // "instead of on top of it"
+  const std::optional<NounPhrase> phrase = reader_.read(step.words, at);
+  if (!phrase) failStep(step, "expected what not to do after \"" + joinWords(step.words, step.at, step.at + 2) + "\"");
+  step.at = phrase->end;
+}
+
+bool StepParser::standsOn(const std::string& object, const std::string& support) const {
+  constexpr double kContactGap = 0.015;
+  const AlignedBox3& a = reader_.descriptor(object).bounds;
+  const AlignedBox3& b = reader_.descriptor(support).bounds;
+  const bool over = a.min().x() < b.max().x() && b.min().x() < a.max().x() && a.min().y() < b.max().y() && b.min().y() < a.max().y();
+  return object != support && over && std::abs(a.min().z() - b.max().z()) <= kContactGap;
 }
 
 }  // namespace lang2manip::language_detail

@@ -114,39 +114,11 @@ void StepParser::parsePredicate(Step& step) {
   skipRejectedAlternative(step);
 }
 
-void StepParser::skipRejectedAlternative(Step& step) {
-  if (!matchesAt(step.words, step.at, {"instead", "of"}) && !matchesAt(step.words, step.at, {"rather", "than"})) return;
-  std::size_t at = step.at + 2;
-  if (const auto relation = vocabulary::matchRelation(step.words, at)) at += relation->length;  // "instead of on top of it"
-  const std::optional<NounPhrase> phrase = reader_.read(step.words, at);
-  if (!phrase) failStep(step, "expected what not to do after \"" + joinWords(step.words, step.at, step.at + 2) + "\"");
-  step.at = phrase->end;
-}
 
 bool StepParser::parsePlacement(Step& step) {
   return parsePutBack(step) || parseBetween(step) || parseWhereStands(step) || parseRelations(step) || parseDisplacement(step);
 }
 
-void StepParser::parseGappedPlacements(Step& step) {
-  // "put the marker where the eraser is and the eraser where the marker was"
-  while (step.next("and") || step.next(",")) {
-    const std::size_t restart = step.at;
-    std::size_t at = step.at + 1;
-    if (matchesAt(step.words, at, {"and"})) ++at;
-    const std::vector<NounPhrase> list = reader_.readList(step.words, at);
-    if (list.empty()) return;
-    const std::vector<std::string> previous = step.objects;
-    step.at = list.back().end;
-    clauseBefore_ = previous;
-    clauseStart_ = specification_.goals.size();
-    step.objects = groundList(step, list);
-    if (!parsePlacement(step)) {
-      step.at = restart;
-      step.objects = previous;
-      return;
-    }
-  }
-}
 
 
 std::size_t StepParser::sameAs(const Words& words, std::size_t at) {
@@ -271,13 +243,6 @@ bool StepParser::parseRelations(Step& step) {
   return true;
 }
 
-bool StepParser::standsOn(const std::string& object, const std::string& support) const {
-  constexpr double kContactGap = 0.015;
-  const AlignedBox3& a = reader_.descriptor(object).bounds;
-  const AlignedBox3& b = reader_.descriptor(support).bounds;
-  const bool over = a.min().x() < b.max().x() && b.min().x() < a.max().x() && a.min().y() < b.max().y() && b.min().y() < a.max().y();
-  return object != support && over && std::abs(a.min().z() - b.max().z()) <= kContactGap;
-}
 
 bool StepParser::parseRelation(Step& step) {
   const Words& words = step.words;
