@@ -130,6 +130,7 @@ TEST(InstructionPhrasing, ContradictionsAndImpossibleMovesAreRefusedWithTheReaso
       {"fill the holder", "say what to fill holder with"},
       {"put the marker in the holder but not the eraser", "could not ground \"but\""},
       {"tidy up the desk", "it asks for nothing the robot could do"},
+      {"put 444444444444444444444 markers in the holder", "could not ground"},
   };
   for (const auto& [instruction, reason] : cases) {
     SCOPED_TRACE(instruction);

@@ -15,6 +15,8 @@ constexpr int kNameTier = 0;
 constexpr int kKindTier = 1;
 constexpr int kSynonymTier = 2;
 constexpr int kGenericTier = 3;
+/// The largest count read as a number of objects ("three blocks"); larger numbers name nothing.
+constexpr double kMostCounted = 10000.0;
 
 
 /// Colour words and the colour name they mean.
@@ -207,7 +209,7 @@ std::size_t NounPhraseReader::readDeterminer(const Words& words, std::size_t at,
       phrase.quantity = Quantity::kIndefinite;  // "one marker", "one of them"
       phrase.one = true;
       ++length;
-    } else if (number && !unit && *number > 1 && std::floor(*number) == *number) {
+    } else if (number && !unit && *number > 1 && *number <= kMostCounted && std::floor(*number) == *number) {
       phrase.quantity = Quantity::kExactly;
       phrase.count = static_cast<int>(*number);
       ++length;
