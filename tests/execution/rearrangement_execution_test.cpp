@@ -25,20 +25,30 @@ std::string explain(const Outcome& outcome) {
   return text;
 }
 
-TEST(RearrangementExecution, SwapsPlacesTurnsAndPointingOnEveryBuiltInRobot) {
-  const char* tasks[] = {"swap the marker and the eraser", "put the marker where the eraser is", "rotate the eraser by 90 degrees",
-                         "turn the marker 45 degrees clockwise", "point the marker at the holder"};
-  for (const auto& [robot, arm] : {std::pair{"panda", ""}, std::pair{"ur5", ""}, std::pair{"iiwa14", ""}, std::pair{"tx90", ""},
-                                   std::pair{"yumi", "right_arm"}}) {
-    const Scene scene = deskScene(robot);
-    for (const char* task : tasks) {
-      SCOPED_TRACE(std::string(robot) + ": " + task);
-      TaskExecutor executor(scene, testSettings(arm));
-      const Outcome outcome = runOffline(executor, task);
-      EXPECT_TRUE(outcome.repair.succeeded() && outcome.verification.success) << explain(outcome);
-    }
+/// A built-in robot and the arm that executes.
+struct RearrangingArm {
+  const char* robot;
+  const char* arm;
+};
+
+class RearrangementOnRobot : public ::testing::TestWithParam<RearrangingArm> {};
+
+// One robot per test, so that the robots run in parallel (each takes seconds under the sanitizers).
+TEST_P(RearrangementOnRobot, SwapsTurnsAndPointingAreExecutedAndVerified) {
+  const Scene scene = deskScene(GetParam().robot);
+  for (const char* task : {"swap the marker and the eraser", "rotate the eraser by 90 degrees", "turn the marker 45 degrees clockwise",
+                           "point the marker at the holder"}) {
+    SCOPED_TRACE(task);
+    TaskExecutor executor(scene, testSettings(GetParam().arm));
+    const Outcome outcome = runOffline(executor, task);
+    EXPECT_TRUE(outcome.repair.succeeded() && outcome.verification.success) << explain(outcome);
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(BuiltinRobots, RearrangementOnRobot,
+                         ::testing::Values(RearrangingArm{"panda", ""}, RearrangingArm{"ur5", ""}, RearrangingArm{"iiwa14", ""},
+                                           RearrangingArm{"tx90", ""}, RearrangingArm{"yumi", "right_arm"}),
+                         [](const ::testing::TestParamInfo<RearrangingArm>& test) { return std::string(test.param.robot); });
 
 TEST(RearrangementExecution, AnObjectTheGripperCannotHoldIsRefusedBeforeAnythingMoves) {
   const Scene scene = deskScene("panda");
