@@ -17,13 +17,6 @@ std::optional<Words> StepParser::inVerbFirstOrder(const Words& words) const {
   static const std::vector<Words> placedVerbs{{"go"}, {"goes"}, {"belong"}, {"belongs"}, {"should", "be"}, {"should", "go"},
                                               {"must", "be"}, {"must", "go"}, {"needs", "to", "be"}, {"need", "to", "be"},
                                               {"has", "to", "be"}, {"have", "to", "be"}, {"should", "end", "up"}, {"end", "up"}};
-  const auto startsWith = [&words](const std::vector<Words>& phrases, std::size_t at) -> std::size_t {
-    std::size_t best = 0;
-    for (const Words& phrase : phrases) {
-      if (phrase.size() > best && matchesAt(words, at, phrase)) best = phrase.size();
-    }
-    return best;
-  };
   const auto join = [&words](const Words& verb, std::size_t from, std::size_t to, std::size_t rest) {
     Words rewritten = verb;
     rewritten.insert(rewritten.end(), words.begin() + static_cast<std::ptrdiff_t>(from), words.begin() + static_cast<std::ptrdiff_t>(to));
@@ -38,15 +31,15 @@ std::optional<Words> StepParser::inVerbFirstOrder(const Words& words) const {
       if (vocabulary::matchVerb(Words{stem}, 0)) return join(Words{stem}, by + 2, by + 2, by + 2);
     }
   }
-  std::size_t subject = startsWith(causatives, 0);  // "make the marker point at the holder"
-  const std::size_t wish = subject == 0 ? startsWith(wishes, 0) : 0;  // "I want the marker in the holder"
+  std::size_t subject = longestPhraseAt(words, 0, causatives);  // "make the marker point at the holder"
+  const std::size_t wish = subject == 0 ? longestPhraseAt(words, 0, wishes) : 0;  // "I want the marker in the holder"
   subject += wish;
   const std::vector<NounPhrase> list = reader_.readList(words, subject);
   if (list.empty() || (subject == 0 && vocabulary::matchVerb(words, 0))) return std::nullopt;
   std::size_t end = list.back().end;
   if (wish > 0 && matchesAt(words, end, {"to", "be"})) return join({"put"}, subject, end, end + 2);
   if (wish > 0) return end == words.size() ? join({"hand", "me"}, subject, end, end) : join({"put"}, subject, end, end);
-  if (const std::size_t placed = startsWith(placedVerbs, end)) return join({"put"}, subject, end, end + placed);
+  if (const std::size_t placed = longestPhraseAt(words, end, placedVerbs)) return join({"put"}, subject, end, end + placed);
   if (const auto verb = vocabulary::matchVerb(words, end)) {  // "the marker and the eraser trade places"
     const Words verbWords(words.begin() + static_cast<std::ptrdiff_t>(end), words.begin() + static_cast<std::ptrdiff_t>(end + verb->length));
     return join(verbWords, subject, end, end + verb->length);

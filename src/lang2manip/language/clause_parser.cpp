@@ -128,11 +128,7 @@ std::size_t StepParser::sameAs(const Words& words, std::size_t at) {
       tokenize("do likewise with"), tokenize("same for"), tokenize("same with"),
       tokenize("repeat with"), tokenize("repeat for"), tokenize("repeat that with"),
       tokenize("repeat that for")};
-  std::size_t best = 0;
-  for (const Words& phrase : phrases) {
-    if (phrase.size() > best && matchesAt(words, at, phrase)) best = phrase.size();
-  }
-  return best;
+  return longestPhraseAt(words, at, phrases);
 }
 
 void StepParser::parseSameAs(Step& step, std::size_t length) {

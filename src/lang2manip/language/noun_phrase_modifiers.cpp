@@ -12,21 +12,13 @@ namespace lang2manip::language_detail {
 std::size_t NounPhraseReader::exceptionWords(const Words& words, std::size_t at) {
   static const std::vector<Words> phrases{{"except"}, {"except", "for"}, {"but"}, {"other", "than"}, {"apart", "from"},
                                           {"excluding"}, {"save", "for"}, {"aside", "from"}};
-  std::size_t best = 0;
-  for (const Words& phrase : phrases) {
-    if (phrase.size() > best && matchesAt(words, at, phrase)) best = phrase.size();
-  }
-  return best;
+  return longestPhraseAt(words, at, phrases);
 }
 
 std::size_t NounPhraseReader::negatedClauseWords(const Words& words, std::size_t at) {
   static const std::vector<Words> phrases{{"that", "is", "not"}, {"which", "is", "not"}, {"that", "isn't"}, {"which", "isn't"},
                                           {"that", "are", "not"}, {"which", "are", "not"}, {"that", "aren't"}, {"which", "aren't"}};
-  std::size_t best = 0;
-  for (const Words& phrase : phrases) {
-    if (phrase.size() > best && matchesAt(words, at, phrase)) best = phrase.size();
-  }
-  return best;
+  return longestPhraseAt(words, at, phrases);
 }
 
 std::size_t NounPhraseReader::readModifier(const Words& words, std::size_t at, NounPhrase& phrase) const {

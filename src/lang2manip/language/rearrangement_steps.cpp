@@ -16,15 +16,6 @@ constexpr double kDegree = 3.14159265358979323846 / 180.0;
 /// "turn it a little": a turn of this many degrees.
 constexpr double kSmallTurnDegrees = 15.0;
 
-/// The longest phrase of `phrases` at words[at]; 0 when none.
-std::size_t longestAt(const Words& words, std::size_t at, const std::vector<Words>& phrases) {
-  std::size_t best = 0;
-  for (const Words& phrase : phrases) {
-    if (phrase.size() > best && matchesAt(words, at, phrase)) best = phrase.size();
-  }
-  return best;
-}
-
 std::vector<Words> phrasesOf(std::initializer_list<const char*> texts) {
   std::vector<Words> phrases;
   for (const char* text : texts) phrases.push_back(tokenize(text));
@@ -72,9 +63,9 @@ std::optional<TurnAmount> matchTurnAmount(const Words& words, std::size_t at) {
   const std::size_t unit = at + amount->length;
   static const std::vector<Words> degrees = phrasesOf({"degrees", "degree", "deg", "degs", "\xc2\xb0"});
   static const std::vector<Words> radians = phrasesOf({"radians", "radian", "rad", "rads"});
-  if (const std::size_t length = longestAt(words, unit, degrees)) {
+  if (const std::size_t length = longestPhraseAt(words, unit, degrees)) {
     amount->length += length;
-  } else if (const std::size_t radianLength = longestAt(words, unit, radians)) {
+  } else if (const std::size_t radianLength = longestPhraseAt(words, unit, radians)) {
     amount->radians /= kDegree;
     amount->length += radianLength;
   }
@@ -87,8 +78,8 @@ std::optional<std::pair<double, std::size_t>> matchTurnSense(const Words& words,
   static const std::vector<Words> counter = phrasesOf({"counterclockwise", "counter clockwise", "anticlockwise", "anti clockwise",
                                                        "to the left", "left", "leftward", "leftwards", "ccw"});
   static const std::vector<Words> clockwise = phrasesOf({"clockwise", "to the right", "right", "rightward", "rightwards", "cw"});
-  const std::size_t left = longestAt(words, at, counter);
-  const std::size_t right = longestAt(words, at, clockwise);
+  const std::size_t left = longestPhraseAt(words, at, counter);
+  const std::size_t right = longestPhraseAt(words, at, clockwise);
   if (left == 0 && right == 0) return std::nullopt;
   return left >= right ? std::make_pair(1.0, left) : std::make_pair(-1.0, right);
 }
@@ -104,7 +95,7 @@ void StepParser::parseTurn(Step& step) {
   static const std::vector<Words> slightly = phrasesOf({"a little", "a bit", "slightly", "a little bit", "a touch"});
   bool small = false;
   for (int part = 0; part < 3; ++part) {  // the amount and the sense, in either order
-    if (const std::size_t length = longestAt(words, step.at, slightly)) {
+    if (const std::size_t length = longestPhraseAt(words, step.at, slightly)) {
       small = true;
       step.at += length;
     }
@@ -142,13 +133,13 @@ bool StepParser::parseGivenTurn(Step& step) {
   static const std::vector<Words> article = phrasesOf({"a", "an", "a turn of", "a rotation of", "a spin of"});
   std::optional<TurnAmount> amount = matchTurnAmount(words, at);
   if (!amount) {
-    at += longestAt(words, at, article);
+    at += longestPhraseAt(words, at, article);
     amount = matchTurnAmount(words, at);
   }
   if (!amount) return false;
   at += amount->length;
   static const std::vector<Words> noun = phrasesOf({"turn", "rotation", "spin", "twist"});
-  at += longestAt(words, at, noun);
+  at += longestPhraseAt(words, at, noun);
   std::optional<double> sense;
   if (const auto found = matchTurnSense(words, at)) {
     sense = found->first;
@@ -189,19 +180,20 @@ bool StepParser::parsePointing(Step& step, bool afterTurn) {
                  "so that they face", "so they face", "so that they point at", "so they point at", "to face toward",
                  "to face towards", "so that it points", "so it points", "to point", "so they point", "so that they point"});
   static const std::vector<Words> alignments = phrasesOf({"with", "parallel to", "parallel with", "in line with", "the same way as"});
-  std::size_t length = longestAt(step.words, step.at, connectors);
+  std::size_t length = longestPhraseAt(step.words, step.at, connectors);
   if (afterTurn && (length == 0 || (length == 1 && (step.next("to") || step.next("at"))))) {
     if (length == 0 || !matchHeading(step.words, step.at + 1)) return false;
   }
-  const std::optional<std::pair<double, std::size_t>> heading =
-      matchHeading(step.words, step.at + length) ? matchHeading(step.words, step.at + length) : (afterTurn ? std::nullopt : matchHeading(step.words, step.at));
-  if (heading) {  // "point the marker forward", "so that it points to the left"
-    const std::size_t from = matchHeading(step.words, step.at + length) ? step.at + length : step.at;
+  // "point the marker forward", "so that it points to the left"
+  std::size_t from = step.at + length;
+  std::optional<std::pair<double, std::size_t>> heading = matchHeading(step.words, from);
+  if (!heading && !afterTurn) heading = matchHeading(step.words, from = step.at);
+  if (heading) {
     step.at = from + heading->second;
     addFacingGoals(step, "", heading->first);
     return true;
   }
-  if (length == 0 && step.verb.lemma == "align") length = longestAt(step.words, step.at, alignments);
+  if (length == 0 && step.verb.lemma == "align") length = longestPhraseAt(step.words, step.at, alignments);
   if (length == 0) return false;
   const std::optional<NounPhrase> phrase = reader_.read(step.words, step.at + length);
   if (!phrase) failStep(step, "expected what to point it at after \"" + joinWords(step.words, step.at, step.at + length) + "\"");
@@ -237,7 +229,7 @@ void StepParser::parseSwap(Step& step) {
   static const std::vector<Words> placesOf =
       phrasesOf({"the positions of", "the places of", "the spots of", "the locations of", "the position of", "the place of",
                  "places of", "positions of", "places between", "places with"});
-  step.at += longestAt(step.words, step.at, placesOf);
+  step.at += longestPhraseAt(step.words, step.at, placesOf);
   std::vector<NounPhrase> list = reader_.readList(step.words, step.at);
   if (list.empty()) failStep(step, "expected the two objects to " + step.verb.lemma);
   step.at = list.back().end;
@@ -249,7 +241,7 @@ void StepParser::parseSwap(Step& step) {
   }
   static const std::vector<Words> trailing = phrasesOf({"around", "round", "over", "places", "positions", "spots", "their places",
                                                         "their positions", "places with each other", "with each other"});
-  step.at += longestAt(step.words, step.at, trailing);
+  step.at += longestPhraseAt(step.words, step.at, trailing);
   std::vector<std::string> objects;
   for (const NounPhrase& phrase : list) {
     for (const std::string& name : reader_.ground(phrase, discourse_, false, {})) {
@@ -304,11 +296,11 @@ bool StepParser::parseWhereStands(Step& step) {
   static const std::vector<Words> being = phrasesOf({"is", "stands", "was", "stood", "sits", "sat", "lies", "lay", "is standing",
                                                      "is now", "is right now", "currently is", "is currently", "used to be",
                                                      "is sitting", "is lying", "is placed", "is located"});
-  const std::size_t length = longestAt(step.words, step.at, before);
+  const std::size_t length = longestPhraseAt(step.words, step.at, before);
   if (length == 0) return parsePossessivePlace(step);
   const std::optional<NounPhrase> phrase = reader_.read(step.words, step.at + length);
   if (!phrase) failStep(step, "expected the object whose place to take");
-  step.at = phrase->end + longestAt(step.words, phrase->end, being);
+  step.at = phrase->end + longestPhraseAt(step.words, phrase->end, being);
   const std::string owner = groundTarget(step, *phrase, false);
   if (step.objects.size() != 1) failStep(step, "only one object can stand where " + owner + " stands");
   addPlaceGoal(step.objects.front(), owner);
@@ -321,7 +313,7 @@ bool StepParser::parsePutBack(Step& step) {
        "back in its place", "back to its place", "back in place", "back into place", "back to where it was", "back to its spot",
        "back to its position", "back where they were", "back down where they were", "where they were", "back in their places",
        "back to their places", "down again", "back down again", "back where it started", "back to where it started"});
-  const std::size_t length = longestAt(step.words, step.at, back);
+  const std::size_t length = longestPhraseAt(step.words, step.at, back);
   if (length == 0 || step.at + length != step.words.size()) return false;
   step.at += length;
   for (const std::string& object : step.objects) {
@@ -337,7 +329,7 @@ bool StepParser::parsePutBack(Step& step) {
 
 bool StepParser::parseBetween(Step& step) {
   static const std::vector<Words> between = phrasesOf({"between", "in between", "halfway between", "midway between", "in the middle between"});
-  const std::size_t length = longestAt(step.words, step.at, between);
+  const std::size_t length = longestPhraseAt(step.words, step.at, between);
   if (length == 0) return false;
   const std::vector<NounPhrase> list = reader_.readList(step.words, step.at + length);
   std::vector<std::string> ends;
@@ -366,7 +358,7 @@ bool StepParser::parseBetween(Step& step) {
 bool StepParser::parsePossessivePlace(Step& step) {
   static const std::vector<Words> prepositions = phrasesOf({"to", "at", "in", "into", "on", "onto", "over to", "back to"});
   static const std::vector<std::string> places{"place", "position", "spot", "location", "old place", "former place"};
-  const std::size_t preposition = longestAt(step.words, step.at, prepositions);
+  const std::size_t preposition = longestPhraseAt(step.words, step.at, prepositions);
   if (preposition == 0) return false;
   // "the eraser's place": the phrase read with the possessive's "'s" dropped.
   Words plain = step.words;

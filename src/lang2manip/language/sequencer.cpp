@@ -87,7 +87,6 @@ class Sequencer {
     }
   }
 
-
   void requireObject(const std::string& name) const {
     if (!initial_.hasObject(name)) {
       std::string names;
@@ -231,10 +230,18 @@ class Sequencer {
     }
     const std::string support = supportBelow(world.state, goal.object);
     hold(world, goal.object);
+    placeAt(world, goal.object, *goal.position, std::nullopt, support);
+  }
+
+  /// Places the held `object` with its origin at `origin` (base frame), turned by `turn` about
+  /// the vertical when given, on `support`; the layout follows.
+  void placeAt(World& world, const std::string& object, const Vector3& origin, std::optional<double> turn,
+               const std::string& support) const {
     ActionParams params;
-    params.position = *goal.position;
-    place(world, goal.object, params, false, support);
-    moveLayout(world.layout, goal.object, *goal.position, std::nullopt);
+    params.position = origin;
+    if (turn) params.orientation = Quaternion(verticalTurn(*turn) * layoutOf(world, object).orientation.toRotationMatrix());
+    place(world, object, params, false, support);
+    moveLayout(world.layout, object, origin, turn);
   }
 
   /// Moves `object` to the nearest free spot of its support, clear of every other object and of
@@ -254,10 +261,7 @@ class Sequencer {
     const Vector3 origin(layout.origin.x() + spot.x() - layout.bounds.center().x(),
                          layout.origin.y() + spot.y() - layout.bounds.center().y(), layout.origin.z());
     hold(world, object);
-    ActionParams params;
-    params.position = origin;
-    place(world, object, params, false, support);
-    moveLayout(world.layout, object, origin, std::nullopt);
+    placeAt(world, object, origin, std::nullopt, support);
   }
 
   /// Picks `object` and puts it back where it stood turned by `angle` (in turnSteps steps).
@@ -269,16 +273,9 @@ class Sequencer {
       hold(world, object);
       const ObjectLayout layout = layoutOf(world, object);
       if (layout.placeUnknown) throw SequencingFailure("where " + object + " stands is chosen by the grounding: it cannot be turned in place");
-      ActionParams params;
-      params.position = layout.origin;
-      params.orientation = Quaternion(verticalTurn(angle / steps) * layout.orientation.toRotationMatrix());
-      place(world, object, params, false, support);
-      moveLayout(world.layout, object, layout.origin, angle / steps);
+      placeAt(world, object, layout.origin, angle / steps, support);
     }
   }
-
-
-
 
   /// Holds the object out at the handover position (picking it first).
   void handOver(std::size_t index, World& world) {
@@ -319,11 +316,7 @@ class Sequencer {
     const Goal& goal = goals_[index];
     const auto layout = world.layout.find(goal.object);
     if (world.state.held == goal.object && layout != world.layout.end()) {  // "lift it and move it 10 cm left": carried
-      const Vector3 origin = layout->second.origin + goal.displacement;
-      ActionParams params;
-      params.position = origin;
-      place(world, goal.object, params, false, supportBelow(world.state, goal.object));
-      moveLayout(world.layout, goal.object, origin, std::nullopt);
+      placeAt(world, goal.object, layout->second.origin + goal.displacement, std::nullopt, supportBelow(world.state, goal.object));
       world.achieved.insert(index);
       return;
     }

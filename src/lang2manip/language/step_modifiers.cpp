@@ -27,13 +27,7 @@ struct PhraseList {
   }
 
   /// Length of the longest phrase starting at words[at].
-  [[nodiscard]] std::size_t longestAt(const Words& words, std::size_t at) const {
-    std::size_t best = 0;
-    for (const Words& phrase : phrases) {
-      if (phrase.size() > best && matchesAt(words, at, phrase)) best = phrase.size();
-    }
-    return best;
-  }
+  [[nodiscard]] std::size_t longestAt(const Words& words, std::size_t at) const { return longestPhraseAt(words, at, phrases); }
 };
 
 const std::vector<std::pair<Words, GraspDirection>>& graspPhrases() {

@@ -115,6 +115,14 @@ bool matchesAt(const Words& words, std::size_t at, const Words& phrase) {
   return true;
 }
 
+std::size_t longestPhraseAt(const Words& words, std::size_t at, const std::vector<Words>& phrases) {
+  std::size_t best = 0;
+  for (const Words& phrase : phrases) {
+    if (phrase.size() > best && matchesAt(words, at, phrase)) best = phrase.size();
+  }
+  return best;
+}
+
 std::optional<double> numberValue(const std::string& word) {
   if (!word.empty() && isAsciiDigit(word.front())) {
     std::size_t dots = 0;

@@ -36,6 +36,9 @@ std::string joinAlternatives(const std::vector<std::string>& names);
 /// True when `phrase` occurs in `words` starting at `at`.
 bool matchesAt(const Words& words, std::size_t at, const Words& phrase);
 
+/// The length of the longest of `phrases` that occurs in `words` at `at`; 0 when none does.
+std::size_t longestPhraseAt(const Words& words, std::size_t at, const std::vector<Words>& phrases);
+
 /// The value of a number word: digits with an optional decimal point ("2.5"), or an English
 /// number word from "one" to "twenty" ("a" is not a number); nullopt otherwise.
 std::optional<double> numberValue(const std::string& word);
