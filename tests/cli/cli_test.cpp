@@ -34,6 +34,7 @@ TEST(Cli, UsageErrorsExitOneAndHelpExitsZero) {
   EXPECT_THAT(result.output, HasSubstr("Could not convert: --rounds = x"));
   result = run("frobnicate");
   EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("unknown command \"frobnicate\" (commands: problems, show,"));
   result = run("gltf panda_desk");
   EXPECT_EQ(result.exitCode, 1) << result.output;
   EXPECT_EQ(run("--help").exitCode, 0);
@@ -51,6 +52,10 @@ TEST(Cli, ADashTaskIsReadFromStandardInput) {
   result = run("plan --task -", true, "head -c 70000 /dev/zero | tr '\\0' x |");
   EXPECT_EQ(result.exitCode, 1) << result.output;
   EXPECT_THAT(result.output, HasSubstr("longer than 64 KiB"));
+  const test::TempDirectory directory;
+  result = run("run --json --task - --out " + directory.path().string(), false, "printf 'pick up the eraser' |");
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_EQ(nlohmann::json::parse(result.output)["task"], "pick up the eraser");
 }
 
 TEST(Cli, RunJsonPrintsTheReport) {

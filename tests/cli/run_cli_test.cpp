@@ -376,12 +376,14 @@ TEST(RunCliBadInput, EveryArgumentErrorIsNamed) {
   EXPECT_THAT(result.output, HasSubstr("--ik-timeout must be a positive number"));
   result = run("run --seed -3" + out);
   EXPECT_THAT(result.output, HasSubstr("--seed -3: must be >= 0"));
-  result = run("run --velocity-scaling 1.5" + out);
-  EXPECT_EQ(result.exitCode, 1);
-  EXPECT_THAT(result.output, HasSubstr("--velocity-scaling 1.5: must be in (0, 1]"));
+  for (const std::string scaling : {"1.5", "0", "-1", "nan", "1e-09"}) {
+    result = run("run --velocity-scaling " + scaling + out);
+    EXPECT_EQ(result.exitCode, 1) << scaling;
+    EXPECT_THAT(result.output, HasSubstr("--velocity-scaling " + scaling + ": must be in [0.01, 1]"));
+  }
   result = run("run --acceleration-scaling 0" + out);
   EXPECT_EQ(result.exitCode, 1);
-  EXPECT_THAT(result.output, HasSubstr("--acceleration-scaling 0: must be in (0, 1]"));
+  EXPECT_THAT(result.output, HasSubstr("--acceleration-scaling 0: must be in [0.01, 1]"));
   result = run("run --timing smooth" + out);
   EXPECT_EQ(result.exitCode, 1);
   EXPECT_THAT(result.output, HasSubstr("--timing: unknown trajectory timing \"smooth\" (known: time-optimal, rest-to-rest)"));

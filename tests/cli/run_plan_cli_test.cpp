@@ -59,9 +59,21 @@ TEST(RunPlanCli, APlansGoalStatementIsWhatIsVerified) {
   EXPECT_THAT(report["goals"].dump(), HasSubstr("marker in holder"));
 }
 
+TEST(RunPlanCli, APlanIsReadFromStandardInput) {
+  const test::TempDirectory temporary;
+  const fs::path plan = writePlan(temporary.path(), R"({"actions": [{"action": "pick", "object": "eraser"}]})");
+  const test::RunResult result = test::run("run --json --plan - --out " + (temporary.path() / "out").string(), false, "cat " + plan.string() + " |");
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_EQ(json::parse(result.output)["task_planner"], "plan on standard input");
+  const test::RunResult nothing = test::run("run --plan - --out " + (temporary.path() / "none").string(), true, "true |");
+  EXPECT_EQ(nothing.exitCode, 1);
+  EXPECT_THAT(nothing.output, HasSubstr("plan on standard input is empty"));
+}
+
 TEST(RunPlanCli, AGivenPlanThatCannotBeExecutedIsNotReplanned) {
   const test::TempDirectory temporary;
-  const fs::path plan = writePlan(temporary.path(), R"({"actions": [{"action": "place", "object": "eraser", "params": {"relation": "in", "target": "holder"}}]})");
+  const fs::path plan = writePlan(temporary.path(), R"({"actions": [{"action": "pick", "object": "eraser"},
+      {"action": "place", "object": "eraser", "params": {"position": [3.0, 0.0, 0.8]}}]})");
   const test::RunResult result = test::run("run --plan " + plan.string() + " --out " + (temporary.path() / "out").string());
   EXPECT_EQ(result.exitCode, 2) << result.output;
   EXPECT_THAT(test::readFileText(temporary.path() / "out" / "report.json"), HasSubstr("round"));
@@ -84,6 +96,14 @@ TEST(RunPlanCli, PlanFilesThatAreNotPlansForTheSceneAreNamed) {
   EXPECT_THAT(missing.output, HasSubstr("plan file does not exist"));
   const test::RunResult directory = test::run("run --plan " + temporary.path().string() + out);
   EXPECT_THAT(directory.output, HasSubstr("is a directory"));
+  const test::RunResult fixed = test::run("run --plan " + writePlan(temporary.path(), R"({"actions": [{"action": "pick", "object": "desk"}]})").string() + out);
+  EXPECT_EQ(fixed.exitCode, 1) << "a plan the scene's state refuses is bad input, not a failed task";
+  EXPECT_THAT(fixed.output, HasSubstr("cannot be executed in this scene:\nstep 1 (pick desk): desk is fixed and cannot be picked"));
+  const test::RunResult prose = test::run("run --plan " + writePlan(temporary.path(), "Sure! {\"actions\": []}").string() + out);
+  EXPECT_EQ(prose.exitCode, 1);
+  EXPECT_THAT(prose.output, HasSubstr("plan-in.json: not valid JSON")) << "a plan file is JSON, not an LLM's answer";
+  const test::RunResult empty = test::run("run --plan " + writePlan(temporary.path(), " \n").string() + out);
+  EXPECT_THAT(empty.output, HasSubstr("is empty; expected a JSON plan document"));
   const test::RunResult llm = test::run("run --plan " + writePlan(temporary.path(), "{}").string() + " --llm openai:gpt-4o" + out);
   EXPECT_EQ(llm.exitCode, 1);
   EXPECT_THAT(llm.output, HasSubstr("give one of them"));

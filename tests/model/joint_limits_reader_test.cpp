@@ -19,6 +19,7 @@ namespace {
 
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
+using ::testing::ThrowsMessage;
 using test::errorMessage;
 using test::twoJointUrdf;
 using test::writeText;
@@ -340,6 +341,27 @@ TEST(JointLimitsDiscovery, AJointWithoutVelocityLimitIsWarnedOnceWhenTheModelIsR
   const WarningLog log;
   EXPECT_EQ(readUrdfFile(urdf)->velocityLimits()[2], 2.0);
   EXPECT_TRUE(log.warnings.empty());
+}
+
+TEST(JointLimitsDiscovery, AZeroVelocityLimitIsWarnedAndANegativeOrTinyOneRefused) {
+  const test::TempDirectory directory;
+  const std::filesystem::path urdf = directory.path() / "arm.urdf";
+  const auto wristWithVelocity = [](const std::string& velocity) {
+    return twoJointUrdf(R"(<link name="hand"/><joint name="wrist" type="revolute"><parent link="tip"/><child link="hand"/>
+      <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="5" velocity=")" + velocity + R"("/></joint>)");
+  };
+  writeText(urdf, wristWithVelocity("0"));
+  {
+    const WarningLog log;
+    EXPECT_EQ(readUrdfFile(urdf)->velocityLimits()[2], 0.0);
+    EXPECT_THAT(log.warnings, ElementsAre(HasSubstr("joint \"wrist\": velocity limit 0 (zero or absent in the URDF)")));
+  }
+  writeText(urdf, wristWithVelocity("-1"));
+  EXPECT_THAT([&] { (void)readUrdfFile(urdf); },
+              ThrowsMessage<InputError>(HasSubstr("joint \"wrist\" velocity limit must not be negative, got -1")));
+  writeText(urdf, wristWithVelocity("1e-9"));
+  EXPECT_THAT([&] { (void)readUrdfFile(urdf); },
+              ThrowsMessage<InputError>(HasSubstr("joint \"wrist\" velocity limit 1e-09 is below 0.0001")));
 }
 
 /// The acceleration limits of `joints` of `model` (-1 for unknown).

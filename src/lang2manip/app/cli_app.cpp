@@ -1,10 +1,29 @@
 #include "lang2manip/app/cli_app.hpp"
 
+#include <optional>
+#include <string>
+#include <vector>
+
 #include "lang2manip/cli/commands.hpp"
 #include "lang2manip/core/log.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/server/serve_command.hpp"
 
 namespace lang2manip {
+namespace {
+
+/// The error for a first word that names no command (CLI11 would only say one is required).
+std::optional<std::string> unknownCommand(const CLI::App& app, int argc, const char* const* argv) {
+  if (argc < 2 || argv[1][0] == '-') return std::nullopt;
+  std::vector<std::string> names;
+  for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; })) {
+    if (command->get_name() == argv[1]) return std::nullopt;
+    names.push_back(command->get_name());
+  }
+  return "unknown command \"" + std::string(argv[1]) + "\" (commands: " + joinedNames(names) + ")";
+}
+
+}  // namespace
 
 int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
   setLogSink([&err](LogLevel level, std::string_view message) {
@@ -27,6 +46,10 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   addGltfCommand(app, out);
   addRenderCommand(app, out);
   addServeCommand(app, out);
+  if (const auto unknown = unknownCommand(app, argc, argv)) {
+    err << "lang2manip: error: " << *unknown << "\nRun with --help for more information.\n";
+    return 1;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

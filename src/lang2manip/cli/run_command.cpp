@@ -11,6 +11,7 @@
 #include "lang2manip/cli/task_planner_choice.hpp"
 #include "lang2manip/cli/task_run.hpp"
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/planning/planner_registry.hpp"
 
@@ -26,12 +27,6 @@ struct RunOptions {
   bool html = false;
   std::string timing = trajectoryTimingName(ExecutionSettings{}.timing);
 };
-
-std::string numberText(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
-}
 
 /// The options' request, checked, with the timing named by --timing.
 RunRequest checkedRequest(const RunOptions& options) {
@@ -50,8 +45,8 @@ RunRequest checkedRequest(const RunOptions& options) {
   if (!(request.ikTimeout > 0.0)) throw InputError("run: --ik-timeout must be a positive number of seconds");
   for (const auto& [value, flag] : {std::pair{request.velocityScaling, "--velocity-scaling"},
                                     std::pair{request.accelerationScaling, "--acceleration-scaling"}}) {
-    if (!(value > 0.0 && value <= 1.0)) {
-      throw InputError(std::string("run: ") + flag + " " + numberText(value) + ": must be in (0, 1] (a fraction of the joint limits)");
+    if (const std::string problem = scalingProblem(value); !problem.empty()) {
+      throw InputError(std::string("run: ") + flag + " " + problem);
     }
   }
   if (options.out.empty()) throw InputError("run: --out must name a directory");
@@ -121,8 +116,8 @@ void addRunCommand(CLI::App& app, std::ostream& out) {
                       "Built-in problem name, Kautham problem .xml, or MoveIt scene .yaml (default: " + defaultProblemName() + ")");
   CLI::Option* task = addTaskOption(*command, options->request.task, "The instruction")->capture_default_str();
   command->add_option("--plan", options->request.planFile,
-                      "Execute this plan document (the plan.json format) instead of planning the task; the goals checked are "
-                      "the --task's when given, else those the plan implies");
+                      "Execute this plan document (the plan.json format; \"-\": read it from standard input) instead of "
+                      "planning the task; the goals checked are the --task's when given, else those the plan implies");
   addTaskPlannerOptions(*command, options->request.planner);
   command->add_option("--planner", options->request.motionPlanner,
                       "Motion planner of the actions that name none (OMPL or Kautham name; default RRTConnect)");
@@ -151,6 +146,10 @@ void addRunCommand(CLI::App& app, std::ostream& out) {
   command->add_flag("--json", options->json, "Print the report (report.json) to standard output instead of the summary");
   command->callback([options, task, &out] {
     if (!options->request.planFile.empty() && task->count() == 0) options->request.task.clear();
+    if (options->request.planFile == "-") {
+      options->request.planFile = "standard input";
+      options->request.planText = planFromStandardInput();
+    }
     runCommand(*options, out);
   });
 }

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/json_limits.hpp"
 #include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/language/offline_task_planner.hpp"
 #include "lang2manip/llm/http_transport.hpp"
@@ -90,15 +91,22 @@ std::string llmLabel(const TaskPlannerChoice& choice) {
 
 }  // namespace
 
-std::string taskFromStandardInput() {
-  constexpr std::size_t kMaxTaskBytes = 64 * 1024;
+std::string standardInputText(const std::string& option, const std::string& what, std::size_t maxBytes) {
   std::string text;
   char buffer[4096];
   while (std::cin.read(buffer, sizeof buffer) || std::cin.gcount() > 0) {
     text.append(buffer, static_cast<std::size_t>(std::cin.gcount()));
-    if (text.size() > kMaxTaskBytes) throw CLI::ValidationError("--task -", "the instruction on standard input is longer than 64 KiB");
+    if (text.size() > maxBytes) {
+      throw CLI::ValidationError(option, what + " on standard input is longer than " + std::to_string(maxBytes / 1024) + " KiB");
+    }
   }
   return std::string(trimmed(text));
+}
+
+std::string taskFromStandardInput() { return standardInputText("--task -", "the instruction", std::size_t{64} * 1024); }
+
+std::string planFromStandardInput() {
+  return standardInputText("--plan -", "the plan document", kDefaultJsonMaxBytes);
 }
 
 CLI::Option* addTaskOption(CLI::App& command, std::string& task, const std::string& description) {

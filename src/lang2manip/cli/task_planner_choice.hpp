@@ -40,6 +40,10 @@ struct TaskPlannerChoice {
 /// writing into `choice` (which must outlive the command).
 void addTaskPlannerOptions(CLI::App& command, TaskPlannerChoice& choice);
 
+/// A plan document read from standard input (`run --plan -`), at most kDefaultJsonMaxBytes;
+/// throws CLI::ValidationError when it is longer.
+std::string planFromStandardInput();
+
 /// Adds `--task TEXT` writing into `task`; "-" reads the instruction from standard input (at
 /// most 64 KiB; surrounding whitespace dropped).
 CLI::Option* addTaskOption(CLI::App& command, std::string& task, const std::string& description);

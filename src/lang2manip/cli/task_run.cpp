@@ -11,6 +11,7 @@
 #include "lang2manip/cli/run_scene.hpp"
 #include "lang2manip/cli/trajectory_outputs.hpp"
 #include "lang2manip/core/file_checks.hpp"
+#include "lang2manip/core/json_limits.hpp"
 #include "lang2manip/language/instruction.hpp"
 #include "lang2manip/symbolic/given_plan_planner.hpp"
 #include "lang2manip/symbolic/plan_parser.hpp"
@@ -18,6 +19,8 @@
 #include "lang2manip/symbolic/llm_task_planner.hpp"
 #include "lang2manip/symbolic/observation.hpp"
 #include "lang2manip/symbolic/plan_json.hpp"
+#include "lang2manip/symbolic/plan_validation.hpp"
+#include "lang2manip/symbolic/symbolic_state.hpp"
 #include "lang2manip/symbolic/plan_prompt.hpp"
 
 namespace lang2manip {
@@ -75,27 +78,42 @@ void observe(const RunRequest& request, const Scene& scene, const std::string& r
 
 /// The plan of `file` for `scene`: object and planner names checked. Throws InputError naming
 /// the file and every problem.
-Plan readPlanFile(const std::string& file, const Scene& scene) {
-  requireRegularFile(file, "plan file");
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
+/// The plan of `request`'s plan document (the file, or the text it carries), its names checked
+/// against `scene`. The document must be JSON, nothing around it (unlike an LLM's answer).
+Plan readPlanDocument(const RunRequest& request, const Scene& scene, const std::string& robot) {
+  const std::string name = request.planText ? "plan on " + request.planFile : "plan file " + request.planFile;
+  std::string text;
+  if (request.planText) {
+    text = *request.planText;
+  } else {
+    requireRegularFile(request.planFile, "plan file");
+    std::ifstream in(request.planFile, std::ios::binary);
+    std::ostringstream content;
+    content << in.rdbuf();
+    text = content.str();
+  }
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw InputError(name + " is empty; expected a JSON plan document");
+  const nlohmann::json document = parseJsonWithinLimits(text, JsonLimits{}, name);
   PlanParseContext context;
   for (const SceneObject& object : scene.objects()) context.objects.push_back(object.name);
   context.planners = defaultLlmTaskPlannerOptions().plannerNames;
+  Plan plan;
   try {
-    return parsePlanText(text.str(), context);
+    plan = parsePlan(document, context);
   } catch (const PlanParseError& error) {
-    throw InputError("plan file " + file + " is not a plan for this scene:\n" + error.what());
+    throw InputError(name + " is not a plan for this scene:\n" + error.what());
   }
+  const PlanValidation validation = validatePlan(plan, observeSymbolicState(scene, {}, robot));
+  if (!validation.valid()) throw InputError(name + " cannot be executed in this scene:\n" + validation.summary());
+  return plan;
 }
 
 /// The task planner of `request`: the plan file's plan, or the chosen planner.
-SelectedTaskPlanner taskPlannerFor(const RunRequest& request, const Scene& scene) {
+SelectedTaskPlanner taskPlannerFor(const RunRequest& request, const Scene& scene, const std::string& robot) {
   if (request.planFile.empty()) return makeTaskPlanner(request.planner);
   if (!request.planner.offline()) throw InputError("run: --plan executes the given plan; --llm chooses a task planner: give one of them");
-  return SelectedTaskPlanner(nullptr, std::make_unique<GivenPlanTaskPlanner>(readPlanFile(request.planFile, scene), "plan file " + request.planFile),
-                             "plan file " + request.planFile);
+  const std::string source = request.planText ? "plan on " + request.planFile : "plan file " + request.planFile;
+  return SelectedTaskPlanner(nullptr, std::make_unique<GivenPlanTaskPlanner>(readPlanDocument(request, scene, robot), source), source);
 }
 
 /// The accepted plan, else the last one that was parsed.
@@ -134,7 +152,7 @@ RunDocuments runTask(const RunRequest& request, const RunControl& control) {
   const LoadedProblem loaded = loadProblem(request.problem, request.robot, request.scene);
   const Scene& scene = loaded.problem.scene;
   TaskExecutor executor(scene, executionSettings(request));
-  const SelectedTaskPlanner selected = taskPlannerFor(request, scene);
+  const SelectedTaskPlanner selected = taskPlannerFor(request, scene, executor.arm().robotName());
   if (control.seedOmpl) ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(request.seed));
 
   RunOutcome outcome;

@@ -61,6 +61,9 @@ struct RunRequest {
   TaskPlannerChoice planner;
   /// A plan document (the plan.json format) executed instead of asking a task planner; one round.
   std::string planFile;
+  /// The plan document's text when it was not read from planFile (`--plan -`: standard input);
+  /// planFile then names where it came from.
+  std::optional<std::string> planText;
   /// Motion planner of actions that name none; empty = the executor's default.
   std::string motionPlanner;
   /// IK solver; empty = the executor's default.

@@ -39,4 +39,7 @@ std::string joinedNames(const std::vector<std::string>& names);
 /// A length for messages: "0.123 m" (three decimals).
 std::string metresText(double value);
 
+/// A number for messages, at most six significant digits ("0.01", "1e-09", "nan").
+std::string numberText(double value);
+
 }  // namespace lang2manip

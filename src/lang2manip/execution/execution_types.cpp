@@ -62,8 +62,8 @@ void checkExecutionSettings(const ExecutionSettings& s) {
   if (s.maxPlacementAttempts < 1) throw InputError("execution settings: maxPlacementAttempts must be >= 1");
   if (s.reach.ikSolutions < 1) throw InputError("execution settings: reach.ikSolutions must be >= 1");
   for (const auto& [value, name] : {std::pair{s.velocityScaling, "velocityScaling"}, std::pair{s.accelerationScaling, "accelerationScaling"}}) {
-    if (!(value > 0.0 && value <= 1.0)) {
-      throw InputError(std::string("execution settings: ") + name + " must be in (0, 1] (got " + std::to_string(value) + ")");
+    if (const std::string problem = scalingProblem(value); !problem.empty()) {
+      throw InputError(std::string("execution settings: ") + name + " " + problem);
     }
   }
   checkLength(s.blendDeviation, "blendDeviation");

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/core/log.hpp"
 #include "lang2manip/model/moveit_yaml.hpp"
 
@@ -57,12 +58,6 @@ std::string understoodKeys() {
     for (const char* key : kind.keys) keys += std::string(", ") + key;
   }
   return keys;
-}
-
-std::string numberText(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", value);
-  return text;
 }
 
 /// A number, converted from degrees when tagged `!degrees` (only where `angle` allows it).

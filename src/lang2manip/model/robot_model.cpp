@@ -69,6 +69,15 @@ void checkJoint(Joint& joint, const SourceLocation& where) {
   for (const double value : {limits.lower, limits.upper, limits.velocity, limits.effort}) {
     requireFinite(value, what + " limit", where);
   }
+  if (limits.velocity < 0.0) {
+    throw InputError(where, what + " velocity limit must not be negative, got " + numberText(limits.velocity) +
+                                " (0 or none: no limit given)");
+  }
+  if (limits.velocity > 0.0 && limits.velocity < kSmallestJointVelocityLimit) {
+    throw InputError(where, what + " velocity limit " + numberText(limits.velocity) + " is below " +
+                                numberText(kSmallestJointVelocityLimit) +
+                                " (rad/s or m/s): no motion of it could be timed");
+  }
   for (const auto& [bound, name] : {std::pair{&limits.acceleration, "acceleration"}, std::pair{&limits.jerk, "jerk"}}) {
     if (*bound && !(std::isfinite(**bound) && **bound > 0.0)) {
       throw InputError(where, what + " " + name + " limit must be a positive finite number, got " + std::to_string(**bound));

@@ -23,6 +23,8 @@ std::string jointTypeName(JointType type);
 /// The velocity limit trajectories are timed with for a joint whose URDF velocity limit is zero or
 /// absent (rad/s, or m/s for prismatic joints). The URDF reader warns once per such joint.
 inline constexpr double kDefaultJointVelocityLimit = 1.0;
+/// Velocity limits below this (rad/s or m/s) are refused: a motion of such a joint would take days.
+inline constexpr double kSmallestJointVelocityLimit = 1e-4;
 
 /// A joint's limits in SI units (rad or m; per second, per second squared, ...).
 struct JointLimits {

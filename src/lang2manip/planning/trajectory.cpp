@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 
 namespace lang2manip {
 namespace {
@@ -53,16 +54,19 @@ void appendPoint(const PlanningSpace& space, const VectorX& x, const VectorX& dx
 
 }  // namespace
 
+std::string scalingProblem(double scaling) {
+  if (scaling >= kSmallestScaling && scaling <= 1.0) return {};
+  return numberText(scaling) + ": must be in [" + numberText(kSmallestScaling) + ", 1] (a fraction of the joint limits)";
+}
+
 JointTrajectory timeParameterize(const PlanningSpace& space, const std::vector<VectorX>& path,
                                  const TimeParameterizationOptions& options) {
   if (path.empty()) throw InputError("time parameterization: the path is empty");
-  if (!(options.velocityScaling > 0.0 && options.velocityScaling <= 1.0)) {
-    throw InputError("time parameterization: velocity scaling must be in (0, 1] (got " +
-                     std::to_string(options.velocityScaling) + ")");
+  if (const std::string problem = scalingProblem(options.velocityScaling); !problem.empty()) {
+    throw InputError("time parameterization: velocity scaling " + problem);
   }
-  if (!(options.accelerationScaling > 0.0 && options.accelerationScaling <= 1.0)) {
-    throw InputError("time parameterization: acceleration scaling must be in (0, 1] (got " +
-                     std::to_string(options.accelerationScaling) + ")");
+  if (const std::string problem = scalingProblem(options.accelerationScaling); !problem.empty()) {
+    throw InputError("time parameterization: acceleration scaling " + problem);
   }
   if (!(options.sampleInterval > 0.0 && std::isfinite(options.sampleInterval))) {
     throw InputError("time parameterization: sample interval must be positive");

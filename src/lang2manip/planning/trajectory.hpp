@@ -35,6 +35,13 @@ struct TimeParameterizationOptions {
   double sampleInterval = 0.02;
 };
 
+/// The smallest velocity or acceleration scaling: below it a few centimetres would take minutes.
+inline constexpr double kSmallestScaling = 0.01;
+
+/// Empty when `scaling` is a valid velocity or acceleration scaling (within [kSmallestScaling, 1]);
+/// otherwise what is wrong with it ("must be in [0.01, 1] ...").
+std::string scalingProblem(double scaling);
+
 /// A trajectory through `path` (points of `space`): each segment is a synchronized trapezoidal
 /// velocity profile from rest to rest, the fastest one within every trajectory joint's limits.
 /// Throws InputError for an empty path, points of the wrong size, or options out of range.

@@ -99,8 +99,8 @@ RunRequest runRequestOf(const json& request, const ServerOptions& options) {
   }
   for (const auto& [field, value] : {std::pair{"velocity_scaling", &run.velocityScaling}, std::pair{"acceleration_scaling", &run.accelerationScaling}}) {
     *value = body::number(request, field, *value);
-    if (!(*value > 0.0 && *value <= 1.0)) {
-      throw ApiError(400, "bad_request", std::string("body field \"") + field + "\": expected more than 0 and at most 1 (a fraction of the joint limits)");
+    if (const std::string problem = scalingProblem(*value); !problem.empty()) {
+      throw ApiError(400, "bad_request", std::string("body field \"") + field + "\": " + problem);
     }
   }
   return run;
