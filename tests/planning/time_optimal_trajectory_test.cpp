@@ -14,6 +14,7 @@
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/model/kautham_problem.hpp"
 #include "lang2manip/planning/blended_path.hpp"
+#include "lang2manip/planning/jerk_limiting.hpp"
 #include "lang2manip/planning/planning_session.hpp"
 #include "lang2manip/planning/trajectory.hpp"
 #include "planning_test_support.hpp"
@@ -359,6 +360,72 @@ TEST(TimeOptimal, TooLongTrajectoriesFailInsteadOfHanging) {
                                   VectorX::Constant(1, 1.0), options);
   });
   EXPECT_NE(dense.find("output points"), std::string::npos) << dense;
+}
+
+VectorX pandaJerk() { return (VectorX(7) << 7500, 3750, 5000, 6250, 7500, 10000, 10000).finished(); }
+
+TEST(JerkLimits, TheFilteredTrajectoryMeetsEveryLimitAndKeepsToThePath) {
+  TimeOptimalOptions fine;
+  fine.sampleInterval = 1e-3;
+  fine.maxDeviation = 0.1;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const JointTrajectory timed = timeOptimalParameterize(randomPandaPath(seed, 6), pandaVelocity(), pandaAcceleration(), fine);
+    EXPECT_FALSE(checkJerkLimits(timed, pandaJerk()).empty()) << "bang-bang acceleration jumps at its switches";
+    const JerkLimitedTrajectory limited = limitJerk(timed, pandaAcceleration(), pandaJerk(), 1e-3);
+    EXPECT_EQ(checkJerkLimits(limited.trajectory, pandaJerk(), 1e-3), "") << "seed " << seed;
+    const LimitRatios worst = worstRatios(limited.trajectory, pandaVelocity(), pandaAcceleration());
+    EXPECT_LE(worst.velocity, 1.0 + kVelocitySlack);
+    EXPECT_LE(worst.acceleration, 1.0 + kAccelerationSlack);
+    EXPECT_NEAR(limited.window, 0.004, 1e-3);
+    EXPECT_NEAR(limited.trajectory.duration(), timed.duration() + limited.window, 1e-3);
+    // Within a T^2 a / 24 of the path (T 4 ms, a at most 20 rad/s^2, seven joints).
+    EXPECT_LT(limited.deviation, 1e-4);
+    const TrajectoryPoint& first = limited.trajectory.points.front();
+    const TrajectoryPoint& last = limited.trajectory.points.back();
+    EXPECT_TRUE(first.positions.isApprox(timed.points.front().positions));
+    EXPECT_TRUE(last.positions.isApprox(timed.points.back().positions));
+    EXPECT_NEAR(first.velocities.norm() + last.velocities.norm() + last.accelerations.norm(), 0.0, 1e-9);
+    for (std::size_t k = 1; k < limited.trajectory.points.size(); ++k) {
+      ASSERT_GT(limited.trajectory.points[k].time, limited.trajectory.points[k - 1].time);
+    }
+  }
+}
+
+TEST(JerkLimits, AJointWithoutAJerkLimitIsLeftAsItIs) {
+  TimeOptimalOptions fine;
+  fine.sampleInterval = 1e-3;
+  const JointTrajectory timed = timeOptimalParameterize(randomPandaPath(3, 4), pandaVelocity(), pandaAcceleration(), fine);
+  const JerkLimitedTrajectory unlimited = limitJerk(timed, pandaAcceleration(), VectorX::Zero(7), 0.02);
+  EXPECT_EQ(unlimited.window, 0.0);
+  EXPECT_EQ(unlimited.trajectory.points.size(), timed.points.size());
+  VectorX oneJoint = VectorX::Zero(7);
+  oneJoint[1] = 100.0;  // a slow-jerk joint sets the window for all: 2 x 7.5 / 100 = 0.15 s
+  const JerkLimitedTrajectory slow = limitJerk(timed, pandaAcceleration(), oneJoint, 0.02);
+  EXPECT_NEAR(slow.window, 0.15, 2e-3);
+  EXPECT_EQ(checkJerkLimits(slow.trajectory, oneJoint, 1e-3), "");
+  // Output every 20 ms and at the end.
+  EXPECT_NEAR(slow.trajectory.points[1].time, 0.02, 1e-3);
+}
+
+TEST(JerkLimits, BadInputGivesClearErrors) {
+  TimeOptimalOptions fine;
+  fine.sampleInterval = 1e-3;
+  const JointTrajectory timed = timeOptimalParameterize(randomPandaPath(2, 3), pandaVelocity(), pandaAcceleration(), fine);
+  const auto error = [&](const JointTrajectory& trajectory, const VectorX& acceleration, const VectorX& jerk, double interval) {
+    return timeOptimalError([&] { (void)limitJerk(trajectory, acceleration, jerk, interval); });
+  };
+  EXPECT_NE(error(timed, pandaAcceleration(), VectorX::Zero(3), 0.02).find("7 joints but 7 acceleration and 3 jerk limits"), std::string::npos);
+  VectorX negative = pandaJerk();
+  negative[4] = -1.0;
+  EXPECT_NE(error(timed, pandaAcceleration(), negative, 0.02).find("joint_4: limits must be finite and not negative"), std::string::npos);
+  EXPECT_NE(error(timed, VectorX::Zero(7), pandaJerk(), 0.02).find("has a jerk limit but no acceleration limit"), std::string::npos);
+  JointTrajectory moving = timed;
+  moving.points.pop_back();
+  EXPECT_NE(error(moving, pandaAcceleration(), pandaJerk(), 0.02).find("must start and end at rest"), std::string::npos);
+  JointTrajectory single = timed;
+  single.points.resize(1);
+  EXPECT_NE(error(single, pandaAcceleration(), pandaJerk(), 0.02).find("fewer than two points"), std::string::npos);
+  EXPECT_NE(error(timed, pandaAcceleration(), pandaJerk(), 0.0).find("output interval must be positive"), std::string::npos);
 }
 
 }  // namespace

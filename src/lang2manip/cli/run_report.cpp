@@ -52,6 +52,7 @@ PathLengths pathLengths(const ActionExecution& action) {
 json qualityJson(const TrajectoryQuality& quality) {
   return {{"stops_inside_runs", quality.stopsInsideRuns}, {"blended_corners", quality.blendedCorners},
           {"reduced_blends", quality.reducedBlends}, {"rest_to_rest_fallbacks", quality.restToRestFallbacks},
+          {"jerk_limited_runs", quality.jerkLimitedRuns}, {"jerk_reduced_runs", quality.jerkReducedRuns},
           {"seconds", quality.seconds}};
 }
 

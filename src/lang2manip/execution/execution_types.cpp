@@ -77,6 +77,8 @@ TrajectoryQuality& TrajectoryQuality::operator+=(const TrajectoryQuality& other)
   blendedCorners += other.blendedCorners;
   reducedBlends += other.reducedBlends;
   restToRestFallbacks += other.restToRestFallbacks;
+  jerkLimitedRuns += other.jerkLimitedRuns;
+  jerkReducedRuns += other.jerkReducedRuns;
   pathLength += other.pathLength;
   seconds += other.seconds;
   return *this;

@@ -74,6 +74,9 @@ struct ExecutionSettings {
   /// within one cartesianStep of the junction (a blend zone).
   double blendDeviation = 0.1;
   double cartesianDeviation = 0.001;
+  /// Time-optimal timing: jerk-limit every run of a robot whose model gives jerk limits
+  /// (joint_limits.yaml max_jerk), see planning/jerk_limiting.hpp.
+  bool limitJerk = true;
   /// Seed of the planners, IK restarts and placement samples.
   std::uint64_t seed = 1;
   /// Keep each transit planner's exploration graph (at most this many edges per query; 0: none).
@@ -170,6 +173,10 @@ struct TrajectoryQuality {
   /// Runs whose time-optimal trajectory broke a limit on its samples and were timed rest to
   /// rest instead (a numerical failure, reported rather than hidden).
   int restToRestFallbacks = 0;
+  /// Runs made jerk-limited (joints with a jerk limit in the robot model), and how many of them
+  /// needed a lower acceleration to keep within kJerkFilterDeviation of their path.
+  int jerkLimitedRuns = 0;
+  int jerkReducedRuns = 0;
   /// Length of the path the trajectory follows (joint space, Euclidean; blends included).
   double pathLength = 0.0;
   /// Seconds spent timing (blend checks and parameterization).

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "lang2manip/planning/blended_path.hpp"
+#include "lang2manip/planning/jerk_limiting.hpp"
 #include "lang2manip/planning/time_optimal_trajectory.hpp"
 
 namespace lang2manip {
@@ -23,6 +24,12 @@ constexpr double kSmallestBlend = 1e-4;
 /// Relative slack of the limit check on the samples: the phase-plane integration keeps each
 /// step's path acceleration within the bounds at its ends, and the bounds move a little between.
 constexpr double kLimitSlack = 2e-3;
+/// Jerk limiting: the filter's input is sampled this finely (s); its output may leave the
+/// blended path by at most kJerkFilterDeviation (rad, Euclidean), a twentieth of the default
+/// verification resolution, else the run's acceleration is halved (at most kJerkAttempts times).
+constexpr double kJerkInputInterval = 1e-3;
+constexpr double kJerkFilterDeviation = 1e-4;
+constexpr int kJerkAttempts = 8;
 
 bool movesTheArm(const ArmContext& arm, const MotionSegment& segment) {
   for (const VectorX& q : segment.waypoints) {
@@ -260,16 +267,42 @@ void addSegmentEnds(const PlanningSpace& space, const RunPath& path, const Joint
   }
 }
 
-/// The time-optimal trajectory of one run, or its rest-to-rest one when the first breaks a limit.
-JointTrajectory timeRun(const ArmContext& arm, const RunPath& path, TimedRun& run, TrajectoryQuality& quality) {
+bool hasJerkLimits(const PlanningSpace& space) { return space.jointJerkLimits().maxCoeff() > 0.0; }
+
+/// The time-optimal trajectory along `blended`, jerk-limited when the space has jerk limits and
+/// the settings ask for it: the acceleration is halved until the filter stays within
+/// kJerkFilterDeviation of the path.
+JointTrajectory timeAlong(const ArmContext& arm, const BlendedPath& blended, TrajectoryQuality& quality) {
   const ExecutionSettings& settings = arm.settings();
   const PlanningSpace& space = arm.robotSpace();
   TimeOptimalOptions options;
   options.velocityScaling = settings.velocityScaling;
   options.accelerationScaling = settings.accelerationScaling;
+  if (!settings.limitJerk || !hasJerkLimits(space)) return timeOptimalParameterize(space, blended, options);
+  const double outputInterval = options.sampleInterval;
+  options.sampleInterval = kJerkInputInterval;
+  for (int attempt = 0;; ++attempt) {
+    const JointTrajectory fine = timeOptimalParameterize(space, blended, options);
+    if (fine.points.size() < 2) return fine;
+    JerkLimitedTrajectory limited = limitJerk(fine, space.jointAccelerationLimits() * options.accelerationScaling,
+                                              space.jointJerkLimits(), outputInterval);
+    if (limited.deviation <= kJerkFilterDeviation || attempt + 1 == kJerkAttempts) {
+      ++quality.jerkLimitedRuns;
+      quality.jerkReducedRuns += attempt > 0 ? 1 : 0;
+      return std::move(limited.trajectory);
+    }
+    options.accelerationScaling *= 0.5;
+  }
+}
+
+/// The time-optimal trajectory of one run, or its rest-to-rest one when the first breaks a limit.
+JointTrajectory timeRun(const ArmContext& arm, const RunPath& path, TimedRun& run, TrajectoryQuality& quality) {
+  const ExecutionSettings& settings = arm.settings();
+  const PlanningSpace& space = arm.robotSpace();
   const BlendedPath blended(path.waypoints, run.cornerDeviations);
-  JointTrajectory part = timeOptimalParameterize(space, blended, options);
-  if (checkTrajectoryLimits(space, part, kLimitSlack, settings.velocityScaling, settings.accelerationScaling).empty()) {
+  JointTrajectory part = timeAlong(arm, blended, quality);
+  if (checkTrajectoryLimits(space, part, kLimitSlack, settings.velocityScaling, settings.accelerationScaling).empty() &&
+      (!settings.limitJerk || checkJerkLimits(part, space.jointJerkLimits(), kLimitSlack).empty())) {
     quality.stopsInsideRuns += static_cast<int>(blended.stopPoints().size());
     quality.pathLength += blended.length();
     for (const PathSegment& piece : blended.segments()) quality.blendedCorners += piece.kind == PathSegment::Kind::kArc ? 1 : 0;

@@ -18,6 +18,7 @@ JointPlanningSpace::JointPlanningSpace(std::shared_ptr<const CollisionChecker> c
   std::vector<double> upper;
   std::vector<double> velocity;
   std::vector<double> acceleration;
+  std::vector<double> jerk;
   for (std::size_t r = 0; r < robots.size(); ++r) {
     const int robot = this->checker().robotIndex(robots[r]);
     robots_.push_back(robot);
@@ -37,6 +38,7 @@ JointPlanningSpace::JointPlanningSpace(std::shared_ptr<const CollisionChecker> c
       upper.push_back(model.upperLimits()[variable]);
       velocity.push_back(defaults.velocityLimit(model, variable));
       acceleration.push_back(defaults.accelerationLimit(model, variable));
+      jerk.push_back(model.jerkLimit(variable).value_or(0.0));
     }
   }
   const auto n = static_cast<Eigen::Index>(planned_.size());
@@ -46,6 +48,7 @@ JointPlanningSpace::JointPlanningSpace(std::shared_ptr<const CollisionChecker> c
   jacobian_ = MatrixX::Identity(n, n);
   velocityLimits_ = Eigen::Map<VectorX>(velocity.data(), n);
   accelerationLimits_ = Eigen::Map<VectorX>(acceleration.data(), n);
+  jerkLimits_ = Eigen::Map<VectorX>(jerk.data(), n);
 }
 
 VectorX JointPlanningSpace::trajectoryPositions(const VectorX& x) const { return x; }

@@ -70,6 +70,7 @@ void KauthamControlSpace::buildTrajectoryMap(const JointLimitDefaults& defaults)
   trajectoryOffset_ = VectorX::Zero(dofs);
   velocityLimits_ = VectorX::Zero(dofs);
   accelerationLimits_ = VectorX::Zero(dofs);
+  jerkLimits_ = VectorX::Zero(dofs);
   trajectoryLow_ = VectorX::Zero(dofs);
   stepScale_ = VectorX::Ones(dofs);
   trajectoryHigh_ = VectorX::Zero(dofs);

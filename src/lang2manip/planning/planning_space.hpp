@@ -53,6 +53,8 @@ class PlanningSpace {
   [[nodiscard]] const VectorX& jointAccelerationLimits() const noexcept {
     return accelerationLimits_;
   }
+  /// Jerk limits of the trajectory joints, 0 where the model gives none (no default is assumed).
+  [[nodiscard]] const VectorX& jointJerkLimits() const noexcept { return jerkLimits_; }
 
   /// The world at x: every robot's configuration and base pose.
   [[nodiscard]] virtual WorldState worldState(const VectorX& x) const = 0;
@@ -91,6 +93,7 @@ class PlanningSpace {
   MatrixX jacobian_;
   VectorX velocityLimits_;
   VectorX accelerationLimits_;
+  VectorX jerkLimits_;
   /// Per trajectory joint: how many times `resolution` it may move per checked step.
   VectorX stepScale_;
 
