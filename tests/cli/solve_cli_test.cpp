@@ -24,11 +24,12 @@ TEST(SolveCli, SolvesThePaperSceneAndWritesJsonAndCsv) {
   const nlohmann::json report = nlohmann::json::parse(readFileText(out));
   EXPECT_TRUE(report["solved"].get<bool>());
   const nlohmann::json& trajectory = report["queries"][0]["trajectory"];
-  EXPECT_EQ(trajectory["joint_names"][0], "panda/panda_joint1");
+  EXPECT_EQ(trajectory["joint_names"][0], "panda_joint1") << "the URDF's name";
+  EXPECT_EQ(trajectory["joint_robots"][0], "panda");
   ASSERT_GE(trajectory["points"].size(), 2u);
   EXPECT_TRUE(trajectory["points"][0].contains("time_from_start"));
   const std::string csv = readFileText(directory.path() / "result.csv");
-  EXPECT_EQ(csv.rfind("time,panda/panda_joint1,", 0), 0u) << csv.substr(0, 80);
+  EXPECT_EQ(csv.rfind("time,panda_joint1,", 0), 0u) << csv.substr(0, 80);
 }
 
 TEST(SolveCli, JsonOutputAndPlannerOverride) {

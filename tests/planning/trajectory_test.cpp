@@ -58,15 +58,25 @@ TEST(TrajectoryFiles, JointTrajectoryJsonAndCsv) {
   const auto space = planarArmSpace();
   const JointTrajectory trajectory = timeParameterize(*space, {planarStart(), planarGoal()});
   const nlohmann::json json = trajectoryToJson(trajectory);
-  EXPECT_EQ(json["joint_names"], (nlohmann::json{"planar/shoulder", "planar/elbow"}));
+  EXPECT_EQ(json["joint_names"], (nlohmann::json{"shoulder", "elbow"})) << "the URDF's names";
+  EXPECT_EQ(json["joint_robots"], (nlohmann::json{"planar", "planar"}));
   const nlohmann::json& last = json["points"].back();
   EXPECT_EQ(last["positions"].size(), 2u);
   const double seconds = last["time_from_start"]["sec"].get<double>() + last["time_from_start"]["nanosec"].get<double>() * 1e-9;
   EXPECT_NEAR(seconds, trajectory.duration(), 1e-9);
   const std::string csv = trajectoryToCsv(trajectory);
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
-            "time,planar/shoulder,planar/elbow,planar/shoulder_velocity,planar/elbow_velocity,"
-            "planar/shoulder_acceleration,planar/elbow_acceleration");
+            "time,shoulder,elbow,shoulder_velocity,elbow_velocity,shoulder_acceleration,elbow_acceleration");
+}
+
+TEST(TrajectoryFiles, JointsOfTwoRobotsWithOneNameKeepTheRobotInTheirLabel) {
+  const std::vector<TrajectoryJoint> joints = trajectoryJoints({"left/shoulder", "left/elbow", "right/shoulder", "right/wrist", "base_x"});
+  std::vector<std::string> labels;
+  for (const TrajectoryJoint& joint : joints) labels.push_back(joint.label);
+  EXPECT_EQ(labels, (std::vector<std::string>{"left/shoulder", "elbow", "right/shoulder", "wrist", "base_x"}));
+  EXPECT_EQ(joints[2].robot, "right");
+  EXPECT_EQ(joints[2].joint, "shoulder");
+  EXPECT_EQ(joints[4].robot, "");
 }
 
 TEST(BenchmarkLog, OmplFormat) {

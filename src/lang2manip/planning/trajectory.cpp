@@ -3,6 +3,7 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <map>
 #include <sstream>
 
 #include "lang2manip/core/error.hpp"
@@ -130,6 +131,21 @@ std::string checkTrajectoryLimits(const PlanningSpace& space, const JointTraject
   return {};
 }
 
+std::vector<TrajectoryJoint> trajectoryJoints(const std::vector<std::string>& names) {
+  std::vector<TrajectoryJoint> joints;
+  std::map<std::string, int> uses;
+  for (const std::string& name : names) {
+    const auto slash = name.find('/');
+    joints.push_back(slash == std::string::npos ? TrajectoryJoint{"", name, name}
+                                                : TrajectoryJoint{name.substr(0, slash), name.substr(slash + 1), name});
+    ++uses[joints.back().joint];
+  }
+  for (TrajectoryJoint& joint : joints) {
+    if (uses[joint.joint] == 1) joint.label = joint.joint;
+  }
+  return joints;
+}
+
 nlohmann::json trajectoryToJson(const JointTrajectory& trajectory) {
   nlohmann::json points = nlohmann::json::array();
   for (const TrajectoryPoint& point : trajectory.points) {
@@ -147,15 +163,22 @@ nlohmann::json trajectoryToJson(const JointTrajectory& trajectory) {
                        {{"sec", static_cast<long>(seconds)},
                         {"nanosec", nanoseconds}}}});
   }
-  return {{"joint_names", trajectory.jointNames}, {"points", points}};
+  std::vector<std::string> labels;
+  std::vector<std::string> robots;
+  for (const TrajectoryJoint& joint : trajectoryJoints(trajectory.jointNames)) {
+    labels.push_back(joint.label);
+    robots.push_back(joint.robot);
+  }
+  return {{"joint_names", labels}, {"joint_robots", robots}, {"points", points}};
 }
 
 std::string trajectoryToCsv(const JointTrajectory& trajectory) {
   std::ostringstream csv;
   csv << std::setprecision(10) << "time";
-  for (const std::string& name : trajectory.jointNames) csv << ',' << name;
-  for (const std::string& name : trajectory.jointNames) csv << ',' << name << "_velocity";
-  for (const std::string& name : trajectory.jointNames) csv << ',' << name << "_acceleration";
+  const std::vector<TrajectoryJoint> joints = trajectoryJoints(trajectory.jointNames);
+  for (const TrajectoryJoint& joint : joints) csv << ',' << joint.label;
+  for (const TrajectoryJoint& joint : joints) csv << ',' << joint.label << "_velocity";
+  for (const TrajectoryJoint& joint : joints) csv << ',' << joint.label << "_acceleration";
   csv << '\n';
   for (const TrajectoryPoint& point : trajectory.points) {
     csv << point.time;

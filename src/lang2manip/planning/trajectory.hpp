@@ -55,11 +55,26 @@ std::string checkTrajectoryLimits(const PlanningSpace& space, const JointTraject
                                   double tolerance = 1e-6, double velocityScaling = 1.0,
                                   double accelerationScaling = 1.0);
 
-/// {"joint_names": [...], "points": [{"positions", "velocities", "accelerations",
-/// "time_from_start": {"sec", "nanosec"}}]}.
+/// A trajectory joint as files name it: the robot ("panda"; empty for a name without one), the
+/// joint's own name in the robot's URDF ("panda_joint1"; Kautham's base axes "base_x", ...), and
+/// the label a file uses: the URDF name, or "robot/joint" when two robots have a joint of that
+/// name.
+struct TrajectoryJoint {
+  std::string robot;
+  std::string joint;
+  std::string label;
+};
+
+/// The joints named `names` ("robot/joint", as PlanningSpace::trajectoryJointNames() gives them).
+std::vector<TrajectoryJoint> trajectoryJoints(const std::vector<std::string>& names);
+
+/// {"joint_names": [labels], "joint_robots": [each joint's robot], "points": [{"positions",
+/// "velocities", "accelerations", "time_from_start": {"sec", "nanosec"}}]}: a
+/// trajectory_msgs/JointTrajectory with the URDF's joint names (see TrajectoryJoint).
 nlohmann::json trajectoryToJson(const JointTrajectory& trajectory);
 
-/// CSV with a header: time, then <joint> positions, <joint>_velocity, <joint>_acceleration.
+/// CSV with a header: time, then each joint's label (TrajectoryJoint), <label>_velocity,
+/// <label>_acceleration.
 std::string trajectoryToCsv(const JointTrajectory& trajectory);
 
 }  // namespace lang2manip
