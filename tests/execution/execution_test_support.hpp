@@ -4,11 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "grounding/grounding_test_support.hpp"
 #include "lang2manip/execution/execution_verification.hpp"
 #include "lang2manip/execution/task_executor.hpp"
+#include "lang2manip/planning/jerk_limiting.hpp"
 #include "lang2manip/language/instruction.hpp"
 #include "lang2manip/language/object_descriptor.hpp"
 #include "lang2manip/language/offline_task_planner.hpp"
@@ -130,9 +132,41 @@ inline void expectContinuousMotion(const TaskExecutor& executor, const Execution
                                     settings.accelerationScaling),
               "")
         << "step " << action.index + 1;
+    if (settings.limitJerk) {
+      EXPECT_EQ(checkJerkLimits(action.trajectory, executor.arm().robotSpace().jointJerkLimits(), kTimingSlack), "") << "step " << action.index + 1;
+    }
     previous = action.trajectory.points.back().positions;
   }
   EXPECT_LT((record.finalScene.robot(robot).configuration - previous).cwiseAbs().maxCoeff(), 1e-6);
+}
+
+/// The tool follows every Cartesian move's straight line within settings.cartesianDeviation on
+/// the trajectory's samples, except within one cartesianStep of the move's ends (where a blend
+/// from or into a transit may leave it).
+inline void expectCartesianMovesStraight(const TaskExecutor& executor, const ExecutionRecord& record) {
+  const ArmContext& arm = executor.arm();
+  const ExecutionSettings& settings = arm.settings();
+  int checked = 0;
+  for (const ActionExecution& action : record.actions) {
+    for (std::size_t k = 0; k < action.segments.size() && k < action.segmentEndTimes.size(); ++k) {
+      const MotionSegment& segment = action.segments[k];
+      if (!segment.planner.empty() || segment.waypoints.size() < 3 || segment.gripperEvent != GripperEvent::kNone) continue;
+      const Vector3 from = arm.toolPose(segment.world, segment.waypoints.front()).translation();
+      const Vector3 to = arm.toolPose(segment.world, segment.waypoints.back()).translation();
+      if ((to - from).norm() < 2.0 * settings.cartesianStep) continue;
+      const double begin = k == 0 ? 0.0 : action.segmentEndTimes[k - 1];
+      for (const TrajectoryPoint& point : action.trajectory.points) {
+        if (point.time < begin || point.time > action.segmentEndTimes[k]) continue;
+        const Vector3 tool = arm.toolPose(segment.world, point.positions).translation();
+        if ((tool - from).norm() < settings.cartesianStep || (tool - to).norm() < settings.cartesianStep) continue;
+        const double along = std::clamp((tool - from).dot(to - from) / (to - from).squaredNorm(), 0.0, 1.0);
+        EXPECT_LE((tool - (from + along * (to - from))).norm(), settings.cartesianDeviation + 1e-5)
+            << "step " << action.index + 1 << ", " << segment.label << " at " << point.time << " s";
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 20) << "samples of Cartesian moves checked";
 }
 
 }  // namespace lang2manip::test

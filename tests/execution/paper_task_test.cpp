@@ -62,6 +62,7 @@ TEST_P(PaperTask, SucceedsAndIsVerified) {
   for (const ActionExecution& action : record.actions) EXPECT_EQ(action.status, ActionStatus::kSucceeded);
   expectContinuousMotion(executor, record);
   expectStopsOnlyWhereRunsEnd(record);
+  expectCartesianMovesStraight(executor, record);
   double duration = 0.0;
   for (const ActionExecution& action : record.actions) duration += action.trajectory.duration();
   RecordProperty("trajectory_seconds", std::to_string(duration));
