@@ -7,8 +7,11 @@
 //   TimeOptimal    what the executor does: runs joined and blended (every arc re-checked with the
 //                  exact checker and, on Cartesian moves, for straightness), Kunz & Stilman
 //                  time-optimal parameterization, limits checked on the samples;
+//   TimeOptimal/without_jerk_limits  the same with ExecutionSettings::limitJerk off;
 //   TimeOptimal/parameterization_only  the parameterization alone: the same runs with the
 //                  blends the executor chose, BlendedPath + timeOptimalParameterize;
+//   TimeOptimal/jerk_limited_parameterization  the same sampled every millisecond and
+//                  jerk-limited (limitJerk), as the executor does for the Panda;
 // both at the Panda's limits (scaling 1). Counters: median_ms and p95_ms per call, duration_s of
 // the whole trajectory, points output, stops_inside_runs, and median_over_rest_to_rest = a
 // variant's median over the baseline's (run first, same process).
@@ -28,6 +31,7 @@
 
 #include "lang2manip/execution/motion_timing.hpp"
 #include "lang2manip/planning/blended_path.hpp"
+#include "lang2manip/planning/jerk_limiting.hpp"
 #include "lang2manip/planning/time_optimal_trajectory.hpp"
 #include "lang2manip/execution/task_executor.hpp"
 #include "lang2manip/language/offline_task_planner.hpp"
@@ -62,7 +66,7 @@ const PaperTaskMotions& paperTaskMotions() {
   return motions;
 }
 
-enum class Variant { kRestToRest, kTimeOptimal, kParameterizationOnly };
+enum class Variant { kRestToRest, kTimeOptimal, kWithoutJerkLimits, kParameterizationOnly, kJerkLimitedParameterization };
 
 /// Every run of the task with the blends the executor chose.
 std::vector<std::pair<std::vector<VectorX>, std::vector<double>>> chosenRuns(const ArmContext& arm,
@@ -77,11 +81,23 @@ std::vector<std::pair<std::vector<VectorX>, std::vector<double>>> chosenRuns(con
   return runs;
 }
 
+/// The time-optimal trajectory along `path`; jerk-limited: sampled every millisecond and averaged
+/// as the executor does (planning/jerk_limiting.hpp).
+JointTrajectory parameterized(const PlanningSpace& space, const BlendedPath& path, bool jerkLimited) {
+  if (!jerkLimited) return timeOptimalParameterize(space, path);
+  TimeOptimalOptions fine;
+  fine.sampleInterval = 1e-3;
+  const JointTrajectory timed = timeOptimalParameterize(space, path, fine);
+  if (timed.points.size() < 2) return timed;
+  return limitJerk(timed, space.jointAccelerationLimits(), space.jointJerkLimits(), 0.02).trajectory;
+}
+
 void timeTheTask(benchmark::State& state, Variant variant) {
   static double restToRestMedian = 0.0;
   const PaperTaskMotions& motions = paperTaskMotions();
   ExecutionSettings settings;
   settings.timing = variant == Variant::kRestToRest ? TrajectoryTiming::kRestToRest : TrajectoryTiming::kTimeOptimal;
+  settings.limitJerk = variant != Variant::kWithoutJerkLimits;
   const ArmContext arm(motions.scene, settings);
   const auto runs = chosenRuns(arm, motions);
   std::vector<double> times;
@@ -92,9 +108,10 @@ void timeTheTask(benchmark::State& state, Variant variant) {
   for (auto _ : state) {
     duration = points = stops = checks = 0.0;
     const auto start = std::chrono::steady_clock::now();
-    if (variant == Variant::kParameterizationOnly) {
+    if (variant == Variant::kParameterizationOnly || variant == Variant::kJerkLimitedParameterization) {
       for (const auto& [waypoints, deviations] : runs) {
-        const JointTrajectory trajectory = timeOptimalParameterize(arm.robotSpace(), BlendedPath(waypoints, deviations));
+        const JointTrajectory trajectory = parameterized(arm.robotSpace(), BlendedPath(waypoints, deviations),
+                                                         variant == Variant::kJerkLimitedParameterization);
         duration += trajectory.duration();
         points += static_cast<double>(trajectory.points.size());
         benchmark::DoNotOptimize(trajectory);
@@ -128,7 +145,9 @@ void timeTheTask(benchmark::State& state, Variant variant) {
 void registerAll() {
   for (const auto& [name, variant] : {std::pair{"PaperTaskPanda/RestToRest", Variant::kRestToRest},
                                       std::pair{"PaperTaskPanda/TimeOptimal", Variant::kTimeOptimal},
-                                      std::pair{"PaperTaskPanda/TimeOptimal/parameterization_only", Variant::kParameterizationOnly}}) {
+                                      std::pair{"PaperTaskPanda/TimeOptimal/without_jerk_limits", Variant::kWithoutJerkLimits},
+                                      std::pair{"PaperTaskPanda/TimeOptimal/parameterization_only", Variant::kParameterizationOnly},
+                                      std::pair{"PaperTaskPanda/TimeOptimal/jerk_limited_parameterization", Variant::kJerkLimitedParameterization}}) {
     const Variant chosen = variant;
     benchmark::RegisterBenchmark(name, [chosen](benchmark::State& state) { timeTheTask(state, chosen); })
         ->Unit(benchmark::kMillisecond)

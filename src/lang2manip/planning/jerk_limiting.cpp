@@ -12,31 +12,37 @@
 namespace lang2manip {
 namespace {
 
-/// A trajectory's positions, velocities and accelerations on an even grid of `interval`.
+/// A trajectory's positions, velocities and accelerations on an even grid of `interval`: one
+/// column per sample.
 struct EvenSamples {
   double interval = 0.0;
-  std::vector<TrajectoryPoint> points;
+  MatrixX positions;
+  MatrixX velocities;
+  MatrixX accelerations;
+
+  [[nodiscard]] Eigen::Index count() const { return positions.cols(); }
 };
 
-TrajectoryPoint interpolated(const TrajectoryPoint& a, const TrajectoryPoint& b, double time) {
-  const double span = b.time - a.time;
-  const double f = span > 0.0 ? std::clamp((time - a.time) / span, 0.0, 1.0) : 1.0;
-  return {a.positions + f * (b.positions - a.positions), a.velocities + f * (b.velocities - a.velocities),
-          a.accelerations + f * (b.accelerations - a.accelerations), time};
-}
-
-/// `trajectory` on the even grid closest to its first interval that ends exactly at its end.
+/// `trajectory` on the even grid closest to its first interval that ends exactly at its end
+/// (linear interpolation between its points).
 EvenSamples evenSamples(const JointTrajectory& trajectory) {
   const double duration = trajectory.duration();
   const double first = trajectory.points[1].time - trajectory.points[0].time;
-  const auto steps = static_cast<std::size_t>(std::max(1.0, std::ceil(duration / first - 1e-9)));
-  EvenSamples samples{duration / static_cast<double>(steps), {}};
-  samples.points.reserve(steps + 1);
+  const auto steps = static_cast<Eigen::Index>(std::max(1.0, std::ceil(duration / first - 1e-9)));
+  const Eigen::Index joints = trajectory.points[0].positions.size();
+  EvenSamples samples{duration / static_cast<double>(steps), MatrixX(joints, steps + 1), MatrixX(joints, steps + 1),
+                      MatrixX(joints, steps + 1)};
   std::size_t at = 0;
-  for (std::size_t k = 0; k <= steps; ++k) {
+  for (Eigen::Index k = 0; k <= steps; ++k) {
     const double time = k == steps ? duration : static_cast<double>(k) * samples.interval;
     while (at + 2 < trajectory.points.size() && trajectory.points[at + 1].time <= time) ++at;
-    samples.points.push_back(interpolated(trajectory.points[at], trajectory.points[at + 1], time));
+    const TrajectoryPoint& a = trajectory.points[at];
+    const TrajectoryPoint& b = trajectory.points[at + 1];
+    const double span = b.time - a.time;
+    const double f = span > 0.0 ? std::clamp((time - a.time) / span, 0.0, 1.0) : 1.0;
+    samples.positions.col(k) = a.positions + f * (b.positions - a.positions);
+    samples.velocities.col(k) = a.velocities + f * (b.velocities - a.velocities);
+    samples.accelerations.col(k) = a.accelerations + f * (b.accelerations - a.accelerations);
   }
   return samples;
 }
@@ -65,39 +71,32 @@ void checkInputs(const JointTrajectory& trajectory, const VectorX& maxAccelerati
   if (!(outputInterval > 0.0)) throw InputError("jerk limits: the output interval must be positive");
 }
 
-/// The moving average over `width` samples of `samples` at rest before and after: entry m
-/// averages samples m - width + 1 .. m (clamped to the ends), for m = 0 .. size + width - 2.
-std::vector<TrajectoryPoint> movingAverage(const EvenSamples& samples, std::size_t width) {
-  const std::vector<TrajectoryPoint>& in = samples.points;
-  const auto count = static_cast<std::ptrdiff_t>(in.size());
-  const VectorX zero = VectorX::Zero(in[0].positions.size());
-  const TrajectoryPoint before{in.front().positions, zero, zero, 0.0};
-  const TrajectoryPoint after{in.back().positions, zero, zero, 0.0};
-  const auto at = [&](std::ptrdiff_t k) -> const TrajectoryPoint& {
-    return k < 0 ? before : k >= count ? after : in[static_cast<std::size_t>(k)];
-  };
-  TrajectoryPoint sum{zero, zero, zero, 0.0};
-  const auto w = static_cast<std::ptrdiff_t>(width);
-  for (std::ptrdiff_t k = -w + 1; k <= 0; ++k) {
-    sum.positions += at(k).positions;
-    sum.velocities += at(k).velocities;
-    sum.accelerations += at(k).accelerations;
+/// Running sums over the last `width` samples of one quantity, at rest before and after.
+class MovingSum {
+ public:
+  /// `before` and `after`: one column each, the value held before the first and after the last.
+  MovingSum(const MatrixX& samples, const MatrixX& before, const MatrixX& after, Eigen::Index width)
+      : samples_(samples), before_(before), after_(after), width_(width),
+        sum_(before.col(0) * static_cast<double>(width - 1) + samples.col(0)) {}
+
+  /// Moves the window to end at sample m (m = 0, 1, ... in order; m = 0 needs no call).
+  void advanceTo(Eigen::Index m) {
+    sum_ += column(m);
+    sum_ -= column(m - width_);
   }
-  std::vector<TrajectoryPoint> out;
-  out.reserve(in.size() + width - 1);
-  const double scale = 1.0 / static_cast<double>(width);
-  for (std::ptrdiff_t m = 0; m < count + w - 1; ++m) {
-    if (m > 0) {
-      sum.positions += at(m).positions - at(m - w).positions;
-      sum.velocities += at(m).velocities - at(m - w).velocities;
-      sum.accelerations += at(m).accelerations - at(m - w).accelerations;
-    }
-    out.push_back({sum.positions * scale, sum.velocities * scale, sum.accelerations * scale,
-                   static_cast<double>(m) * samples.interval});
+  [[nodiscard]] const VectorX& sum() const { return sum_; }
+
+ private:
+  [[nodiscard]] Eigen::Block<const MatrixX, Eigen::Dynamic, 1, true> column(Eigen::Index k) const {
+    return k < 0 ? before_.col(0) : k >= samples_.cols() ? after_.col(0) : samples_.col(k);
   }
-  out.back().positions = in.back().positions;  // exact, not a sum's rounding
-  return out;
-}
+
+  const MatrixX& samples_;
+  const MatrixX& before_;
+  const MatrixX& after_;
+  Eigen::Index width_;
+  VectorX sum_;
+};
 
 }  // namespace
 
@@ -114,18 +113,36 @@ JerkLimitedTrajectory limitJerk(const JointTrajectory& trajectory, const VectorX
     return result;
   }
   const EvenSamples samples = evenSamples(trajectory);
-  // An odd width (T / interval + 1 samples, within 0.1%) centres each average on a sample.
-  const std::size_t width = 2 * static_cast<std::size_t>(std::ceil(result.window / (2.0 * samples.interval) - 1e-3)) + 1;
-  const std::vector<TrajectoryPoint> averaged = movingAverage(samples, width);
-  const std::size_t delay = (width - 1) / 2;
-  for (std::size_t m = 0; m < averaged.size(); ++m) {
-    const std::size_t source = std::min(samples.points.size() - 1, m >= delay ? m - delay : 0);
-    result.deviation = std::max(result.deviation, (averaged[m].positions - samples.points[source].positions).norm());
-  }
+  // An odd width (T / interval + 1 samples, within 0.1%) centres each average on a sample, the
+  // one `delay` samples earlier.
+  const Eigen::Index width = 2 * static_cast<Eigen::Index>(std::ceil(result.window / (2.0 * samples.interval) - 1e-3)) + 1;
+  const Eigen::Index delay = (width - 1) / 2;
+  const Eigen::Index count = samples.count();
+  const MatrixX zero = MatrixX::Zero(samples.positions.rows(), 1);
+  const MatrixX start = samples.positions.col(0);
+  const MatrixX end = samples.positions.col(count - 1);
+  MovingSum positions(samples.positions, start, end, width);
+  MovingSum velocities(samples.velocities, zero, zero, width);
+  MovingSum accelerations(samples.accelerations, zero, zero, width);
+  const auto stride = static_cast<Eigen::Index>(std::max(1.0, std::round(outputInterval / samples.interval)));
+  const double scale = 1.0 / static_cast<double>(width);
+  const Eigen::Index last = count + width - 2;
   result.trajectory.jointNames = trajectory.jointNames;
-  const auto stride = static_cast<std::size_t>(std::max(1.0, std::round(outputInterval / samples.interval)));
-  for (std::size_t m = 0; m < averaged.size(); m += stride) result.trajectory.points.push_back(averaged[m]);
-  if (result.trajectory.points.back().time < averaged.back().time) result.trajectory.points.push_back(averaged.back());
+  result.trajectory.points.reserve(static_cast<std::size_t>(last / stride + 2));
+  for (Eigen::Index m = 0; m <= last; ++m) {
+    if (m > 0) {
+      positions.advanceTo(m);
+      velocities.advanceTo(m);
+      accelerations.advanceTo(m);
+    }
+    const Eigen::Index source = std::clamp<Eigen::Index>(m - delay, 0, count - 1);
+    result.deviation = std::max(result.deviation, (positions.sum() * scale - samples.positions.col(source)).norm());
+    if (m % stride == 0 || m == last) {
+      result.trajectory.points.push_back({positions.sum() * scale, velocities.sum() * scale,
+                                          accelerations.sum() * scale, static_cast<double>(m) * samples.interval});
+    }
+  }
+  result.trajectory.points.back().positions = end.col(0);  // exact, not a sum's rounding
   result.window = static_cast<double>(width - 1) * samples.interval;
   return result;
 }
