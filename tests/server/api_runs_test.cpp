@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
+#include <thread>
 
 #include "server/api_test_server.hpp"
 
@@ -126,6 +128,46 @@ TEST(ApiRuns, AClientLeavingTheStreamDoesNotStopTheRunOrTheServer) {
   EXPECT_EQ(server.get("/api/health")->status, 200);
   const std::vector<json> events = streamedEvents(server, id);
   EXPECT_EQ(events.back()["state"], "succeeded");
+}
+
+TEST(ApiRuns, EventStreamsAreCappedSoOtherRequestsAreServed) {
+  ServerOptions options;
+  options.threads = 6;
+  options.maxEventStreams = 100;  // eventStreamLimit() keeps half of the threads for the rest
+  ASSERT_EQ(eventStreamLimit(options), 3U);
+  ApiTestServer server(options);
+  // The second run waits behind the first: its streams stay open.
+  const std::string first = bodyOf(server.postJson("/api/runs", json::object()))["id"];
+  const std::string id = bodyOf(server.postJson("/api/runs", json::object()))["id"];
+  std::atomic<bool> leave{false};
+  std::atomic<int> reading{0};
+  std::vector<std::thread> watchers;
+  for (int i = 0; i < 3; ++i) {
+    watchers.emplace_back([&] {
+      httplib::Client client = server.client();
+      bool counted = false;
+      (void)client.Get(("/api/runs/" + id + "/events").c_str(), [&](const char*, std::size_t) {
+        if (!counted) ++reading;
+        counted = true;
+        return !leave.load();
+      });
+    });
+  }
+  for (int i = 0; i < 500 && reading.load() < 3; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_EQ(reading.load(), 3);
+  const auto refused = server.get("/api/runs/" + id + "/events");
+  EXPECT_EQ(refused->status, 503);
+  EXPECT_EQ(refused->get_header_value("Retry-After"), "5");
+  EXPECT_THAT(errorOf(refused), HasSubstr("limit of 3 event streams"));
+  const auto started = std::chrono::steady_clock::now();
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(server.get("/api/health")->status, 200);
+  EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(1));
+  leave = true;
+  for (std::thread& watcher : watchers) watcher.join();
+  for (const std::string& run : {first, id}) (void)server.post("/api/runs/" + run + "/cancel");
+  // The slots are given back when the streams end.
+  for (int i = 0; i < 100 && server.get("/api/runs/" + id + "/events")->status == 503; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  EXPECT_EQ(server.get("/api/runs/" + id + "/events")->status, 200);
 }
 
 TEST(ApiTasks, ObserveAndPlan) {

@@ -123,6 +123,23 @@ TEST(ApiOptions, BadServerOptionsAreRefused) {
   options = {};
   options.host = "203.0.113.7";  // TEST-NET-3: not an address of this machine
   EXPECT_THROW(ApiServer{options}, InputError);
+  options = {};
+  options.maxEventStreams = 0;
+  EXPECT_THROW(ApiServer{options}, InputError);
+}
+
+TEST(ApiOptions, ASecondServerOnAPortInUseFailsClearly) {
+  ApiTestServer first;
+  ServerOptions options;
+  options.port = first.port();
+  try {
+    ApiServer second(options);
+    ADD_FAILURE() << "a second server bound port " << first.port();
+  } catch (const InputError& error) {
+    EXPECT_THAT(error.what(), HasSubstr("address in use"));
+    EXPECT_THAT(error.what(), HasSubstr(std::to_string(first.port())));
+  }
+  EXPECT_EQ(first.get("/api/health")->status, 200);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <set>
 
@@ -180,8 +181,53 @@ TEST(ApiRequests, MalformedOversizedAndUnknownRequestsGetJsonErrors) {
   EXPECT_THAT(errorOf(badClient), HasSubstr("client id"));
   const auto text = server.client().Post("/api/sessions/d/openProblem", "problem=x", "application/x-www-form-urlencoded");
   EXPECT_EQ(text->status, 415);
+  EXPECT_THAT(errorOf(text), HasSubstr("Content-Type: application/json"));
+  EXPECT_EQ(bodyOf(text)["error"]["code"], "unsupported_media_type");
+  EXPECT_EQ(bodyOf(large)["error"]["code"], "payload_too_large");
   // The server still serves after all that.
   EXPECT_EQ(server.get("/api/health")->status, 200);
+}
+
+std::string rawPost(const std::string& path, const std::string& headers = "") {
+  return "POST " + path + " HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n" + headers + "\r\n";
+}
+
+TEST(ApiRequests, ChunkedBodiesAreLimitedWhileTheyAreRead) {
+  ServerOptions options;
+  options.maxBodyBytes = 4096;
+  ApiTestServer server(options);
+  const std::string chunked = "Content-Type: application/json\r\nTransfer-Encoding: chunked\r\n";
+  const std::string small = rawPost("/api/sessions/c/openProblem", chunked) + "2\r\n{}\r\n0\r\n\r\n";
+  const std::string fine = test::rawExchange(server.port(), small);
+  EXPECT_EQ(test::rawStatus(fine), 200) << fine;
+  // A chunk of 32 MiB that never ends: the answer must come once the limit is passed, not when
+  // the body is complete (it never is).
+  const auto started = std::chrono::steady_clock::now();
+  const std::string endless = test::rawExchange(server.port(), rawPost("/api/sessions/c/openProblem", chunked) + "2000000\r\n", 64 * 1024);
+  EXPECT_EQ(test::rawStatus(endless), 413) << endless.substr(0, 300);
+  EXPECT_EQ(test::rawBody(endless)["error"]["code"], "payload_too_large") << endless.substr(0, 300);
+  EXPECT_THAT(test::rawBody(endless)["error"].value("message", ""), HasSubstr("larger than 4096 bytes"));
+  EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(4)) << "the server waited for the whole body";
+  const std::string broken = test::rawExchange(server.port(), rawPost("/api/sessions/c/openProblem", chunked) + "zz\r\n{}\r\n0\r\n\r\n");
+  EXPECT_EQ(test::rawStatus(broken), 400) << broken;
+  EXPECT_EQ(server.get("/api/health")->status, 200);
+}
+
+TEST(ApiRequests, PostsWithoutABodyMeanAnEmptyObject) {
+  ApiTestServer server;
+  // No Content-Length, no chunked encoding: what `curl -X POST URL` sends.
+  const std::string open = test::rawExchange(server.port(), rawPost("/api/sessions/n/openProblem"));
+  EXPECT_EQ(test::rawStatus(open), 200) << open;
+  const std::string solve = test::rawExchange(server.port(), rawPost("/api/sessions/n/solve"));
+  EXPECT_NE(test::rawStatus(solve), 400) << solve;
+  EXPECT_TRUE(test::rawBody(solve).is_object()) << solve;
+  const std::string close = test::rawExchange(server.port(), rawPost("/api/sessions/n/closeProblem"));
+  EXPECT_EQ(test::rawStatus(close), 200) << close;
+  const std::string cancel = test::rawExchange(server.port(), rawPost("/api/runs/run-1/cancel"));
+  EXPECT_EQ(test::rawStatus(cancel), 404) << cancel;
+  EXPECT_THAT(test::rawBody(cancel)["error"].value("message", ""), HasSubstr("run-1"));
+  const std::string remove = test::rawExchange(server.port(), "DELETE /api/sessions/n HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n");
+  EXPECT_EQ(test::rawStatus(remove), 200) << remove;
 }
 
 TEST(ApiRequests, SessionLimitIsAClearError) {

@@ -37,6 +37,10 @@ struct ServerOptions {
   std::size_t maxKeptRuns = 64;
   /// Threads serving requests (each open connection holds one while it is kept alive).
   int threads = 32;
+  /// Run event streams (GET /api/runs/{run}/events) open at once; each holds a thread for the
+  /// whole run, so at most half the threads go to streams (see eventStreamLimit()). More are
+  /// answered 503 with Retry-After.
+  std::size_t maxEventStreams = 16;
   /// The problem opened for every new session that does not name one; empty: none.
   std::string defaultProblem;
 };
@@ -44,6 +48,10 @@ struct ServerOptions {
 /// Throws InputError for options out of range (port, limits, a token with spaces, a data root or
 /// viewer directory that is not a directory).
 void checkServerOptions(const ServerOptions& options);
+
+/// The event streams served at once: maxEventStreams, and at most half of the threads, so that
+/// other requests always find one.
+std::size_t eventStreamLimit(const ServerOptions& options);
 
 class ApiServer {
  public:

@@ -79,8 +79,8 @@ void checkServerOptions(const ServerOptions& options) {
     throw InputError("serve: the token must not contain spaces, quotes, commas or semicolons");
   }
   if (options.maxBodyBytes < 1024 || options.maxJsonDepth < 4) throw InputError("serve: body limits below 1 KiB or 4 JSON levels");
-  if (options.maxSessions < 1 || options.maxQueuedRuns < 1 || options.maxKeptRuns < 1 || options.threads < 2 || options.threads > 1024) {
-    throw InputError("serve: session, run and thread limits must be positive (threads 2 to 1024)");
+  if (options.maxSessions < 1 || options.maxQueuedRuns < 1 || options.maxKeptRuns < 1 || options.maxEventStreams < 1 || options.threads < 2 || options.threads > 1024) {
+    throw InputError("serve: session, run, stream and thread limits must be positive (threads 2 to 1024)");
   }
   std::error_code error;
   if (!options.dataRoot.empty() && !fs::is_directory(options.dataRoot, error)) {
