@@ -107,6 +107,22 @@ TEST(ApiRuns, BadRunRequestsAreRefusedBeforeQueueing) {
   const auto acceleration = server.postJson("/api/runs", {{"acceleration_scaling", 0}});
   EXPECT_EQ(acceleration->status, 400);
   EXPECT_THAT(errorOf(acceleration), HasSubstr("\"acceleration_scaling\""));
+  // Names the run would refuse only once it started: refused now, with the valid names.
+  const auto planner = server.postJson("/api/runs", {{"planner", "NotAPlanner"}});
+  EXPECT_EQ(planner->status, 400);
+  EXPECT_THAT(errorOf(planner), HasSubstr("body field \"planner\""));
+  EXPECT_THAT(errorOf(planner), HasSubstr("RRTConnect"));
+  const auto ik = server.postJson("/api/runs", {{"ik", "magic"}});
+  EXPECT_EQ(ik->status, 400);
+  EXPECT_THAT(errorOf(ik), HasSubstr("body field \"ik\""));
+  EXPECT_THAT(errorOf(ik), HasSubstr("dls"));
+  const auto arm = server.postJson("/api/runs", {{"arm", "tentacle"}});
+  EXPECT_EQ(arm->status, 400);
+  EXPECT_THAT(errorOf(arm), HasSubstr("body field \"arm\""));
+  EXPECT_THAT(errorOf(arm), HasSubstr("tentacle"));
+  const auto problem = server.postJson("/api/runs", {{"problem", "nosuch.xml"}});
+  EXPECT_EQ(problem->status, 404);
+  EXPECT_EQ(bodyOf(server.get("/api/runs"))["runs"].size(), 0U) << "nothing was queued";
   const auto timing = server.postJson("/api/runs", {{"timing", "fastest"}});
   EXPECT_EQ(timing->status, 400);
   EXPECT_THAT(errorOf(timing), HasSubstr("rest-to-rest"));

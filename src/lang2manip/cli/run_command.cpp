@@ -93,12 +93,21 @@ void writeDocuments(const fs::path& out, const RunDocuments& documents) {
   writeFile(out / "viewer.json", documents.viewerDocument.dump(1) + "\n");
 }
 
+/// runTask(), a bad name reported with its flag.
+RunDocuments runTaskNamingFlags(const RunRequest& request) {
+  try {
+    return runTask(request);
+  } catch (const RunNameError& error) {
+    throw InputError("run: --" + error.field() + ": " + error.what());
+  }
+}
+
 void runCommand(const RunOptions& options, std::ostream& out) {
   const RunRequest request = checkedRequest(options);
   // Before the long work: a missing viewer is an error now, not after the run.
   const std::string viewer = options.html ? viewerScript() : "";
   const fs::path directory = prepareOutput(options.out);
-  const RunDocuments documents = runTask(request);
+  const RunDocuments documents = runTaskNamingFlags(request);
   writeDocuments(directory, documents);
   if (options.html) writeFile(directory / "run.html", runPageHtml(documents.viewerDocument, documents.sceneGlb, viewer));
   if (options.json) {

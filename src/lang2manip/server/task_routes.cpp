@@ -103,6 +103,11 @@ RunRequest runRequestOf(const json& request, const ServerOptions& options) {
       throw ApiError(400, "bad_request", std::string("body field \"") + field + "\": expected more than 0 and at most 1 (a fraction of the joint limits)");
     }
   }
+  try {
+    checkRunNames(run);  // as `run` does, but before the run waits in the queue
+  } catch (const RunNameError& error) {
+    throw ApiError(400, "bad_request", "body field \"" + error.field() + "\": " + error.what());
+  }
   return run;
 }
 
