@@ -110,6 +110,30 @@ TEST(ApiDataRoot, RequestsNameFilesOnlyUnderTheDataDirectory) {
   EXPECT_EQ(obstacle->status, 403);
 }
 
+TEST(ApiDataRoot, TheOperatorsOwnProblemIsServedWhereverItLies) {
+  const test::TempDirectory temporary;
+  const fs::path problem = fs::canonical(test::testDataDirectory() / "../../data/problems/desk/ur5_desk.xml");
+  ServerOptions options;
+  options.dataRoot = temporary.path();
+  options.defaultProblem = problem.string();
+  ApiTestServer server(options);
+  const auto opened = server.post("/api/sessions/o/openProblem");
+  EXPECT_EQ(opened->status, 200) << opened->body;
+  EXPECT_EQ(bodyOf(opened)["problem"], "ur5_desk");
+  const auto named = server.postJson("/api/sessions/o/openProblem", {{"problem", problem.string()}});
+  EXPECT_EQ(named->status, 200) << named->body;
+  // Not a licence for its directory.
+  const auto sibling = server.postJson("/api/sessions/o/openProblem", {{"problem", (problem.parent_path() / "tx90_desk.xml").string()}});
+  EXPECT_EQ(sibling->status, 403);
+  options.defaultProblem = (temporary.path() / "nosuch.xml").string();
+  try {
+    ApiServer refused(options);
+    ADD_FAILURE() << "a server started with a problem that does not exist";
+  } catch (const InputError& error) {
+    EXPECT_THAT(error.what(), HasSubstr("nosuch.xml"));
+  }
+}
+
 TEST(ApiOptions, BadServerOptionsAreRefused) {
   ServerOptions options;
   options.port = 70000;

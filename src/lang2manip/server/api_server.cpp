@@ -347,6 +347,7 @@ void ApiServer::Impl::configure() {
 
 ApiServer::ApiServer(ServerOptions options) : impl_(std::make_unique<Impl>(std::move(options))) {
   checkServerOptions(impl_->options);
+  impl_->options.defaultProblem = checkedDefaultProblem(impl_->options.defaultProblem);
   impl_->configure();
   const ServerOptions& bound = impl_->options;
   impl_->port = bound.port == 0 ? impl_->http.bind_to_any_port(bound.host) : (impl_->http.bind_to_port(bound.host, bound.port) ? bound.port : -1);

@@ -41,7 +41,9 @@ struct ServerOptions {
   /// whole run, so at most half the threads go to streams (see eventStreamLimit()). More are
   /// answered 503 with Retry-After.
   std::size_t maxEventStreams = 16;
-  /// The problem opened for every new session that does not name one; empty: none.
+  /// The problem opened by sessions and runs that name none (the operator's `serve PROBLEM`):
+  /// a built-in name or a file, loaded when the server starts and allowed outside dataRoot;
+  /// empty: the paper's scene.
   std::string defaultProblem;
 };
 
@@ -55,7 +57,8 @@ std::size_t eventStreamLimit(const ServerOptions& options);
 
 class ApiServer {
  public:
-  /// Binds the socket (throws InputError when the host or port cannot be bound).
+  /// Checks the options and the default problem, and binds the socket (throws InputError for bad
+  /// options, a default problem that cannot be loaded, a host or port that cannot be bound).
   explicit ApiServer(ServerOptions options);
   ~ApiServer();
   ApiServer(const ApiServer&) = delete;

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <new>
 
+#include "lang2manip/cli/problem_loading.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/llm/llm_client.hpp"
 #include "lang2manip/model/builtin_data.hpp"
@@ -38,12 +39,29 @@ fs::path servedFile(const ServerOptions& options, const std::string& path) {
   return file;
 }
 
+namespace {
+
+bool isBuiltinProblem(const std::string& name) {
+  const auto& problems = builtinProblems();
+  return std::any_of(problems.begin(), problems.end(), [&](const BuiltinProblem& problem) { return problem.shortName == name; });
+}
+
+}  // namespace
+
 std::string servedProblem(const ServerOptions& options, const std::string& nameOrPath) {
-  if (nameOrPath.empty()) return nameOrPath;
-  for (const BuiltinProblem& problem : builtinProblems()) {
-    if (problem.shortName == nameOrPath) return nameOrPath;
-  }
+  // The operator's own problem (serve PROBLEM) is allowed wherever it lies.
+  if (nameOrPath.empty() || nameOrPath == options.defaultProblem || isBuiltinProblem(nameOrPath)) return nameOrPath;
   return servedFile(options, nameOrPath).string();
+}
+
+std::string checkedDefaultProblem(const std::string& problem) {
+  if (problem.empty() || isBuiltinProblem(problem)) return problem;
+  try {
+    (void)loadProblem(problem, "panda");
+  } catch (const InputError& error) {
+    throw InputError("serve: PROBLEM " + problem + ": " + error.what());
+  }
+  return fs::absolute(problem).lexically_normal().string();
 }
 
 std::string servedRobot(const ServerOptions& options, const std::string& nameOrPath) {
