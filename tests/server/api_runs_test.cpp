@@ -80,8 +80,16 @@ TEST(ApiRuns, QueuedAndRunningRunsCanBeCancelled) {
   EXPECT_EQ(cancelled->status, 202);
   ASSERT_EQ(server.post("/api/runs/" + first + "/cancel")->status, 202);
   const std::vector<json> firstEvents = streamedEvents(server, first);
-  EXPECT_TRUE(hasEvent(firstEvents, "state", "cancelled") || hasEvent(firstEvents, "state", "failed")) << firstEvents.back().dump();
+  EXPECT_EQ(firstEvents.back()["state"], "cancelled") << firstEvents.back().dump();
+  EXPECT_EQ(bodyOf(server.get("/api/runs/" + first))["state"], "cancelled");
   EXPECT_EQ(bodyOf(server.get("/api/runs/" + second))["state"], "cancelled");
+  // An ended run has nothing to cancel.
+  for (const std::string& ended : {first, second}) {
+    const auto again = server.post("/api/runs/" + ended + "/cancel");
+    EXPECT_EQ(again->status, 409) << again->body;
+    EXPECT_EQ(bodyOf(again)["error"]["code"], "already_finished");
+    EXPECT_THAT(errorOf(again), HasSubstr("already ended (cancelled)"));
+  }
   const auto early = server.get("/api/runs/" + second + "/files/report.json");
   EXPECT_EQ(early->status, 404);
 }
@@ -144,6 +152,9 @@ TEST(ApiRuns, AClientLeavingTheStreamDoesNotStopTheRunOrTheServer) {
   EXPECT_EQ(server.get("/api/health")->status, 200);
   const std::vector<json> events = streamedEvents(server, id);
   EXPECT_EQ(events.back()["state"], "succeeded");
+  const auto late = server.post("/api/runs/" + id + "/cancel");
+  EXPECT_EQ(late->status, 409);
+  EXPECT_THAT(errorOf(late), HasSubstr("already ended (succeeded)"));
 }
 
 TEST(ApiRuns, EventStreamsAreCappedSoOtherRequestsAreServed) {

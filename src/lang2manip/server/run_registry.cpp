@@ -193,6 +193,8 @@ json RunRegistry::cancel(const std::string& id) {
     addEvent(*run, {{"type", "state"}, {"state", "cancelled"}});
   } else if (run->state == RunState::kRunning) {
     run->cancel->store(true);
+  } else {
+    throw ApiError(409, "already_finished", "run " + id + " already ended (" + stateName(run->state) + "): there is nothing to cancel");
   }
   return {{"id", run->id}, {"state", stateName(run->state)}, {"cancel_requested", true}};
 }
