@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <regex>
 #include <set>
 
 #include "server/api_test_server.hpp"
@@ -34,11 +35,51 @@ TEST(ApiOpenApi, DocumentsExactlyTheEndpointsTheServerAnswers) {
     }
   }
   std::set<std::pair<std::string, std::string>> served;
-  for (const auto& endpoint : server.server().endpoints()) served.insert(endpoint);
+  for (const ApiEndpoint& endpoint : server.server().endpoints()) served.emplace(endpoint.method, endpoint.path);
   EXPECT_EQ(documented, served);
   const auto answer = server.get("/api/openapi.json");
   ASSERT_TRUE(answer);
   EXPECT_EQ(bodyOf(answer), document);
+}
+
+/// The schema of an operation's JSON request body ($ref resolved); null when it has none.
+json requestSchema(const json& document, const json& operation) {
+  if (!operation.contains("requestBody")) return nullptr;
+  json schema = operation["requestBody"]["content"]["application/json"]["schema"];
+  if (schema.contains("$ref")) {
+    const std::string reference = schema["$ref"];
+    schema = document["components"]["schemas"][reference.substr(reference.rfind('/') + 1)];
+  }
+  return schema;
+}
+
+TEST(ApiOpenApi, DocumentsTheBodyFieldsEachEndpointAccepts) {
+  ApiTestServer server;
+  const json document = json::parse(openApiDocument());
+  for (const ApiEndpoint& endpoint : server.server().endpoints()) {
+    std::string method = endpoint.method;
+    std::transform(method.begin(), method.end(), method.begin(), ::tolower);
+    const json& operation = document["paths"][endpoint.path][method];
+    const std::string name = endpoint.method + " " + endpoint.path;
+    const json schema = requestSchema(document, operation);
+    std::set<std::string> documented;
+    if (!schema.is_null()) {
+      const json properties = schema.value("properties", json::object());
+      for (const auto& [field, value] : properties.items()) documented.insert(field);
+      EXPECT_EQ(schema.value("additionalProperties", true), false) << name << ": unknown fields are refused";
+      // A body is required exactly when some field is.
+      EXPECT_EQ(operation["requestBody"].value("required", false), !schema.value("required", json::array()).empty()) << name;
+      for (const json& field : schema.value("required", json::array())) EXPECT_TRUE(documented.count(field.get<std::string>())) << name << " " << field;
+    }
+    const std::set<std::string> accepted(endpoint.bodyFields.begin(), endpoint.bodyFields.end());
+    EXPECT_EQ(documented, accepted) << name;
+    // And the server does refuse what is not accepted.
+    if (endpoint.method == "POST") {
+      const auto refused = server.postJson(std::regex_replace(endpoint.path, std::regex("\\{[a-z]+\\}"), "x"), {{"no_such_field", 1}});
+      EXPECT_EQ(refused->status, 400) << name << ": " << refused->body;
+      EXPECT_THAT(errorOf(refused), HasSubstr("\"no_such_field\" is not known here")) << name;
+    }
+  }
 }
 
 TEST(ApiSessions, OpenSolveGetPathCheckAndEditTheWorld) {

@@ -211,7 +211,11 @@ void ApiServer::Impl::addRoute(const ApiRoute& route) {
   const auto handler = [this, route](const httplib::Request& request, httplib::Response& response, const httplib::ContentReader* reader) {
     try {
       const std::string body = reader != nullptr ? readBody(request, *reader, options.maxBodyBytes) : request.body;
-      const ApiResponse answer = guarded([&] { return route.handler(apiRequest(request, body)); });
+      const ApiResponse answer = guarded([&] {
+        const ApiRequest api = apiRequest(request, body);
+        body::onlyFields(api.body, route.bodyFields);
+        return route.handler(api);
+      });
       response.status = answer.status;
       response.set_content(answer.body, answer.contentType);
     } catch (const ApiError& error) {
@@ -372,10 +376,10 @@ void ApiServer::stop() {
   impl_->http.stop();
 }
 
-std::vector<std::pair<std::string, std::string>> ApiServer::endpoints() const {
-  std::vector<std::pair<std::string, std::string>> list;
-  for (const ApiRoute& route : impl_->routes) list.emplace_back(route.method, route.path);
-  list.emplace_back("GET", "/api/runs/{run}/events");
+std::vector<ApiEndpoint> ApiServer::endpoints() const {
+  std::vector<ApiEndpoint> list;
+  for (const ApiRoute& route : impl_->routes) list.push_back({route.method, route.path, route.bodyFields});
+  list.push_back({"GET", "/api/runs/{run}/events", {}});
   return list;
 }
 

@@ -55,6 +55,15 @@ void checkServerOptions(const ServerOptions& options);
 /// other requests always find one.
 std::size_t eventStreamLimit(const ServerOptions& options);
 
+/// One endpoint as the OpenAPI document describes it.
+struct ApiEndpoint {
+  std::string method;
+  /// As OpenAPI writes it: "/api/sessions/{client}/solve".
+  std::string path;
+  /// The request body's fields it accepts (none: it takes no body).
+  std::vector<std::string> bodyFields;
+};
+
 class ApiServer {
  public:
   /// Checks the options and the default problem, and binds the socket (throws InputError for bad
@@ -70,8 +79,8 @@ class ApiServer {
   void serve();
   /// Ends serve(): cancels runs, closes connections. Thread-safe; idempotent.
   void stop();
-  /// Every endpoint (method, OpenAPI path) it answers; the OpenAPI document's test compares them.
-  [[nodiscard]] std::vector<std::pair<std::string, std::string>> endpoints() const;
+  /// Every endpoint it answers; the OpenAPI document's test compares them with the document.
+  [[nodiscard]] std::vector<ApiEndpoint> endpoints() const;
 
  private:
   struct Impl;
