@@ -56,6 +56,7 @@ TEST(ApiRuns, ARunStreamsItsProgressAndKeepsItsDocuments) {
 
   const json status = bodyOf(server.get("/api/runs/" + id));
   EXPECT_EQ(status["state"], "succeeded");
+  EXPECT_EQ(status["problem"], "panda_desk") << "the default problem, by name";
   EXPECT_TRUE(status["report"]["success"].get<bool>());
   const json plan = bodyOf(server.get("/api/runs/" + id + "/files/plan.json"));
   EXPECT_EQ(plan["actions"].size(), 2U);

@@ -40,6 +40,13 @@ TEST(ApiToken, EveryRequestNeedsTheToken) {
   EXPECT_EQ(server.get("/index.html")->status, 401);
   server.setToken("s3cret-token");
   EXPECT_EQ(server.get("/api/health")->status, 200);
+  // The scheme's case does not matter (RFC 7235); another scheme is not a bearer token.
+  httplib::Client raw = server.client();
+  for (const char* scheme : {"bearer", "BEARER", "beaRer"}) {
+    EXPECT_EQ(raw.Get("/api/health", {{"Authorization", std::string(scheme) + " s3cret-token"}})->status, 200) << scheme;
+  }
+  EXPECT_EQ(raw.Get("/api/health", {{"Authorization", "Basic s3cret-token"}})->status, 401);
+  EXPECT_EQ(raw.Get("/api/health", {{"Authorization", "Bearers3cret-token"}})->status, 401);
 
   // The viewer is opened with ?token=...; the cookie set then lets the page load the rest.
   httplib::Client browser = server.client();
@@ -93,16 +100,27 @@ TEST(ApiDataRoot, RequestsNameFilesOnlyUnderTheDataDirectory) {
   ServerOptions options;
   options.dataRoot = root;
   ApiTestServer server(options);
+  const std::string rootPath = fs::canonical(root).string();
   for (const std::string& name : {(temporary.path() / "outside.xml").string(), std::string("../outside.xml"), std::string("/etc/passwd")}) {
     const auto refused = server.postJson("/api/sessions/e/openProblem", {{"problem", name}});
     EXPECT_EQ(refused->status, 403) << name;
-    EXPECT_THAT(errorOf(refused), HasSubstr("outside the server's data directory")) << name;
+    EXPECT_THAT(errorOf(refused), HasSubstr("file " + name + ": outside the server's data directory")) << name;
+    EXPECT_THAT(errorOf(refused), ::testing::Not(HasSubstr(rootPath))) << "the server's own path stays private";
   }
+  const auto nul = server.postJson("/api/sessions/e/openProblem", {{"problem", std::string("broken.xml\0.png", 15)}});
+  EXPECT_EQ(nul->status, 400);
+  EXPECT_THAT(errorOf(nul), HasSubstr("NUL byte"));
+  const auto nulPath = server.get("/api/runs/run-1%00x");
+  EXPECT_EQ(nulPath->status, 400);
+  EXPECT_THAT(errorOf(nulPath), HasSubstr("NUL byte (%00)"));
+  const auto nulFile = server.get("/index%00.html");
+  EXPECT_EQ(nulFile->status, 400);
   const auto missing = server.postJson("/api/sessions/e/openProblem", {{"problem", "nothing.xml"}});
   EXPECT_EQ(missing->status, 404);
   const auto broken = server.postJson("/api/sessions/e/openProblem", {{"problem", "broken.xml"}});
   EXPECT_EQ(broken->status, 400);
   EXPECT_THAT(errorOf(broken), HasSubstr("broken.xml"));
+  EXPECT_THAT(errorOf(broken), ::testing::Not(HasSubstr(rootPath)));
   const auto builtin = server.postJson("/api/sessions/e/openProblem", {{"problem", "ur5_desk"}});
   EXPECT_EQ(builtin->status, 200) << builtin->body;
   const auto obstacle = server.postJson("/api/sessions/e/addObstacle",

@@ -98,9 +98,12 @@ TEST(ApiSessions, OpenSolveGetPathCheckAndEditTheWorld) {
 
   const auto planner = server.postJson(base + "/setPlanner", {{"name", "RRTConnect"}, {"parameters", {{"range", 0.5}}}});
   ASSERT_EQ(planner->status, 200) << planner->body;
+  const double sessionTime = bodyOf(server.get(base))["planner"]["max_planning_time"];
   const auto solved = server.postJson(base + "/solve", {{"time_limit", 5}});
   ASSERT_EQ(solved->status, 200) << solved->body;
   EXPECT_TRUE(bodyOf(solved)["solved"].get<bool>()) << solved->body;
+  EXPECT_NE(sessionTime, 5.0);
+  EXPECT_EQ(bodyOf(server.get(base))["planner"]["max_planning_time"], sessionTime) << "time_limit is for that solve only";
 
   const json path = bodyOf(server.get(base + "/getPath"));
   ASSERT_GE(path["path"].size(), 2U);

@@ -150,9 +150,10 @@ void checkRunNames(const RunRequest& request, const Scene& scene) {
   });
 }
 
-void checkRunNames(const RunRequest& request) {
+std::string checkRunNames(const RunRequest& request) {
   const LoadedProblem loaded = loadProblem(request.problem, request.robot, request.scene);
   checkRunNames(request, loaded.problem.scene);
+  return loaded.name;
 }
 
 RunDocuments runTask(const RunRequest& request, const RunControl& control) {

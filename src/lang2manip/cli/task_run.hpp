@@ -118,8 +118,8 @@ class RunNameError : public InputError {
 /// NotSupportedError for a Kautham planner lang2manip does not run.
 void checkRunNames(const RunRequest& request, const Scene& scene);
 /// Loads the request's problem and checks its names (checkRunNames()): for a run queued to start
-/// later. Throws InputError for a problem that cannot be loaded too.
-void checkRunNames(const RunRequest& request);
+/// later. Returns the problem's name; throws InputError for a problem that cannot be loaded too.
+std::string checkRunNames(const RunRequest& request);
 
 /// Loads the problem, plans, executes and verifies the task of `request`. A task that fails is a
 /// result (success false, the report says why). Throws InputError for a bad problem, arm, planner

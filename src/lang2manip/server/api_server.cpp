@@ -68,6 +68,17 @@ bool sameSecret(const std::string& given, const std::string& expected) {
   return difference == 0;
 }
 
+/// The credentials of "Bearer TOKEN" (the scheme in any case, RFC 7235); "" for another scheme.
+std::string bearerToken(const std::string& header) {
+  const std::size_t space = header.find(' ');
+  if (space == std::string::npos) return "";
+  std::string scheme = header.substr(0, space);
+  std::transform(scheme.begin(), scheme.end(), scheme.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (scheme != "bearer") return "";
+  const std::size_t token = header.find_first_not_of(' ', space);
+  return token == std::string::npos ? "" : header.substr(token);
+}
+
 std::string cookieValue(const httplib::Request& request, const std::string& name) {
   const std::string cookies = request.get_header_value("Cookie");
   const std::string key = name + "=";
@@ -168,7 +179,7 @@ struct ApiServer::Impl {
 bool ApiServer::Impl::authorized(const httplib::Request& request, httplib::Response& response) const {
   if (options.token.empty()) return true;
   const std::string header = request.get_header_value("Authorization");
-  const std::string bearer = header.rfind("Bearer ", 0) == 0 ? header.substr(7) : "";
+  const std::string bearer = bearerToken(header);
   const std::string query = request.get_param_value("token");
   if (sameSecret(bearer, options.token) || sameSecret(cookieValue(request, "lang2manip_token"), options.token)) return true;
   if (sameSecret(query, options.token)) {
@@ -221,7 +232,7 @@ void ApiServer::Impl::addRoute(const ApiRoute& route) {
     } catch (const ApiError& error) {
       // A body left unread would be taken for the next request.
       if (error.status() == 413 || error.status() == 400) response.set_header("Connection", "close");
-      setError(response, error.status(), error.code(), error.what());
+      setError(response, error.status(), error.code(), withoutDataRoot(error.what(), options));
     }
   };
   const auto withBody = [handler](const httplib::Request& request, httplib::Response& response, const httplib::ContentReader& reader) {
@@ -322,7 +333,12 @@ void ApiServer::Impl::configure() {
   http.set_keep_alive_max_count(1000);
   http.set_default_headers({{"X-Content-Type-Options", "nosniff"}});
   http.set_pre_routing_handler([this](const httplib::Request& request, httplib::Response& response) {
-    return authorized(request, response) ? httplib::Server::HandlerResponse::Unhandled : httplib::Server::HandlerResponse::Handled;
+    if (!authorized(request, response)) return httplib::Server::HandlerResponse::Handled;
+    if (request.path.find('\0') != std::string::npos) {
+      setError(response, 400, "bad_request", "the request path has a NUL byte (%00)");
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    return httplib::Server::HandlerResponse::Unhandled;
   });
   http.set_error_handler(httplib::Server::HandlerWithResponse([this](const httplib::Request& request, httplib::Response& response) {
     if (!response.body.empty()) return httplib::Server::HandlerResponse::Unhandled;

@@ -35,8 +35,9 @@ class RunRegistry {
   RunRegistry(const RunRegistry&) = delete;
   RunRegistry& operator=(const RunRegistry&) = delete;
 
-  /// Queues `request`; its id. Throws ApiError 429 when maxQueued runs wait or run.
-  std::string start(RunRequest request);
+  /// Queues `request` (its problem shown as `problemName` in its status); its id. Throws
+  /// ApiError 429 when maxQueued runs wait or run.
+  std::string start(RunRequest request, std::string problemName = "");
   /// {"id", "state", "task", "problem", "created", "success", "error", "events"}; 404 for an unknown id.
   [[nodiscard]] nlohmann::json status(const std::string& id) const;
   /// Every run kept, oldest first (status without events).

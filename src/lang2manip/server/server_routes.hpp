@@ -32,6 +32,10 @@ std::vector<ApiRoute> sessionRoutes(SessionRegistry& sessions, const ServerOptio
 /// stream of a run is served by the server itself (it streams).
 std::vector<ApiRoute> taskRoutes(RunRegistry& runs, const ServerOptions& options);
 
+/// `message` with the data root's absolute path taken out of every file path in it (a client
+/// sees paths as it named them, relative to the data root).
+std::string withoutDataRoot(const std::string& message, const ServerOptions& options);
+
 /// Runs an API operation, turning lang2manip's errors into ApiError: InputError 400,
 /// NotSupportedError 501.
 ApiResponse guarded(const std::function<ApiResponse()>& operation);

@@ -27,13 +27,14 @@ fs::path dataRoot(const ServerOptions& options) {
 }  // namespace
 
 fs::path servedFile(const ServerOptions& options, const std::string& path) {
-  if (path.empty() || path.find('\0') != std::string::npos) throw ApiError(400, "bad_request", "a file name must not be empty");
+  if (path.empty()) throw ApiError(400, "bad_request", "a file name must not be empty");
+  if (path.find('\0') != std::string::npos) throw ApiError(400, "bad_request", "a file name must not have a NUL byte");
   const fs::path root = dataRoot(options);
   std::error_code error;
   const fs::path file = fs::weakly_canonical(fs::path(path).is_absolute() ? fs::path(path) : root / path, error);
   const std::string prefix = root == root.root_path() ? root.string() : root.string() + "/";
   if (error || file.string().rfind(prefix, 0) != 0) {
-    throw ApiError(403, "forbidden", "file " + path.substr(0, 200) + ": outside the server's data directory " + root.string());
+    throw ApiError(403, "forbidden", "file " + path.substr(0, 200) + ": outside the server's data directory");
   }
   if (!fs::is_regular_file(file, error)) throw ApiError(404, "not_found", "file " + path.substr(0, 200) + ": no such file in the data directory");
   return file;
@@ -68,6 +69,16 @@ std::string servedRobot(const ServerOptions& options, const std::string& nameOrP
   const std::vector<std::string> names = builtinRobotNames();
   if (std::find(names.begin(), names.end(), nameOrPath) != names.end()) return nameOrPath;
   return servedFile(options, nameOrPath).string();
+}
+
+std::string withoutDataRoot(const std::string& message, const ServerOptions& options) {
+  std::error_code error;
+  const fs::path root = fs::canonical(options.dataRoot.empty() ? fs::current_path() : options.dataRoot, error);
+  if (error || root == root.root_path()) return message;
+  std::string text = message;
+  const std::string prefix = root.string() + "/";
+  for (std::size_t at = text.find(prefix); at != std::string::npos; at = text.find(prefix, at)) text.erase(at, prefix.size());
+  return text;
 }
 
 ApiResponse guarded(const std::function<ApiResponse()>& operation) {

@@ -154,8 +154,8 @@ std::vector<ApiRoute> plannerVerbs(SessionRegistry& sessions) {
   routes.push_back(verb(sessions, "POST", "solve", false, [](ClientSession& session, const ApiRequest& request) {
     const double timeLimit = body::number(request.body, "time_limit", 0.0);
     if (timeLimit < 0.0 || timeLimit > 3600.0) throw ApiError(400, "bad_request", "body field \"time_limit\": expected 0 to 3600 seconds");
-    if (timeLimit > 0.0) session.planning.setPlannerParameter("_Max Planning Time", std::to_string(timeLimit));
-    return solveJson(session.planning, session.planning.solve());
+    // For this solve only: the session's planner keeps its own _Max Planning Time.
+    return solveJson(session.planning, timeLimit > 0.0 ? session.planning.solveWithin(timeLimit) : session.planning.solve());
   }, {"time_limit"}));
   routes.push_back(verb(sessions, "GET", "getPath", false, [](ClientSession& session, const ApiRequest&) {
     const MotionPlan& plan = session.planning.getPath();

@@ -71,7 +71,8 @@ ApiResponse plan(const ApiRequest& request, const ServerOptions& options) {
   return ApiResponse::json(answer);
 }
 
-RunRequest runRequestOf(const json& request, const ServerOptions& options) {
+/// A run request checked as `run` checks it, and the name of its problem.
+std::pair<RunRequest, std::string> runRequestOf(const json& request, const ServerOptions& options) {
   RunRequest run;
   run.problem = servedProblem(options, body::string(request, "problem", options.defaultProblem));
   run.robot = servedRobot(options, body::string(request, "robot", run.robot));
@@ -100,11 +101,11 @@ RunRequest runRequestOf(const json& request, const ServerOptions& options) {
     }
   }
   try {
-    checkRunNames(run);  // as `run` does, but before the run waits in the queue
+    std::string problem = checkRunNames(run);  // as `run` does, but before the run waits in the queue
+    return {std::move(run), std::move(problem)};
   } catch (const RunNameError& error) {
     throw ApiError(400, "bad_request", "body field \"" + error.field() + "\": " + error.what());
   }
-  return run;
 }
 
 }  // namespace
@@ -115,7 +116,8 @@ std::vector<ApiRoute> taskRoutes(RunRegistry& runs, const ServerOptions& options
   routes.push_back({"POST", "/api/plan", [&options](const ApiRequest& request) { return plan(request, options); },
                     {"problem", "robot", "task", "llm", "rounds"}});
   routes.push_back({"POST", "/api/runs", [&runs, &options](const ApiRequest& request) {
-                      const std::string id = runs.start(runRequestOf(request.body, options));
+                      auto [run, problem] = runRequestOf(request.body, options);
+                      const std::string id = runs.start(std::move(run), std::move(problem));
                       return ApiResponse::json({{"id", id}, {"state", "queued"}, {"status", "/api/runs/" + id},
                                                 {"events", "/api/runs/" + id + "/events"}},
                                                202);
