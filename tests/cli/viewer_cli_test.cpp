@@ -45,7 +45,14 @@ TEST(RunHtml, ThePaperTaskIsOneSelfContainedPageUnderFiveMegabytes) {
   const test::TempDirectory temporary;
   const test::RunResult result = test::run("run --html --out " + temporary.path().string());
   ASSERT_EQ(result.exitCode, 0) << result.output;
-  EXPECT_THAT(result.output, HasSubstr("run.html"));
+  // The "wrote" line lists every file the run wrote.
+  const std::string wrote = result.output.substr(result.output.find("wrote "));
+  std::size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(temporary.path())) {
+    EXPECT_THAT(wrote, HasSubstr(entry.path().filename().string())) << "not listed";
+    ++files;
+  }
+  EXPECT_EQ(files, 11U);
   const fs::path page = temporary.path() / "run.html";
   ASSERT_TRUE(fs::exists(page));
   EXPECT_LT(fs::file_size(page), 5U << 20);
@@ -122,6 +129,7 @@ TEST(SolveHtml, TheSolvedQueriesAreOnePage) {
   const fs::path page = temporary.path() / "solve.html";
   const test::RunResult result = test::run("solve --record-tree --html " + page.string());
   ASSERT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("wrote " + page.string()));
   const std::string html = test::readFileText(page);
   EXPECT_THAT(html, HasSubstr("\"kind\":\"query\""));
   EXPECT_THAT(html, HasSubstr("id=\"lang2manip-glb\""));
