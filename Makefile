@@ -25,7 +25,9 @@ build: deps
 demo: build
 	$(BUILD_DIR)/src/lang2manip/cli/lang2manip run --out lang2manip-run
 
-# The browser tests of the viewer need Debian's chromium (installed here, not for `make demo`).
+# The browser tests of the viewer need Debian's chromium (installed here, not for `make demo`);
+# LANG2MANIP_REQUIRE_BROWSER=1 makes a missing one a failure instead of a skipped test.
+test: export LANG2MANIP_REQUIRE_BROWSER = 1
 test: deps-browser build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 

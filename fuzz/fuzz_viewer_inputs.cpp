@@ -80,7 +80,7 @@ InputOutcome feedViewerDocument(std::string_view input) {
   const std::string glb(input.substr(0, newline));
   bool accepted = true;
   try {
-    checkGlbHeader(glb, "scene.glb");
+    checkGlb(glb, "scene.glb");
   } catch (const InputError&) {
     accepted = false;
   }

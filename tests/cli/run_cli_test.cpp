@@ -364,9 +364,12 @@ TEST(RunCliBadInput, EveryArgumentErrorIsNamed) {
   EXPECT_THAT(result.output, HasSubstr("unknown planner \"NotAPlanner\""));
   result = run("run --ik magic" + out);
   EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.output, HasSubstr("--ik: "));
   EXPECT_THAT(result.output, HasSubstr("magic"));
+  EXPECT_THAT(result.output, HasSubstr("dls"));
   result = run("run --arm tentacle" + out);
   EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.output, HasSubstr("--arm: "));
   EXPECT_THAT(result.output, HasSubstr("unknown manipulator \"tentacle\""));
   result = run("run --rounds 0" + out);
   EXPECT_THAT(result.output, HasSubstr("--rounds 0: must be at least 1"));

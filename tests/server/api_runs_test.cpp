@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
+#include <thread>
 
 #include "server/api_test_server.hpp"
 
@@ -54,6 +56,7 @@ TEST(ApiRuns, ARunStreamsItsProgressAndKeepsItsDocuments) {
 
   const json status = bodyOf(server.get("/api/runs/" + id));
   EXPECT_EQ(status["state"], "succeeded");
+  EXPECT_EQ(status["problem"], "panda_desk") << "the default problem, by name";
   EXPECT_TRUE(status["report"]["success"].get<bool>());
   const json plan = bodyOf(server.get("/api/runs/" + id + "/files/plan.json"));
   EXPECT_EQ(plan["actions"].size(), 2U);
@@ -78,8 +81,16 @@ TEST(ApiRuns, QueuedAndRunningRunsCanBeCancelled) {
   EXPECT_EQ(cancelled->status, 202);
   ASSERT_EQ(server.post("/api/runs/" + first + "/cancel")->status, 202);
   const std::vector<json> firstEvents = streamedEvents(server, first);
-  EXPECT_TRUE(hasEvent(firstEvents, "state", "cancelled") || hasEvent(firstEvents, "state", "failed")) << firstEvents.back().dump();
+  EXPECT_EQ(firstEvents.back()["state"], "cancelled") << firstEvents.back().dump();
+  EXPECT_EQ(bodyOf(server.get("/api/runs/" + first))["state"], "cancelled");
   EXPECT_EQ(bodyOf(server.get("/api/runs/" + second))["state"], "cancelled");
+  // An ended run has nothing to cancel.
+  for (const std::string& ended : {first, second}) {
+    const auto again = server.post("/api/runs/" + ended + "/cancel");
+    EXPECT_EQ(again->status, 409) << again->body;
+    EXPECT_EQ(bodyOf(again)["error"]["code"], "already_finished");
+    EXPECT_THAT(errorOf(again), HasSubstr("already ended (cancelled)"));
+  }
   const auto early = server.get("/api/runs/" + second + "/files/report.json");
   EXPECT_EQ(early->status, 404);
 }
@@ -105,6 +116,22 @@ TEST(ApiRuns, BadRunRequestsAreRefusedBeforeQueueing) {
   const auto acceleration = server.postJson("/api/runs", {{"acceleration_scaling", 0}});
   EXPECT_EQ(acceleration->status, 400);
   EXPECT_THAT(errorOf(acceleration), HasSubstr("\"acceleration_scaling\""));
+  // Names the run would refuse only once it started: refused now, with the valid names.
+  const auto planner = server.postJson("/api/runs", {{"planner", "NotAPlanner"}});
+  EXPECT_EQ(planner->status, 400);
+  EXPECT_THAT(errorOf(planner), HasSubstr("body field \"planner\""));
+  EXPECT_THAT(errorOf(planner), HasSubstr("RRTConnect"));
+  const auto ik = server.postJson("/api/runs", {{"ik", "magic"}});
+  EXPECT_EQ(ik->status, 400);
+  EXPECT_THAT(errorOf(ik), HasSubstr("body field \"ik\""));
+  EXPECT_THAT(errorOf(ik), HasSubstr("dls"));
+  const auto arm = server.postJson("/api/runs", {{"arm", "tentacle"}});
+  EXPECT_EQ(arm->status, 400);
+  EXPECT_THAT(errorOf(arm), HasSubstr("body field \"arm\""));
+  EXPECT_THAT(errorOf(arm), HasSubstr("tentacle"));
+  const auto problem = server.postJson("/api/runs", {{"problem", "nosuch.xml"}});
+  EXPECT_EQ(problem->status, 404);
+  EXPECT_EQ(bodyOf(server.get("/api/runs"))["runs"].size(), 0U) << "nothing was queued";
   const auto timing = server.postJson("/api/runs", {{"timing", "fastest"}});
   EXPECT_EQ(timing->status, 400);
   EXPECT_THAT(errorOf(timing), HasSubstr("rest-to-rest"));
@@ -126,6 +153,49 @@ TEST(ApiRuns, AClientLeavingTheStreamDoesNotStopTheRunOrTheServer) {
   EXPECT_EQ(server.get("/api/health")->status, 200);
   const std::vector<json> events = streamedEvents(server, id);
   EXPECT_EQ(events.back()["state"], "succeeded");
+  const auto late = server.post("/api/runs/" + id + "/cancel");
+  EXPECT_EQ(late->status, 409);
+  EXPECT_THAT(errorOf(late), HasSubstr("already ended (succeeded)"));
+}
+
+TEST(ApiRuns, EventStreamsAreCappedSoOtherRequestsAreServed) {
+  ServerOptions options;
+  options.threads = 6;
+  options.maxEventStreams = 100;  // eventStreamLimit() keeps half of the threads for the rest
+  ASSERT_EQ(eventStreamLimit(options), 3U);
+  ApiTestServer server(options);
+  // The second run waits behind the first: its streams stay open.
+  const std::string first = bodyOf(server.postJson("/api/runs", json::object()))["id"];
+  const std::string id = bodyOf(server.postJson("/api/runs", json::object()))["id"];
+  std::atomic<bool> leave{false};
+  std::atomic<int> reading{0};
+  std::vector<std::thread> watchers;
+  for (int i = 0; i < 3; ++i) {
+    watchers.emplace_back([&] {
+      httplib::Client client = server.client();
+      bool counted = false;
+      (void)client.Get(("/api/runs/" + id + "/events").c_str(), [&](const char*, std::size_t) {
+        if (!counted) ++reading;
+        counted = true;
+        return !leave.load();
+      });
+    });
+  }
+  for (int i = 0; i < 500 && reading.load() < 3; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_EQ(reading.load(), 3);
+  const auto refused = server.get("/api/runs/" + id + "/events");
+  EXPECT_EQ(refused->status, 503);
+  EXPECT_EQ(refused->get_header_value("Retry-After"), "5");
+  EXPECT_THAT(errorOf(refused), HasSubstr("limit of 3 event streams"));
+  const auto started = std::chrono::steady_clock::now();
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(server.get("/api/health")->status, 200);
+  EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(1));
+  leave = true;
+  for (std::thread& watcher : watchers) watcher.join();
+  for (const std::string& run : {first, id}) (void)server.post("/api/runs/" + run + "/cancel");
+  // The slots are given back when the streams end.
+  for (int i = 0; i < 100 && server.get("/api/runs/" + id + "/events")->status == 503; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  EXPECT_EQ(server.get("/api/runs/" + id + "/events")->status, 200);
 }
 
 TEST(ApiTasks, ObserveAndPlan) {

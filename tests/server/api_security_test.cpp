@@ -40,6 +40,13 @@ TEST(ApiToken, EveryRequestNeedsTheToken) {
   EXPECT_EQ(server.get("/index.html")->status, 401);
   server.setToken("s3cret-token");
   EXPECT_EQ(server.get("/api/health")->status, 200);
+  // The scheme's case does not matter (RFC 7235); another scheme is not a bearer token.
+  httplib::Client raw = server.client();
+  for (const char* scheme : {"bearer", "BEARER", "beaRer"}) {
+    EXPECT_EQ(raw.Get("/api/health", {{"Authorization", std::string(scheme) + " s3cret-token"}})->status, 200) << scheme;
+  }
+  EXPECT_EQ(raw.Get("/api/health", {{"Authorization", "Basic s3cret-token"}})->status, 401);
+  EXPECT_EQ(raw.Get("/api/health", {{"Authorization", "Bearers3cret-token"}})->status, 401);
 
   // The viewer is opened with ?token=...; the cookie set then lets the page load the rest.
   httplib::Client browser = server.client();
@@ -93,21 +100,56 @@ TEST(ApiDataRoot, RequestsNameFilesOnlyUnderTheDataDirectory) {
   ServerOptions options;
   options.dataRoot = root;
   ApiTestServer server(options);
+  const std::string rootPath = fs::canonical(root).string();
   for (const std::string& name : {(temporary.path() / "outside.xml").string(), std::string("../outside.xml"), std::string("/etc/passwd")}) {
     const auto refused = server.postJson("/api/sessions/e/openProblem", {{"problem", name}});
     EXPECT_EQ(refused->status, 403) << name;
-    EXPECT_THAT(errorOf(refused), HasSubstr("outside the server's data directory")) << name;
+    EXPECT_THAT(errorOf(refused), HasSubstr("file " + name + ": outside the server's data directory")) << name;
+    EXPECT_THAT(errorOf(refused), ::testing::Not(HasSubstr(rootPath))) << "the server's own path stays private";
   }
+  const auto nul = server.postJson("/api/sessions/e/openProblem", {{"problem", std::string("broken.xml\0.png", 15)}});
+  EXPECT_EQ(nul->status, 400);
+  EXPECT_THAT(errorOf(nul), HasSubstr("NUL byte"));
+  const auto nulPath = server.get("/api/runs/run-1%00x");
+  EXPECT_EQ(nulPath->status, 400);
+  EXPECT_THAT(errorOf(nulPath), HasSubstr("NUL byte (%00)"));
+  const auto nulFile = server.get("/index%00.html");
+  EXPECT_EQ(nulFile->status, 400);
   const auto missing = server.postJson("/api/sessions/e/openProblem", {{"problem", "nothing.xml"}});
   EXPECT_EQ(missing->status, 404);
   const auto broken = server.postJson("/api/sessions/e/openProblem", {{"problem", "broken.xml"}});
   EXPECT_EQ(broken->status, 400);
   EXPECT_THAT(errorOf(broken), HasSubstr("broken.xml"));
+  EXPECT_THAT(errorOf(broken), ::testing::Not(HasSubstr(rootPath)));
   const auto builtin = server.postJson("/api/sessions/e/openProblem", {{"problem", "ur5_desk"}});
   EXPECT_EQ(builtin->status, 200) << builtin->body;
   const auto obstacle = server.postJson("/api/sessions/e/addObstacle",
                                         {{"urdf", "/etc/hostname"}, {"name", "x"}, {"pose", {{"position", {0, 0, 0}}}}});
   EXPECT_EQ(obstacle->status, 403);
+}
+
+TEST(ApiDataRoot, TheOperatorsOwnProblemIsServedWhereverItLies) {
+  const test::TempDirectory temporary;
+  const fs::path problem = fs::canonical(test::testDataDirectory() / "../../data/problems/desk/ur5_desk.xml");
+  ServerOptions options;
+  options.dataRoot = temporary.path();
+  options.defaultProblem = problem.string();
+  ApiTestServer server(options);
+  const auto opened = server.post("/api/sessions/o/openProblem");
+  EXPECT_EQ(opened->status, 200) << opened->body;
+  EXPECT_EQ(bodyOf(opened)["problem"], "ur5_desk");
+  const auto named = server.postJson("/api/sessions/o/openProblem", {{"problem", problem.string()}});
+  EXPECT_EQ(named->status, 200) << named->body;
+  // Not a licence for its directory.
+  const auto sibling = server.postJson("/api/sessions/o/openProblem", {{"problem", (problem.parent_path() / "tx90_desk.xml").string()}});
+  EXPECT_EQ(sibling->status, 403);
+  options.defaultProblem = (temporary.path() / "nosuch.xml").string();
+  try {
+    ApiServer refused(options);
+    ADD_FAILURE() << "a server started with a problem that does not exist";
+  } catch (const InputError& error) {
+    EXPECT_THAT(error.what(), HasSubstr("nosuch.xml"));
+  }
 }
 
 TEST(ApiOptions, BadServerOptionsAreRefused) {
@@ -123,6 +165,23 @@ TEST(ApiOptions, BadServerOptionsAreRefused) {
   options = {};
   options.host = "203.0.113.7";  // TEST-NET-3: not an address of this machine
   EXPECT_THROW(ApiServer{options}, InputError);
+  options = {};
+  options.maxEventStreams = 0;
+  EXPECT_THROW(ApiServer{options}, InputError);
+}
+
+TEST(ApiOptions, ASecondServerOnAPortInUseFailsClearly) {
+  ApiTestServer first;
+  ServerOptions options;
+  options.port = first.port();
+  try {
+    ApiServer second(options);
+    ADD_FAILURE() << "a second server bound port " << first.port();
+  } catch (const InputError& error) {
+    EXPECT_THAT(error.what(), HasSubstr("address in use"));
+    EXPECT_THAT(error.what(), HasSubstr(std::to_string(first.port())));
+  }
+  EXPECT_EQ(first.get("/api/health")->status, 200);
 }
 
 }  // namespace

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
+#include <regex>
 #include <set>
 
 #include "server/api_test_server.hpp"
@@ -33,11 +35,51 @@ TEST(ApiOpenApi, DocumentsExactlyTheEndpointsTheServerAnswers) {
     }
   }
   std::set<std::pair<std::string, std::string>> served;
-  for (const auto& endpoint : server.server().endpoints()) served.insert(endpoint);
+  for (const ApiEndpoint& endpoint : server.server().endpoints()) served.emplace(endpoint.method, endpoint.path);
   EXPECT_EQ(documented, served);
   const auto answer = server.get("/api/openapi.json");
   ASSERT_TRUE(answer);
   EXPECT_EQ(bodyOf(answer), document);
+}
+
+/// The schema of an operation's JSON request body ($ref resolved); null when it has none.
+json requestSchema(const json& document, const json& operation) {
+  if (!operation.contains("requestBody")) return nullptr;
+  json schema = operation["requestBody"]["content"]["application/json"]["schema"];
+  if (schema.contains("$ref")) {
+    const std::string reference = schema["$ref"];
+    schema = document["components"]["schemas"][reference.substr(reference.rfind('/') + 1)];
+  }
+  return schema;
+}
+
+TEST(ApiOpenApi, DocumentsTheBodyFieldsEachEndpointAccepts) {
+  ApiTestServer server;
+  const json document = json::parse(openApiDocument());
+  for (const ApiEndpoint& endpoint : server.server().endpoints()) {
+    std::string method = endpoint.method;
+    std::transform(method.begin(), method.end(), method.begin(), ::tolower);
+    const json& operation = document["paths"][endpoint.path][method];
+    const std::string name = endpoint.method + " " + endpoint.path;
+    const json schema = requestSchema(document, operation);
+    std::set<std::string> documented;
+    if (!schema.is_null()) {
+      const json properties = schema.value("properties", json::object());
+      for (const auto& [field, value] : properties.items()) documented.insert(field);
+      EXPECT_EQ(schema.value("additionalProperties", true), false) << name << ": unknown fields are refused";
+      // A body is required exactly when some field is.
+      EXPECT_EQ(operation["requestBody"].value("required", false), !schema.value("required", json::array()).empty()) << name;
+      for (const json& field : schema.value("required", json::array())) EXPECT_TRUE(documented.count(field.get<std::string>())) << name << " " << field;
+    }
+    const std::set<std::string> accepted(endpoint.bodyFields.begin(), endpoint.bodyFields.end());
+    EXPECT_EQ(documented, accepted) << name;
+    // And the server does refuse what is not accepted.
+    if (endpoint.method == "POST") {
+      const auto refused = server.postJson(std::regex_replace(endpoint.path, std::regex("\\{[a-z]+\\}"), "x"), {{"no_such_field", 1}});
+      EXPECT_EQ(refused->status, 400) << name << ": " << refused->body;
+      EXPECT_THAT(errorOf(refused), HasSubstr("\"no_such_field\" is not known here")) << name;
+    }
+  }
 }
 
 TEST(ApiSessions, OpenSolveGetPathCheckAndEditTheWorld) {
@@ -56,9 +98,12 @@ TEST(ApiSessions, OpenSolveGetPathCheckAndEditTheWorld) {
 
   const auto planner = server.postJson(base + "/setPlanner", {{"name", "RRTConnect"}, {"parameters", {{"range", 0.5}}}});
   ASSERT_EQ(planner->status, 200) << planner->body;
+  const double sessionTime = bodyOf(server.get(base))["planner"]["max_planning_time"];
   const auto solved = server.postJson(base + "/solve", {{"time_limit", 5}});
   ASSERT_EQ(solved->status, 200) << solved->body;
   EXPECT_TRUE(bodyOf(solved)["solved"].get<bool>()) << solved->body;
+  EXPECT_NE(sessionTime, 5.0);
+  EXPECT_EQ(bodyOf(server.get(base))["planner"]["max_planning_time"], sessionTime) << "time_limit is for that solve only";
 
   const json path = bodyOf(server.get(base + "/getPath"));
   ASSERT_GE(path["path"].size(), 2U);
@@ -180,8 +225,53 @@ TEST(ApiRequests, MalformedOversizedAndUnknownRequestsGetJsonErrors) {
   EXPECT_THAT(errorOf(badClient), HasSubstr("client id"));
   const auto text = server.client().Post("/api/sessions/d/openProblem", "problem=x", "application/x-www-form-urlencoded");
   EXPECT_EQ(text->status, 415);
+  EXPECT_THAT(errorOf(text), HasSubstr("Content-Type: application/json"));
+  EXPECT_EQ(bodyOf(text)["error"]["code"], "unsupported_media_type");
+  EXPECT_EQ(bodyOf(large)["error"]["code"], "payload_too_large");
   // The server still serves after all that.
   EXPECT_EQ(server.get("/api/health")->status, 200);
+}
+
+std::string rawPost(const std::string& path, const std::string& headers = "") {
+  return "POST " + path + " HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n" + headers + "\r\n";
+}
+
+TEST(ApiRequests, ChunkedBodiesAreLimitedWhileTheyAreRead) {
+  ServerOptions options;
+  options.maxBodyBytes = 4096;
+  ApiTestServer server(options);
+  const std::string chunked = "Content-Type: application/json\r\nTransfer-Encoding: chunked\r\n";
+  const std::string small = rawPost("/api/sessions/c/openProblem", chunked) + "2\r\n{}\r\n0\r\n\r\n";
+  const std::string fine = test::rawExchange(server.port(), small);
+  EXPECT_EQ(test::rawStatus(fine), 200) << fine;
+  // A chunk of 32 MiB that never ends: the answer must come once the limit is passed, not when
+  // the body is complete (it never is).
+  const auto started = std::chrono::steady_clock::now();
+  const std::string endless = test::rawExchange(server.port(), rawPost("/api/sessions/c/openProblem", chunked) + "2000000\r\n", 64 * 1024);
+  EXPECT_EQ(test::rawStatus(endless), 413) << endless.substr(0, 300);
+  EXPECT_EQ(test::rawBody(endless)["error"]["code"], "payload_too_large") << endless.substr(0, 300);
+  EXPECT_THAT(test::rawBody(endless)["error"].value("message", ""), HasSubstr("larger than 4096 bytes"));
+  EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(4)) << "the server waited for the whole body";
+  const std::string broken = test::rawExchange(server.port(), rawPost("/api/sessions/c/openProblem", chunked) + "zz\r\n{}\r\n0\r\n\r\n");
+  EXPECT_EQ(test::rawStatus(broken), 400) << broken;
+  EXPECT_EQ(server.get("/api/health")->status, 200);
+}
+
+TEST(ApiRequests, PostsWithoutABodyMeanAnEmptyObject) {
+  ApiTestServer server;
+  // No Content-Length, no chunked encoding: what `curl -X POST URL` sends.
+  const std::string open = test::rawExchange(server.port(), rawPost("/api/sessions/n/openProblem"));
+  EXPECT_EQ(test::rawStatus(open), 200) << open;
+  const std::string solve = test::rawExchange(server.port(), rawPost("/api/sessions/n/solve"));
+  EXPECT_NE(test::rawStatus(solve), 400) << solve;
+  EXPECT_TRUE(test::rawBody(solve).is_object()) << solve;
+  const std::string close = test::rawExchange(server.port(), rawPost("/api/sessions/n/closeProblem"));
+  EXPECT_EQ(test::rawStatus(close), 200) << close;
+  const std::string cancel = test::rawExchange(server.port(), rawPost("/api/runs/run-1/cancel"));
+  EXPECT_EQ(test::rawStatus(cancel), 404) << cancel;
+  EXPECT_THAT(test::rawBody(cancel)["error"].value("message", ""), HasSubstr("run-1"));
+  const std::string remove = test::rawExchange(server.port(), "DELETE /api/sessions/n HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n");
+  EXPECT_EQ(test::rawStatus(remove), 200) << remove;
 }
 
 TEST(ApiRequests, SessionLimitIsAClearError) {

@@ -8,6 +8,11 @@
 
 #include <httplib.h>
 
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <sys/time.h>
+#include <unistd.h>
+
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
@@ -64,6 +69,43 @@ class ApiTestServer {
   ApiServer server_;
   std::thread thread_;
 };
+
+/// Sends `request` as raw bytes to 127.0.0.1:`port` (requests cpp-httplib's own client would not
+/// write; send "Connection: close"), then `more` bytes of `filler` while the server reads, and
+/// returns what the server answered until it closed or `timeoutSeconds` passed.
+inline std::string rawExchange(int port, const std::string& request, std::size_t more = 0, char filler = 'x', int timeoutSeconds = 10) {
+  const int socket = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<std::uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  timeval timeout{timeoutSeconds, 0};
+  ::setsockopt(socket, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof(timeout));
+  ::setsockopt(socket, SOL_SOCKET, SO_SNDTIMEO, &timeout, sizeof(timeout));
+  std::string answer;
+  if (::connect(socket, reinterpret_cast<const sockaddr*>(&address), sizeof(address)) == 0) {
+    ::send(socket, request.data(), request.size(), MSG_NOSIGNAL);
+    const std::string block(65536, filler);
+    for (std::size_t sent = 0; sent < more;) {
+      const ssize_t n = ::send(socket, block.data(), std::min(block.size(), more - sent), MSG_NOSIGNAL);
+      if (n <= 0) break;
+      sent += static_cast<std::size_t>(n);
+    }
+    char buffer[4096];
+    for (ssize_t n; (n = ::recv(socket, buffer, sizeof(buffer), 0)) > 0;) answer.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(socket);
+  return answer;
+}
+
+/// The status of a raw HTTP answer (0 when there is none).
+inline int rawStatus(const std::string& answer) { return answer.rfind("HTTP/1.1 ", 0) == 0 ? std::stoi(answer.substr(9, 3)) : 0; }
+
+/// The JSON body of a raw HTTP answer (null when it is not JSON).
+inline nlohmann::json rawBody(const std::string& answer) {
+  const std::size_t start = answer.find("\r\n\r\n");
+  return start == std::string::npos ? nlohmann::json() : nlohmann::json::parse(answer.substr(start + 4), nullptr, false);
+}
 
 /// The JSON body of a response (null when it is not JSON).
 inline nlohmann::json bodyOf(const httplib::Result& result) {

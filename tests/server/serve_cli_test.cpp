@@ -80,6 +80,21 @@ TEST(ServeCli, BadOptionsExitWithAMessage) {
   const test::RunResult root = test::run("serve --port 0 --data-root /nonexistent-root");
   EXPECT_EQ(root.exitCode, 1);
   EXPECT_THAT(root.output, HasSubstr("--data-root"));
+  const test::RunResult problem = test::run("serve nosuch.xml --port 0", true, "timeout 20");
+  EXPECT_EQ(problem.exitCode, 1);
+  EXPECT_THAT(problem.output, HasSubstr("PROBLEM nosuch.xml"));
+  EXPECT_THAT(problem.output, ::testing::Not(HasSubstr("serving on")));
+}
+
+TEST(ServeCli, ASecondServeOnAPortInUseExitsWithAMessage) {
+  const test::TempDirectory temporary;
+  ServeProcess first(temporary.path(), "--port 0");
+  const int port = first.port();
+  ASSERT_GT(port, 0) << first.log();
+  // timeout: a second server that starts would serve until killed.
+  const test::RunResult second = test::run("serve --port " + std::to_string(port), true, "timeout 20");
+  EXPECT_EQ(second.exitCode, 1);
+  EXPECT_THAT(second.output, HasSubstr("address in use"));
 }
 
 TEST(BenchApiCli, HundredConcurrentClientsWithoutAnError) {

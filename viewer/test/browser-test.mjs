@@ -4,6 +4,7 @@
 // Usage: node test/browser-test.mjs --url URL [--screenshot FILE] [--expect-actions N]
 //          [--expect-animation] [--expect-source inline|url|session] [--expect-error TEXT]
 //          [--expect-time T] [--no-play] [--min-scene-share F] [--timeout SECONDS] [--chromium PATH] [--viewport WxH]
+//          [--expect-text ID=TEXT]...
 // URL may be file:///.../run.html or http://127.0.0.1:PORT/...; with `#sheet=` in it the page is
 // checked as a contact sheet. Exits 0 when every check passed, 1 with "FAIL: ..." otherwise.
 import { chromium } from 'playwright-core';
@@ -15,10 +16,10 @@ const USAGE =
   'usage: node test/browser-test.mjs --url URL [--screenshot FILE] [--expect-actions N] [--expect-animation]\n' +
   '         [--expect-source inline|url|session] [--expect-error TEXT] [--expect-time T] [--no-play]\n' +
   '         [--min-scene-share F] [--timeout SECONDS]\n' +
-  '         [--chromium PATH] [--viewport WxH]';
+  '         [--chromium PATH] [--viewport WxH] [--expect-text ID=TEXT]...';
 
 function parseArgs(argv) {
-  const args = { url: null, screenshot: null, expectActions: null, expectAnimation: false, expectSource: null, expectError: null, expectTime: null, play: true, minSceneShare: 0.01, timeout: 120, chromium: process.env.CHROMIUM || '/usr/bin/chromium', viewport: [1280, 800] };
+  const args = { url: null, screenshot: null, expectActions: null, expectAnimation: false, expectSource: null, expectError: null, expectTime: null, play: true, minSceneShare: 0.01, timeout: 120, chromium: process.env.CHROMIUM || '/usr/bin/chromium', viewport: [1280, 800], expectTexts: [] };
   for (let i = 0; i < argv.length; i++) {
     const name = argv[i];
     const value = () => {
@@ -37,6 +38,11 @@ function parseArgs(argv) {
     else if (name === '--timeout') args.timeout = Number(value());
     else if (name === '--chromium') args.chromium = value();
     else if (name === '--viewport') args.viewport = value().split('x').map(Number);
+    else if (name === '--expect-text') {
+      const [id, ...text] = value().split('=');
+      if (!id || text.length === 0) throw new Error('--expect-text needs ID=TEXT');
+      args.expectTexts.push({ id, text: text.join('=') });
+    }
     else if (name === '--help' || name === '-h') {
       console.log(USAGE);
       process.exit(0);
@@ -223,6 +229,32 @@ async function run(args) {
       check(changed > 0.001, `toggling collision geometry changed ${(changed * 100).toFixed(3)}% of the pixels`);
       await page.click('#toggle-collision');
       log(`#toggle-collision swaps visual and collision geometry (${(changed * 100).toFixed(1)}% of the pixels changed)`);
+    }
+
+    // Axes at every link and object frame appear and disappear with their toggle (paused, so that
+    // only the toggle changes the picture).
+    await page.evaluate(() => {
+      window.lang2manipViewer.pause();
+      window.lang2manipViewer.seek(0);
+      return window.__l2mTest.remember();
+    });
+    await page.click('#toggle-axes');
+    const axes = await page.evaluate(() => (window.lang2manipViewer.render(), window.__l2mTest.changedShare()));
+    check(axes > 0.0003, `toggling the axes changed ${(axes * 100).toFixed(3)}% of the pixels`);
+    await page.click('#toggle-axes');
+    const axesOff = await page.evaluate(() => (window.lang2manipViewer.render(), window.__l2mTest.changedShare()));
+    check(axesOff < axes / 10, `the axes stay after toggling them off (${(axesOff * 100).toFixed(3)}% of the pixels still differ)`);
+    log(`#toggle-axes shows and hides the frames (${(axes * 100).toFixed(2)}% of the pixels changed)`);
+
+    // The run document's text sections show its content (as text).
+    for (const { id, text } of args.expectTexts) {
+      const shown = await page.evaluate((element) => {
+        const found = document.getElementById(element);
+        return found ? found.textContent : null;
+      }, id);
+      check(shown !== null, `no element #${id}`);
+      check(shown.includes(text), `#${id} does not contain "${text}" (it shows "${shown.slice(0, 120)}")`);
+      log(`#${id} shows "${text}"`);
     }
 
     const duration = info.duration;

@@ -3,7 +3,8 @@
 // snapshot and a #sheet= contact sheet. Screenshots go to OUT/shots/.
 // Usage: node test/run-tests.mjs [--out DIR] [--lang2manip PATH_TO_CLI]
 //   --lang2manip: also `lang2manip gltf -o OUT/desk.glb` and show it through ?glb= (a real scene).
-// Prints one line per case and "N passed, N failed"; exits 1 when a case failed.
+// Prints one line per case and "N passed, N failed"; exits 1 when a case failed, 77 without
+// Chromium (1 when LANG2MANIP_REQUIRE_BROWSER=1).
 import { spawn } from 'node:child_process';
 import { existsSync } from 'node:fs';
 import { join, resolve, dirname } from 'node:path';
@@ -39,6 +40,14 @@ function runCommand(command, args) {
     child.on('error', () => done(127));
     child.on('close', (code) => done(code));
   });
+}
+
+const chromium = process.env.CHROMIUM || '/usr/bin/chromium';
+if (!existsSync(chromium)) {
+  // `make test` installs Chromium and sets LANG2MANIP_REQUIRE_BROWSER=1: there, a missing one fails.
+  const required = process.env.LANG2MANIP_REQUIRE_BROWSER === '1';
+  console.log(`run-tests: ${required ? 'FAILED' : 'skipped'}: no Chromium at ${chromium} (Debian: apt-get install chromium; or set CHROMIUM)`);
+  process.exit(required ? 1 : 77);
 }
 
 if (!existsSync(join(out, 'sample-run.html'))) {

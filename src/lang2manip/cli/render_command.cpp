@@ -6,9 +6,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -75,14 +77,15 @@ std::string findChromium(const std::string& given) {
   throw InputError("render: needs Chromium to draw (Debian: apt-get install chromium), or --chromium PATH");
 }
 
-/// Runs `arguments` with its output discarded; false when it fails or outlives `seconds`.
-bool runQuietly(const std::vector<std::string>& arguments, double seconds) {
+/// Runs `arguments` with stderr discarded and stdout written to `output` (discarded when empty);
+/// false when it fails or outlives `seconds`.
+bool runQuietly(const std::vector<std::string>& arguments, double seconds, const fs::path& output = {}) {
   std::vector<char*> argv;
   for (const std::string& argument : arguments) argv.push_back(const_cast<char*>(argument.c_str()));
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 1, output.empty() ? "/dev/null" : output.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
   posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
   pid_t child = 0;
   const int spawned = posix_spawn(&child, argv[0], &actions, nullptr, argv.data(), environ);
@@ -101,18 +104,59 @@ bool runQuietly(const std::vector<std::string>& arguments, double seconds) {
   return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
+/// The value of attribute `name` in the HTML tag `tag`, entities decoded ("" when absent).
+std::string attributeOf(const std::string& tag, const std::string& name) {
+  const std::size_t start = tag.find(" " + name + "=\"");
+  if (start == std::string::npos) return "";
+  const std::size_t from = start + name.size() + 3;
+  const std::string raw = tag.substr(from, tag.find('"', from) - from);
+  std::string text;
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    bool decoded = false;
+    static constexpr std::pair<const char*, char> kEntities[] = {{"&quot;", '"'}, {"&amp;", '&'}, {"&lt;", '<'}, {"&gt;", '>'}, {"&#39;", '\''}};
+    for (const auto& [entity, character] : kEntities) {
+      if (raw.compare(i, std::strlen(entity), entity) == 0) {
+        text += character;
+        i += std::strlen(entity) - 1;
+        decoded = true;
+        break;
+      }
+    }
+    if (!decoded) text += raw[i];
+  }
+  return text;
+}
+
+/// What the viewer reports on <body>: data-state ("ready", "rendered", "error", ...) and
+/// data-error (viewer/README.md).
+struct PageState {
+  std::string state;
+  std::string error;
+};
+
 class Snapshotter {
  public:
   Snapshotter(std::string chromium, fs::path page, fs::path profile, double timeout)
       : chromium_(std::move(chromium)), page_(std::move(page)), profile_(std::move(profile)), timeout_(timeout) {}
 
+  /// What the viewer reports once the page with `hash` is drawn at `width` x `height`.
+  [[nodiscard]] PageState pageState(const std::string& hash, int width, int height) const {
+    const fs::path dom = profile_.parent_path() / "dom.html";
+    if (!runQuietly(arguments(hash, width, height, "--dump-dom"), timeout_, dom)) {
+      throw InputError("render: " + chromium_ + " did not load the viewer (within " + std::to_string(static_cast<int>(timeout_)) + " s)");
+    }
+    std::ifstream in(dom, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    const std::string html = text.str();
+    const std::size_t body = html.find("<body");
+    const std::string tag = body == std::string::npos ? "" : html.substr(body, html.find('>', body) - body);
+    return {attributeOf(tag, "data-state"), attributeOf(tag, "data-error")};
+  }
+
   /// Draws the page with `hash` into `png` at `width` x `height`.
   void shoot(const std::string& hash, const fs::path& png, int width, int height) const {
-    std::vector<std::string> arguments{chromium_, "--headless", "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--hide-scrollbars",
-                                       "--mute-audio", "--no-first-run", "--user-data-dir=" + profile_.string(),
-                                       "--window-size=" + std::to_string(width) + "," + std::to_string(height),
-                                       "--virtual-time-budget=30000", "--screenshot=" + png.string(), "file://" + page_.string() + "#" + hash};
-    if (::geteuid() == 0) arguments.insert(arguments.begin() + 1, "--no-sandbox");  // Chromium refuses root otherwise
+    const std::vector<std::string> arguments = this->arguments(hash, width, height, "--screenshot=" + png.string());
     std::error_code error;
     fs::remove(png, error);
     if (!runQuietly(arguments, timeout_) || !fs::is_regular_file(png, error) || fs::file_size(png, error) < 100) {
@@ -121,6 +165,15 @@ class Snapshotter {
   }
 
  private:
+  [[nodiscard]] std::vector<std::string> arguments(const std::string& hash, int width, int height, const std::string& output) const {
+    std::vector<std::string> arguments{chromium_, "--headless", "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--hide-scrollbars",
+                                       "--mute-audio", "--no-first-run", "--user-data-dir=" + profile_.string(),
+                                       "--window-size=" + std::to_string(width) + "," + std::to_string(height),
+                                       "--virtual-time-budget=30000", output, "file://" + page_.string() + "#" + hash};
+    if (::geteuid() == 0) arguments.insert(arguments.begin() + 1, "--no-sandbox");  // Chromium refuses root otherwise
+    return arguments;
+  }
+
   std::string chromium_;
   fs::path page_;
   fs::path profile_;
@@ -140,15 +193,67 @@ std::string hashText(double time) {
   return text.str();
 }
 
+/// AZIMUTH,ELEVATION[,DISTANCE] as the viewer's camera= takes it; "" stays "" (the default view).
+std::string checkedCamera(const std::string& text) {
+  const auto refuse = [&text] {
+    return InputError("render: --camera " + text + ": expected AZIMUTH,ELEVATION[,DISTANCE]: degrees, degrees from -90 to 90, metres > 0");
+  };
+  if (text.empty()) return text;
+  if (text.back() == ',') throw refuse();
+  std::vector<double> values;
+  std::istringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    double value = 0.0;
+    const auto [end, error] = std::from_chars(item.data(), item.data() + item.size(), value);
+    if (error != std::errc() || end != item.data() + item.size() || !std::isfinite(value)) throw refuse();
+    values.push_back(value);
+  }
+  if (values.size() < 2 || values.size() > 3 || std::abs(values[1]) > 90.0 || (values.size() == 3 && values[2] <= 0.0)) throw refuse();
+  return text;
+}
+
+void checkOptions(const RenderOptions& options) {
+  if (options.columns < 1 || options.columns > 8) throw InputError("render: --columns must be 1 to 8");
+  if (!(options.timeoutSeconds > 0.0 && options.timeoutSeconds <= 3600.0)) {
+    throw InputError("render: --timeout " + hashText(options.timeoutSeconds) + ": expected more than 0 and at most 3600 seconds");
+  }
+  (void)checkedCamera(options.camera);
+}
+
+/// A run directory's viewer.json and scene.glb, checked.
+struct RenderInput {
+  json document;
+  std::vector<ViewerMoment> moments;
+  std::string glb;
+};
+
+RenderInput readRun(const fs::path& run) {
+  RenderInput input;
+  const fs::path documentFile = run / "viewer.json";
+  input.document = parseJsonWithinLimits(readWhole(documentFile, "the run document"), {}, documentFile.string());
+  input.moments = viewerMoments(input.document, documentFile.string());
+  input.glb = readWhole(run / "scene.glb", "the scene");
+  checkGlb(input.glb, (run / "scene.glb").string());
+  return input;
+}
+
+/// The contact sheet's hash: every moment's time and label.
+std::string sheetHash(const std::vector<ViewerMoment>& moments, int columns, const std::string& camera) {
+  std::string times;
+  std::string labels;
+  for (std::size_t i = 0; i < moments.size(); ++i) {
+    times += (i ? "," : "") + hashText(moments[i].time);
+    labels += (i ? "|" : "") + moments[i].label;
+  }
+  return "sheet=" + times + "&labels=" + labels + "&cols=" + std::to_string(columns) + camera;
+}
+
 void render(const RenderOptions& options, std::ostream& out) {
   const fs::path run(options.runDirectory);
   const auto [width, height] = sizeOf(options.size);
-  if (options.columns < 1 || options.columns > 8) throw InputError("render: --columns must be 1 to 8");
-  const fs::path documentFile = run / "viewer.json";
-  const json document = parseJsonWithinLimits(readWhole(documentFile, "the run document"), {}, documentFile.string());
-  const std::vector<ViewerMoment> moments = viewerMoments(document, documentFile.string());
-  const std::string glb = readWhole(run / "scene.glb", "the scene");
-  checkGlbHeader(glb, (run / "scene.glb").string());
+  checkOptions(options);
+  const RenderInput input = readRun(run);
+  const std::vector<ViewerMoment>& moments = input.moments;
   const std::string chromium = findChromium(options.chromium);
   const fs::path out_ = options.out.empty() ? run / "render" : fs::path(options.out);
   std::error_code error;
@@ -163,26 +268,26 @@ void render(const RenderOptions& options, std::ostream& out) {
       fs::remove_all(path, ignored);
     }
   } cleanup{work};
-  std::ofstream(work / "run.html", std::ios::binary) << runPageHtml(document, glb, viewerScript());
+  std::ofstream(work / "run.html", std::ios::binary) << runPageHtml(input.document, input.glb, viewerScript());
   const Snapshotter snapshots(chromium, work / "run.html", work / "profile", options.timeoutSeconds);
   const std::string camera = options.camera.empty() ? "" : "&camera=" + options.camera;
-  std::string times;
-  std::string labels;
+  const int columns = std::min(options.columns, static_cast<int>(moments.size()));
+  const int rows = (static_cast<int>(moments.size()) + columns - 1) / columns;
+  const int sheetHeight = 56 + rows * ((width / columns) * 3 / 4 + 36);
+  const std::string sheet = sheetHash(moments, columns, camera);
+  // Asked first, so that no picture of the viewer's error banner is written.
+  const PageState page = snapshots.pageState(sheet, width, sheetHeight);
+  if (page.state == "error") throw InputError("render: the viewer cannot show " + run.string() + ": " + page.error);
+  if (page.state != "rendered") throw InputError("render: the viewer did not finish drawing " + run.string() + " (its state: \"" + page.state + "\")");
   for (std::size_t i = 0; i < moments.size(); ++i) {
     const std::string index = (i + 1 < 10 ? "0" : "") + std::to_string(i + 1);
     const fs::path png = out_ / (index + "-" + fileLabel(moments[i].label) + ".png");
     snapshots.shoot("t=" + hashText(moments[i].time) + "&ui=0" + camera, png, width, height);
     out << "  " << png.string() << "  (" << moments[i].label << ", t = " << hashText(moments[i].time) << " s)\n";
-    times += (i ? "," : "") + hashText(moments[i].time);
-    labels += (i ? "|" : "") + moments[i].label;
   }
-  const int columns = std::min(options.columns, static_cast<int>(moments.size()));
-  const int rows = (static_cast<int>(moments.size()) + columns - 1) / columns;
-  const int cellHeight = (width / columns) * 3 / 4;
-  const fs::path sheet = out_ / "contact-sheet.png";
-  snapshots.shoot("sheet=" + times + "&labels=" + labels + "&cols=" + std::to_string(columns) + camera, sheet, width,
-                  56 + rows * (cellHeight + 36));
-  out << "  " << sheet.string() << "  (contact sheet of " << moments.size() << " moments)\n";
+  const fs::path sheetFile = out_ / "contact-sheet.png";
+  snapshots.shoot(sheet, sheetFile, width, sheetHeight);
+  out << "  " << sheetFile.string() << "  (contact sheet of " << moments.size() << " moments)\n";
 }
 
 }  // namespace

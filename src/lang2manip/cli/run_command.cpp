@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "lang2manip/cli/commands.hpp"
 #include "lang2manip/cli/problem_loading.hpp"
@@ -73,19 +74,35 @@ void writeFile(const fs::path& path, const std::string& text) {
   if (!file) throw InputError("run: cannot write " + path.string());
 }
 
-void writeDocuments(const fs::path& out, const RunDocuments& documents) {
-  writeFile(out / "observation.json", documents.observation.dump(2) + "\n");
-  writeFile(out / "observation.txt", documents.observationText);
-  writeFile(out / "prompt.txt", documents.prompt);
-  if (documents.plan) writeFile(out / "plan.json", documents.plan->dump(2) + "\n");
+/// Writes the run's documents into `out`; the names of the files written, in order.
+std::vector<std::string> writeDocuments(const fs::path& out, const RunDocuments& documents) {
+  std::vector<std::string> written;
+  const auto write = [&](const std::string& name, const std::string& text) {
+    writeFile(out / name, text);
+    written.push_back(name);
+  };
+  write("observation.json", documents.observation.dump(2) + "\n");
+  write("observation.txt", documents.observationText);
+  write("prompt.txt", documents.prompt);
+  if (documents.plan) write("plan.json", documents.plan->dump(2) + "\n");
   if (documents.trajectory) {
-    writeFile(out / "trajectory.json", documents.trajectory->dump(2) + "\n");
-    writeFile(out / "trajectory.csv", documents.trajectoryCsv);
-    writeFile(out / "robot_trajectory.json", documents.robotTrajectory.dump(1) + "\n");
+    write("trajectory.json", documents.trajectory->dump(2) + "\n");
+    write("trajectory.csv", documents.trajectoryCsv);
+    write("robot_trajectory.json", documents.robotTrajectory.dump(1) + "\n");
   }
-  writeFile(out / "report.json", documents.report.dump(2) + "\n");
-  writeFile(out / "scene.glb", documents.sceneGlb);
-  writeFile(out / "viewer.json", documents.viewerDocument.dump(1) + "\n");
+  write("report.json", documents.report.dump(2) + "\n");
+  write("scene.glb", documents.sceneGlb);
+  write("viewer.json", documents.viewerDocument.dump(1) + "\n");
+  return written;
+}
+
+/// runTask(), a bad name reported with its flag.
+RunDocuments runTaskNamingFlags(const RunRequest& request) {
+  try {
+    return runTask(request);
+  } catch (const RunNameError& error) {
+    throw InputError("run: --" + error.field() + ": " + error.what());
+  }
 }
 
 void runCommand(const RunOptions& options, std::ostream& out) {
@@ -93,14 +110,18 @@ void runCommand(const RunOptions& options, std::ostream& out) {
   // Before the long work: a missing viewer is an error now, not after the run.
   const std::string viewer = options.html ? viewerScript() : "";
   const fs::path directory = prepareOutput(options.out);
-  const RunDocuments documents = runTask(request);
-  writeDocuments(directory, documents);
-  if (options.html) writeFile(directory / "run.html", runPageHtml(documents.viewerDocument, documents.sceneGlb, viewer));
+  const RunDocuments documents = runTaskNamingFlags(request);
+  std::vector<std::string> written = writeDocuments(directory, documents);
+  if (options.html) {
+    writeFile(directory / "run.html", runPageHtml(documents.viewerDocument, documents.sceneGlb, viewer));
+    written.push_back("run.html");
+  }
   if (options.json) {
     out << documents.report.dump(2) << '\n';
   } else {
-    out << documents.summary << "  wrote " << directory.string() << "/ (plan.json, trajectory.json, trajectory.csv, robot_trajectory.json, report.json, scene.glb"
-        << (options.html ? ", run.html" : "") << ")\n";
+    std::string list;
+    for (const std::string& name : written) list += (list.empty() ? "" : ", ") + name;
+    out << documents.summary << "  wrote " << directory.string() << "/ (" << list << ")\n";
   }
   if (!documents.success) throw TaskFailedError("run: the task did not succeed; see " + (directory / "report.json").string());
 }

@@ -121,18 +121,22 @@ json rejectedQueryJson(std::size_t index, const PlanningSession& session, const 
           {"duration", 0.0}};
 }
 
-void writeOutputs(const std::string& out, const json& report, const std::vector<JointTrajectory>& trajectories) {
+/// Writes the report and each query's trajectory as CSV; the files written.
+std::vector<std::string> writeOutputs(const std::string& out, const json& report, const std::vector<JointTrajectory>& trajectories) {
   const std::filesystem::path file(out);
   std::ofstream stream(file);
   if (!stream) throw InputError("--out: cannot write " + file.string());
   stream << report.dump(2) << '\n';
+  std::vector<std::string> written{file.string()};
   for (std::size_t q = 0; q < trajectories.size(); ++q) {
     std::filesystem::path csv = file;
     csv.replace_extension(trajectories.size() == 1 ? ".csv" : "_query" + std::to_string(q + 1) + ".csv");
     std::ofstream csvStream(csv);
     if (!csvStream) throw InputError("--out: cannot write " + csv.string());
     csvStream << trajectoryToCsv(trajectories[q]);
+    written.push_back(csv.string());
   }
+  return written;
 }
 
 /// solve --html: the page of the solved queries.
@@ -186,8 +190,12 @@ void runSolve(const SolveOptions& options, std::ostream& out) {
     report["ignored_parameters"].push_back({{"name", ignored.name}, {"value", ignored.value}, {"reason", ignored.reason}});
   }
   report["valid_state_sampler"] = validStateSamplerName(session.plannerSettings().validStateSampler());
-  if (!options.out.empty()) writeOutputs(options.out, report, trajectories);
-  if (!options.html.empty()) writeSolvePage(options.html, loaded.name, problem, report, solved_, viewer);
+  std::vector<std::string> written;
+  if (!options.out.empty()) written = writeOutputs(options.out, report, trajectories);
+  if (!options.html.empty()) {
+    writeSolvePage(options.html, loaded.name, problem, report, solved_, viewer);
+    written.push_back(options.html);
+  }
   if (options.json) {
     out << report.dump(2) << '\n';
   } else {
@@ -200,6 +208,9 @@ void runSolve(const SolveOptions& options, std::ostream& out) {
           << " has no effect: " << ignored["reason"].get<std::string>() << "\n";
     }
     for (const json& query : report["queries"]) out << queryText(query);
+    std::string list;
+    for (const std::string& file : written) list += (list.empty() ? "" : ", ") + file;
+    if (!written.empty()) out << "wrote " << list << "\n";
   }
   if (!solved) throw TaskFailedError("solve: not every query was solved");
 }

@@ -12,6 +12,9 @@
 #include "lang2manip/cli/trajectory_outputs.hpp"
 #include "lang2manip/core/file_checks.hpp"
 #include "lang2manip/core/json_limits.hpp"
+#include "lang2manip/grounding/gripper_geometry.hpp"
+#include "lang2manip/kinematics/ik_solver.hpp"
+#include "lang2manip/planning/planner_catalog.hpp"
 #include "lang2manip/language/instruction.hpp"
 #include "lang2manip/symbolic/given_plan_planner.hpp"
 #include "lang2manip/symbolic/plan_parser.hpp"
@@ -147,10 +150,35 @@ TaskRun planExecuteAndVerify(TaskPlanner& planner, TaskExecutor& executor, const
   return run;
 }
 
+void checkRunNames(const RunRequest& request, const Scene& scene) {
+  const auto checked = [](const char* field, const auto& check) {
+    try {
+      check();
+    } catch (const InputError& error) {
+      throw RunNameError(field, error.what());
+    }
+  };
+  checked("planner", [&] {
+    if (!request.motionPlanner.empty()) (void)canonicalPlannerName(request.motionPlanner);
+  });
+  checked("ik", [&] { (void)makeIkSolver(request.ik.empty() ? defaultIkSolverName() : request.ik); });
+  checked("arm", [&] {
+    if (scene.robots().empty()) throw InputError("the scene has no robot");
+    (void)findManipulator(*scene.robots().front().model, request.arm);
+  });
+}
+
+std::string checkRunNames(const RunRequest& request) {
+  const LoadedProblem loaded = loadProblem(request.problem, request.robot, request.scene);
+  checkRunNames(request, loaded.problem.scene);
+  return loaded.name;
+}
+
 RunDocuments runTask(const RunRequest& request, const RunControl& control) {
   const auto began = Clock::now();
   const LoadedProblem loaded = loadProblem(request.problem, request.robot, request.scene);
   const Scene& scene = loaded.problem.scene;
+  checkRunNames(request, scene);
   TaskExecutor executor(scene, executionSettings(request));
   const SelectedTaskPlanner selected = taskPlannerFor(request, scene, executor.arm().robotName());
   if (control.seedOmpl) ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(request.seed));

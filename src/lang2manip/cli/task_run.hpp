@@ -104,6 +104,26 @@ struct RunDocuments {
   bool success = false;
 };
 
+/// A name in a run request that nothing is registered under. field() is "planner", "ik" or "arm"
+/// (`run`'s --planner, --ik, --arm and the run request's body fields); the message lists the
+/// valid names.
+class RunNameError : public InputError {
+ public:
+  RunNameError(std::string field, const std::string& message) : InputError(message), field_(std::move(field)) {}
+  [[nodiscard]] const std::string& field() const noexcept { return field_; }
+
+ private:
+  std::string field_;
+};
+
+/// Checks the motion planner, IK solver and arm that `request` names against the registries and
+/// the robot of `scene`, as runTask() does before any planning. Throws RunNameError, or
+/// NotSupportedError for a Kautham planner lang2manip does not run.
+void checkRunNames(const RunRequest& request, const Scene& scene);
+/// Loads the request's problem and checks its names (checkRunNames()): for a run queued to start
+/// later. Returns the problem's name; throws InputError for a problem that cannot be loaded too.
+std::string checkRunNames(const RunRequest& request);
+
 /// Loads the problem, plans, executes and verifies the task of `request`. A task that fails is a
 /// result (success false, the report says why). Throws InputError for a bad problem, arm, planner
 /// or solver name, a plan file that cannot be read or is not a plan for this scene (every problem

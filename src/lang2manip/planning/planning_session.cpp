@@ -134,6 +134,19 @@ const MotionPlan& PlanningSession::solve(const StopCondition& stop) {
   return *lastPlan_;
 }
 
+const MotionPlan& PlanningSession::solveWithin(double maxPlanningSeconds, const StopCondition& stop) {
+  const PlannerSettings kept = settings_;
+  settings_.setParameter("_Max Planning Time", std::to_string(maxPlanningSeconds));
+  try {
+    solve(stop);
+  } catch (...) {
+    settings_ = kept;
+    throw;
+  }
+  settings_ = kept;
+  return *lastPlan_;
+}
+
 const MotionPlan& PlanningSession::getPath() const {
   if (!lastPlan_) throw InputError("no path: call solve first (the world or planner changed since)");
   if (!lastPlan_->solved()) throw InputError("no path: the last solve failed: " + lastPlan_->message);

@@ -62,6 +62,9 @@ class PlanningSession {
   /// Solves the current query; the result is kept for getPath() and the statistics. No path is a
   /// result (solved() false, with the reason), not an error. Throws InputError without a query.
   const MotionPlan& solve(const StopCondition& stop = StopCondition::never());
+  /// solve() with `maxPlanningSeconds` (> 0) for this call only, instead of the planner's
+  /// "_Max Planning Time", which stays as it was (not a Kautham verb: a solve with a time limit).
+  const MotionPlan& solveWithin(double maxPlanningSeconds, const StopCondition& stop = StopCondition::never());
   /// The stored solution of the last solve() (never re-solves). Throws InputError when there is
   /// none, saying why.
   [[nodiscard]] const MotionPlan& getPath() const;

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
+#include <cstdint>
 #include <regex>
 
 #include <sys/socket.h>
@@ -51,8 +53,10 @@ const char* statusCode(int status) {
     case 403: return "forbidden";
     case 404: return "not_found";
     case 405: return "method_not_allowed";
+    case 411: return "length_required";
     case 413: return "payload_too_large";
     case 415: return "unsupported_media_type";
+    case 503: return "service_unavailable";
     default: return status >= 500 ? "internal_error" : "error";
   }
 }
@@ -62,6 +66,17 @@ bool sameSecret(const std::string& given, const std::string& expected) {
   unsigned char difference = given.size() == expected.size() ? 0 : 1;
   for (std::size_t i = 0; i < expected.size(); ++i) difference |= static_cast<unsigned char>(expected[i] ^ (i < given.size() ? given[i] : 0));
   return difference == 0;
+}
+
+/// The credentials of "Bearer TOKEN" (the scheme in any case, RFC 7235); "" for another scheme.
+std::string bearerToken(const std::string& header) {
+  const std::size_t space = header.find(' ');
+  if (space == std::string::npos) return "";
+  std::string scheme = header.substr(0, space);
+  std::transform(scheme.begin(), scheme.end(), scheme.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (scheme != "bearer") return "";
+  const std::size_t token = header.find_first_not_of(' ', space);
+  return token == std::string::npos ? "" : header.substr(token);
 }
 
 std::string cookieValue(const httplib::Request& request, const std::string& name) {
@@ -77,7 +92,58 @@ std::string cookieValue(const httplib::Request& request, const std::string& name
   return "";
 }
 
+bool isChunked(const httplib::Request& request) {
+  std::string encoding = request.get_header_value("Transfer-Encoding");
+  std::transform(encoding.begin(), encoding.end(), encoding.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return encoding.find("chunked") != std::string::npos;
+}
+
+std::string tooLargeMessage(std::size_t maxBytes) { return "request body larger than " + std::to_string(maxBytes) + " bytes"; }
+
+/// What an error httplib answers by itself (before any handler) means.
+std::string libraryErrorMessage(int status, std::size_t maxBodyBytes) {
+  if (status == 413) return tooLargeMessage(maxBodyBytes);
+  if (status == 400) return "malformed HTTP request (a body needs Content-Length or chunked encoding)";
+  if (status == 414) return "request URI too long";
+  return "HTTP " + std::to_string(status);
+}
+
+/// The body of a POST or DELETE, read under the size limit as it arrives: httplib 0.11 reads a
+/// chunked body whole before it checks its limit. A request with neither Content-Length nor
+/// chunked encoding has no body (HTTP/1.1 section 3.3.3).
+std::string readBody(const httplib::Request& request, const httplib::ContentReader& reader, std::size_t maxBytes) {
+  const bool chunked = isChunked(request);
+  if (!chunked && !request.has_header("Content-Length")) return "";
+  std::string body;
+  bool tooLarge = !chunked && request.get_header_value<std::uint64_t>("Content-Length") > maxBytes;
+  if (tooLarge) throw ApiError(413, "payload_too_large", tooLargeMessage(maxBytes));
+  const bool complete = reader([&](const char* data, std::size_t size) {
+    tooLarge = body.size() + size > maxBytes;
+    if (!tooLarge) body.append(data, size);
+    return !tooLarge;
+  });
+  if (tooLarge) throw ApiError(413, "payload_too_large", tooLargeMessage(maxBytes));
+  if (!complete) throw ApiError(400, "bad_request", "the request body ended early or its chunked encoding is broken");
+  return body;
+}
+
+/// Counts one open event stream for as long as it lives.
+class StreamSlot {
+ public:
+  explicit StreamSlot(std::atomic<std::size_t>& open) : open_(open) {}
+  ~StreamSlot() { open_.fetch_sub(1); }
+  StreamSlot(const StreamSlot&) = delete;
+  StreamSlot& operator=(const StreamSlot&) = delete;
+
+ private:
+  std::atomic<std::size_t>& open_;
+};
+
 }  // namespace
+
+std::size_t eventStreamLimit(const ServerOptions& options) {
+  return std::min(options.maxEventStreams, static_cast<std::size_t>(std::max(options.threads / 2, 1)));
+}
 
 struct ApiServer::Impl {
   explicit Impl(ServerOptions serverOptions)
@@ -94,20 +160,26 @@ struct ApiServer::Impl {
   /// The listening socket (seen when httplib creates it), for its backlog.
   int listeningSocket = -1;
   std::atomic<bool> stopped{false};
+  /// Event streams open now; each holds a thread for as long as it lasts.
+  std::atomic<std::size_t> openStreams{0};
+
+  /// One of the streams allowed at once (see eventStreamLimit()), given back when destroyed;
+  /// none when the limit is reached.
+  std::shared_ptr<StreamSlot> takeStreamSlot();
 
   void configure();
   void addRoute(const ApiRoute& route);
   void addEventStream();
   void addFixedRoutes();
   bool authorized(const httplib::Request& request, httplib::Response& response) const;
-  [[nodiscard]] ApiRequest apiRequest(const httplib::Request& request) const;
+  [[nodiscard]] ApiRequest apiRequest(const httplib::Request& request, const std::string& body) const;
   void answerUnrouted(const httplib::Request& request, httplib::Response& response) const;
 };
 
 bool ApiServer::Impl::authorized(const httplib::Request& request, httplib::Response& response) const {
   if (options.token.empty()) return true;
   const std::string header = request.get_header_value("Authorization");
-  const std::string bearer = header.rfind("Bearer ", 0) == 0 ? header.substr(7) : "";
+  const std::string bearer = bearerToken(header);
   const std::string query = request.get_param_value("token");
   if (sameSecret(bearer, options.token) || sameSecret(cookieValue(request, "lang2manip_token"), options.token)) return true;
   if (sameSecret(query, options.token)) {
@@ -122,47 +194,75 @@ bool ApiServer::Impl::authorized(const httplib::Request& request, httplib::Respo
   return false;
 }
 
-ApiRequest ApiServer::Impl::apiRequest(const httplib::Request& request) const {
+ApiRequest ApiServer::Impl::apiRequest(const httplib::Request& request, const std::string& body) const {
   ApiRequest api;
   for (std::size_t i = 1; i < request.matches.size(); ++i) api.pathParameters.push_back(request.matches[i].str());
   for (const auto& [name, value] : request.params) api.query.emplace(name, value);
-  if (request.body.empty()) return api;
+  if (body.empty()) return api;
   const std::string type = request.get_header_value("Content-Type");
   if (!type.empty() && type.rfind("application/json", 0) != 0) {
-    throw ApiError(415, "unsupported_media_type", "request bodies are JSON (Content-Type: application/json), got " + type.substr(0, 80));
+    throw ApiError(415, "unsupported_media_type",
+                   "request bodies are JSON: send the header \"Content-Type: application/json\" (curl: -H 'Content-Type: application/json'), got " +
+                       type.substr(0, 80));
   }
   JsonLimits limits;
   limits.maxBytes = options.maxBodyBytes;
   limits.maxDepth = options.maxJsonDepth;
   try {
-    api.body = parseJsonWithinLimits(request.body, limits, "request body");
+    api.body = parseJsonWithinLimits(body, limits, "request body");
   } catch (const InputError& error) {
-    throw ApiError(request.body.size() > options.maxBodyBytes ? 413 : 400, "bad_request", error.what());
+    throw ApiError(400, "bad_request", error.what());
   }
   if (!api.body.is_object()) throw ApiError(400, "bad_request", "request body: expected a JSON object, got " + boundedJsonDump(api.body));
   return api;
 }
 
 void ApiServer::Impl::addRoute(const ApiRoute& route) {
-  const auto handler = [this, route](const httplib::Request& request, httplib::Response& response) {
+  // Bodies are read by the handler (readBody), under the limit and optional.
+  const auto handler = [this, route](const httplib::Request& request, httplib::Response& response, const httplib::ContentReader* reader) {
     try {
-      const ApiResponse answer = guarded([&] { return route.handler(apiRequest(request)); });
+      const std::string body = reader != nullptr ? readBody(request, *reader, options.maxBodyBytes) : request.body;
+      const ApiResponse answer = guarded([&] {
+        const ApiRequest api = apiRequest(request, body);
+        body::onlyFields(api.body, route.bodyFields);
+        return route.handler(api);
+      });
       response.status = answer.status;
       response.set_content(answer.body, answer.contentType);
     } catch (const ApiError& error) {
-      setError(response, error.status(), error.code(), error.what());
+      // A body left unread would be taken for the next request.
+      if (error.status() == 413 || error.status() == 400) response.set_header("Connection", "close");
+      setError(response, error.status(), error.code(), withoutDataRoot(error.what(), options));
     }
   };
+  const auto withBody = [handler](const httplib::Request& request, httplib::Response& response, const httplib::ContentReader& reader) {
+    handler(request, response, &reader);
+  };
   const std::string pattern = routePattern(route.path);
-  if (route.method == "GET") http.Get(pattern, handler);
-  if (route.method == "POST") http.Post(pattern, handler);
-  if (route.method == "DELETE") http.Delete(pattern, handler);
+  if (route.method == "GET") http.Get(pattern, [handler](const httplib::Request& request, httplib::Response& response) { handler(request, response, nullptr); });
+  if (route.method == "POST") http.Post(pattern, withBody);
+  if (route.method == "DELETE") http.Delete(pattern, withBody);
+}
+
+std::shared_ptr<StreamSlot> ApiServer::Impl::takeStreamSlot() {
+  if (openStreams.fetch_add(1) >= eventStreamLimit(options)) {
+    openStreams.fetch_sub(1);
+    return nullptr;
+  }
+  return std::make_shared<StreamSlot>(openStreams);
 }
 
 void ApiServer::Impl::addEventStream() {
   http.Get(routePattern("/api/runs/{run}/events"), [this](const httplib::Request& request, httplib::Response& response) {
     const std::string id = request.matches[1].str();
     std::size_t from = 0;
+    std::shared_ptr<StreamSlot> slot = takeStreamSlot();
+    if (!slot) {
+      response.set_header("Retry-After", "5");
+      const std::string limit = std::to_string(eventStreamLimit(options));
+      return setError(response, 503, "service_unavailable",
+                      "the limit of " + limit + " event streams open at once is reached; retry later or poll GET /api/runs/" + id.substr(0, 64));
+    }
     try {
       (void)runs.status(id);
       const std::string last = request.get_header_value("Last-Event-ID");
@@ -174,7 +274,8 @@ void ApiServer::Impl::addEventStream() {
     }
     auto next = std::make_shared<std::size_t>(from);
     response.set_header("Cache-Control", "no-cache");
-    response.set_chunked_content_provider("text/event-stream", [this, id, next](std::size_t, httplib::DataSink& sink) {
+    // The provider holds the slot: it is given back when the stream ends.
+    response.set_chunked_content_provider("text/event-stream", [this, id, next, slot](std::size_t, httplib::DataSink& sink) {
       RunEventBatch batch;
       try {
         batch = runs.events(id, *next, std::chrono::milliseconds(500));
@@ -216,29 +317,35 @@ void ApiServer::Impl::answerUnrouted(const httplib::Request& request, httplib::R
 }
 
 void ApiServer::Impl::configure() {
+  // Not httplib's default options: SO_REUSEPORT would let a second server bind a port in use.
   http.set_socket_options([this](socket_t socket) {
-    httplib::default_socket_options(socket);
+    int yes = 1;
+    ::setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
     listeningSocket = socket;
   });
   const int threads = options.threads;
   http.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
   http.set_payload_max_length(options.maxBodyBytes);
-  http.set_read_timeout(10, 0);
+  // Short: a client that opens a connection and sends nothing holds a thread meanwhile.
+  http.set_read_timeout(5, 0);
   http.set_write_timeout(10, 0);
   http.set_keep_alive_timeout(2);
   http.set_keep_alive_max_count(1000);
   http.set_default_headers({{"X-Content-Type-Options", "nosniff"}});
   http.set_pre_routing_handler([this](const httplib::Request& request, httplib::Response& response) {
-    return authorized(request, response) ? httplib::Server::HandlerResponse::Unhandled : httplib::Server::HandlerResponse::Handled;
+    if (!authorized(request, response)) return httplib::Server::HandlerResponse::Handled;
+    if (request.path.find('\0') != std::string::npos) {
+      setError(response, 400, "bad_request", "the request path has a NUL byte (%00)");
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    return httplib::Server::HandlerResponse::Unhandled;
   });
   http.set_error_handler(httplib::Server::HandlerWithResponse([this](const httplib::Request& request, httplib::Response& response) {
     if (!response.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
     if (response.status == 404 || response.status == 405) {
       answerUnrouted(request, response);
     } else {
-      setError(response, response.status, statusCode(response.status),
-               response.status == 413 ? "request body larger than " + std::to_string(options.maxBodyBytes) + " bytes"
-                                      : "HTTP " + std::to_string(response.status));
+      setError(response, response.status, statusCode(response.status), libraryErrorMessage(response.status, options.maxBodyBytes));
     }
     return httplib::Server::HandlerResponse::Handled;
   }));
@@ -260,6 +367,7 @@ void ApiServer::Impl::configure() {
 
 ApiServer::ApiServer(ServerOptions options) : impl_(std::make_unique<Impl>(std::move(options))) {
   checkServerOptions(impl_->options);
+  impl_->options.defaultProblem = checkedDefaultProblem(impl_->options.defaultProblem);
   impl_->configure();
   const ServerOptions& bound = impl_->options;
   impl_->port = bound.port == 0 ? impl_->http.bind_to_any_port(bound.host) : (impl_->http.bind_to_port(bound.host, bound.port) ? bound.port : -1);
@@ -284,10 +392,10 @@ void ApiServer::stop() {
   impl_->http.stop();
 }
 
-std::vector<std::pair<std::string, std::string>> ApiServer::endpoints() const {
-  std::vector<std::pair<std::string, std::string>> list;
-  for (const ApiRoute& route : impl_->routes) list.emplace_back(route.method, route.path);
-  list.emplace_back("GET", "/api/runs/{run}/events");
+std::vector<ApiEndpoint> ApiServer::endpoints() const {
+  std::vector<ApiEndpoint> list;
+  for (const ApiRoute& route : impl_->routes) list.push_back({route.method, route.path, route.bodyFields});
+  list.push_back({"GET", "/api/runs/{run}/events", {}});
   return list;
 }
 

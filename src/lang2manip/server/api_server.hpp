@@ -37,7 +37,13 @@ struct ServerOptions {
   std::size_t maxKeptRuns = 64;
   /// Threads serving requests (each open connection holds one while it is kept alive).
   int threads = 32;
-  /// The problem opened for every new session that does not name one; empty: none.
+  /// Run event streams (GET /api/runs/{run}/events) open at once; each holds a thread for the
+  /// whole run, so at most half the threads go to streams (see eventStreamLimit()). More are
+  /// answered 503 with Retry-After.
+  std::size_t maxEventStreams = 16;
+  /// The problem opened by sessions and runs that name none (the operator's `serve PROBLEM`):
+  /// a built-in name or a file, loaded when the server starts and allowed outside dataRoot;
+  /// empty: the paper's scene.
   std::string defaultProblem;
 };
 
@@ -45,9 +51,23 @@ struct ServerOptions {
 /// viewer directory that is not a directory).
 void checkServerOptions(const ServerOptions& options);
 
+/// The event streams served at once: maxEventStreams, and at most half of the threads, so that
+/// other requests always find one.
+std::size_t eventStreamLimit(const ServerOptions& options);
+
+/// One endpoint as the OpenAPI document describes it.
+struct ApiEndpoint {
+  std::string method;
+  /// As OpenAPI writes it: "/api/sessions/{client}/solve".
+  std::string path;
+  /// The request body's fields it accepts (none: it takes no body).
+  std::vector<std::string> bodyFields;
+};
+
 class ApiServer {
  public:
-  /// Binds the socket (throws InputError when the host or port cannot be bound).
+  /// Checks the options and the default problem, and binds the socket (throws InputError for bad
+  /// options, a default problem that cannot be loaded, a host or port that cannot be bound).
   explicit ApiServer(ServerOptions options);
   ~ApiServer();
   ApiServer(const ApiServer&) = delete;
@@ -59,8 +79,8 @@ class ApiServer {
   void serve();
   /// Ends serve(): cancels runs, closes connections. Thread-safe; idempotent.
   void stop();
-  /// Every endpoint (method, OpenAPI path) it answers; the OpenAPI document's test compares them.
-  [[nodiscard]] std::vector<std::pair<std::string, std::string>> endpoints() const;
+  /// Every endpoint it answers; the OpenAPI document's test compares them with the document.
+  [[nodiscard]] std::vector<ApiEndpoint> endpoints() const;
 
  private:
   struct Impl;

@@ -55,9 +55,15 @@ using ApiHandler = std::function<ApiResponse(const ApiRequest&)>;
 /// One endpoint: the method ("GET", "POST", "DELETE") and the path as OpenAPI writes it
 /// ("/api/sessions/{client}/solve"), documented in openapi.json.
 struct ApiRoute {
+  ApiRoute(std::string routeMethod, std::string routePath, ApiHandler routeHandler, std::vector<std::string> acceptedFields = {})
+      : method(std::move(routeMethod)), path(std::move(routePath)), handler(std::move(routeHandler)), bodyFields(std::move(acceptedFields)) {}
+
   std::string method;
   std::string path;
   ApiHandler handler;
+  /// The body fields it accepts; the server refuses any other with 400 before the handler runs
+  /// (the OpenAPI document's test compares them with the documented request bodies).
+  std::vector<std::string> bodyFields;
 };
 
 /// Body fields, checked: each throws ApiError 400 naming the field and what was expected.

@@ -48,6 +48,8 @@ struct RunRegistry::Run {
   std::vector<json> events;
   std::optional<RunDocuments> documents;
   std::string error;
+  /// The problem's name as loaded (the request's may be empty: the default problem).
+  std::string problemName;
   CancelFlag cancel = std::make_shared<std::atomic<bool>>(false);
 };
 
@@ -66,7 +68,7 @@ void RunRegistry::shutdown() {
   changed_.notify_all();
 }
 
-std::string RunRegistry::start(RunRequest request) {
+std::string RunRegistry::start(RunRequest request, std::string problemName) {
   const std::lock_guard lock(mutex_);
   if (stopping_) throw ApiError(503, "shutting_down", "the server is shutting down");
   const auto active = std::count_if(runs_.begin(), runs_.end(), [](const auto& entry) { return !finished(entry.second->state); });
@@ -76,6 +78,7 @@ std::string RunRegistry::start(RunRequest request) {
   auto run = std::make_shared<Run>();
   run->id = "run-" + std::to_string(nextId_++);
   run->request = std::move(request);
+  run->problemName = std::move(problemName);
   runs_[run->id] = run;
   order_.push_back(run->id);
   queue_.push_back(run);
@@ -166,7 +169,7 @@ json RunRegistry::status(const std::string& id) const {
   const std::lock_guard lock(mutex_);
   const std::shared_ptr<Run> run = find(id);
   json value{{"id", run->id}, {"state", stateName(run->state)}, {"task", run->request.task},
-             {"problem", run->request.problem}, {"events", run->events.size()}};
+             {"problem", run->problemName.empty() ? run->request.problem : run->problemName}, {"events", run->events.size()}};
   if (run->documents) value["success"] = run->documents->success;
   if (!run->error.empty()) value["error"] = run->error;
   if (run->documents) value["report"] = run->documents->report;
@@ -193,6 +196,8 @@ json RunRegistry::cancel(const std::string& id) {
     addEvent(*run, {{"type", "state"}, {"state", "cancelled"}});
   } else if (run->state == RunState::kRunning) {
     run->cancel->store(true);
+  } else {
+    throw ApiError(409, "already_finished", "run " + id + " already ended (" + stateName(run->state) + "): there is nothing to cancel");
   }
   return {{"id", run->id}, {"state", stateName(run->state)}, {"cancel_requested", true}};
 }

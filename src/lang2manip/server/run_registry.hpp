@@ -35,13 +35,14 @@ class RunRegistry {
   RunRegistry(const RunRegistry&) = delete;
   RunRegistry& operator=(const RunRegistry&) = delete;
 
-  /// Queues `request`; its id. Throws ApiError 429 when maxQueued runs wait or run.
-  std::string start(RunRequest request);
+  /// Queues `request` (its problem shown as `problemName` in its status); its id. Throws
+  /// ApiError 429 when maxQueued runs wait or run.
+  std::string start(RunRequest request, std::string problemName = "");
   /// {"id", "state", "task", "problem", "created", "success", "error", "events"}; 404 for an unknown id.
   [[nodiscard]] nlohmann::json status(const std::string& id) const;
   /// Every run kept, oldest first (status without events).
   [[nodiscard]] nlohmann::json list() const;
-  /// Cancels a queued or running run (no effect on a finished one); 404 for an unknown id.
+  /// Cancels a queued or running run; 404 for an unknown id, 409 for a run that already ended.
   nlohmann::json cancel(const std::string& id);
   /// Events from index `from`, waiting up to `wait` when there is none yet. 404 for an unknown id.
   RunEventBatch events(const std::string& id, std::size_t from, std::chrono::milliseconds wait) const;

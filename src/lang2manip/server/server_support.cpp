@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <new>
 
+#include "lang2manip/cli/problem_loading.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/llm/llm_client.hpp"
 #include "lang2manip/model/builtin_data.hpp"
@@ -26,30 +27,58 @@ fs::path dataRoot(const ServerOptions& options) {
 }  // namespace
 
 fs::path servedFile(const ServerOptions& options, const std::string& path) {
-  if (path.empty() || path.find('\0') != std::string::npos) throw ApiError(400, "bad_request", "a file name must not be empty");
+  if (path.empty()) throw ApiError(400, "bad_request", "a file name must not be empty");
+  if (path.find('\0') != std::string::npos) throw ApiError(400, "bad_request", "a file name must not have a NUL byte");
   const fs::path root = dataRoot(options);
   std::error_code error;
   const fs::path file = fs::weakly_canonical(fs::path(path).is_absolute() ? fs::path(path) : root / path, error);
   const std::string prefix = root == root.root_path() ? root.string() : root.string() + "/";
   if (error || file.string().rfind(prefix, 0) != 0) {
-    throw ApiError(403, "forbidden", "file " + path.substr(0, 200) + ": outside the server's data directory " + root.string());
+    throw ApiError(403, "forbidden", "file " + path.substr(0, 200) + ": outside the server's data directory");
   }
   if (!fs::is_regular_file(file, error)) throw ApiError(404, "not_found", "file " + path.substr(0, 200) + ": no such file in the data directory");
   return file;
 }
 
+namespace {
+
+bool isBuiltinProblem(const std::string& name) {
+  const auto& problems = builtinProblems();
+  return std::any_of(problems.begin(), problems.end(), [&](const BuiltinProblem& problem) { return problem.shortName == name; });
+}
+
+}  // namespace
+
 std::string servedProblem(const ServerOptions& options, const std::string& nameOrPath) {
-  if (nameOrPath.empty()) return nameOrPath;
-  for (const BuiltinProblem& problem : builtinProblems()) {
-    if (problem.shortName == nameOrPath) return nameOrPath;
-  }
+  // The operator's own problem (serve PROBLEM) is allowed wherever it lies.
+  if (nameOrPath.empty() || nameOrPath == options.defaultProblem || isBuiltinProblem(nameOrPath)) return nameOrPath;
   return servedFile(options, nameOrPath).string();
+}
+
+std::string checkedDefaultProblem(const std::string& problem) {
+  if (problem.empty() || isBuiltinProblem(problem)) return problem;
+  try {
+    (void)loadProblem(problem, "panda");
+  } catch (const InputError& error) {
+    throw InputError("serve: PROBLEM " + problem + ": " + error.what());
+  }
+  return fs::absolute(problem).lexically_normal().string();
 }
 
 std::string servedRobot(const ServerOptions& options, const std::string& nameOrPath) {
   const std::vector<std::string> names = builtinRobotNames();
   if (std::find(names.begin(), names.end(), nameOrPath) != names.end()) return nameOrPath;
   return servedFile(options, nameOrPath).string();
+}
+
+std::string withoutDataRoot(const std::string& message, const ServerOptions& options) {
+  std::error_code error;
+  const fs::path root = fs::canonical(options.dataRoot.empty() ? fs::current_path() : options.dataRoot, error);
+  if (error || root == root.root_path()) return message;
+  std::string text = message;
+  const std::string prefix = root.string() + "/";
+  for (std::size_t at = text.find(prefix); at != std::string::npos; at = text.find(prefix, at)) text.erase(at, prefix.size());
+  return text;
 }
 
 ApiResponse guarded(const std::function<ApiResponse()>& operation) {
@@ -79,8 +108,8 @@ void checkServerOptions(const ServerOptions& options) {
     throw InputError("serve: the token must not contain spaces, quotes, commas or semicolons");
   }
   if (options.maxBodyBytes < 1024 || options.maxJsonDepth < 4) throw InputError("serve: body limits below 1 KiB or 4 JSON levels");
-  if (options.maxSessions < 1 || options.maxQueuedRuns < 1 || options.maxKeptRuns < 1 || options.threads < 2 || options.threads > 1024) {
-    throw InputError("serve: session, run and thread limits must be positive (threads 2 to 1024)");
+  if (options.maxSessions < 1 || options.maxQueuedRuns < 1 || options.maxKeptRuns < 1 || options.maxEventStreams < 1 || options.threads < 2 || options.threads > 1024) {
+    throw InputError("serve: session, run, stream and thread limits must be positive (threads 2 to 1024)");
   }
   std::error_code error;
   if (!options.dataRoot.empty() && !fs::is_directory(options.dataRoot, error)) {

@@ -51,24 +51,27 @@ json sessionJson(const std::string& client, const ClientSession& session) {
 
 /// A route on one client's session: {client} is the first path parameter.
 ApiRoute verb(SessionRegistry& sessions, const std::string& method, const std::string& name, bool creates,
-              std::function<json(ClientSession&, const ApiRequest&)> work) {
-  return {method, "/api/sessions/{client}/" + name, [&sessions, creates, work = std::move(work)](const ApiRequest& request) {
+              std::function<json(ClientSession&, const ApiRequest&)> work, std::vector<std::string> bodyFields = {}) {
+  return {method, "/api/sessions/{client}/" + name,
+          [&sessions, creates, work = std::move(work)](const ApiRequest& request) {
             json answer;
             const std::string& client = request.pathParameters.at(0);
             sessions.use(client, creates, [&](ClientSession& session) { answer = work(session, request); });
             return ApiResponse::json(answer);
-          }};
+          },
+          std::move(bodyFields)};
 }
 
 /// A verb that changes the session and answers with its state.
 ApiRoute change(SessionRegistry& sessions, const std::string& name, std::vector<std::string> fields,
                 std::function<void(ClientSession&, const json&)> work) {
-  return verb(sessions, "POST", name, false,
-              [name, fields = std::move(fields), work = std::move(work)](ClientSession& session, const ApiRequest& request) {
-                body::onlyFields(request.body, fields);
-                work(session, request.body);
-                return json{{"ok", true}, {"verb", name}};
-              });
+  return verb(
+      sessions, "POST", name, false,
+      [name, work = std::move(work)](ClientSession& session, const ApiRequest& request) {
+        work(session, request.body);
+        return json{{"ok", true}, {"verb", name}};
+      },
+      std::move(fields));
 }
 
 std::string queryValue(const ApiRequest& request, const std::string& name) {
@@ -92,7 +95,6 @@ json solveJson(const PlanningSession& planning, const MotionPlan& plan) {
 std::vector<ApiRoute> problemVerbs(SessionRegistry& sessions, const ServerOptions& options) {
   std::vector<ApiRoute> routes;
   routes.push_back(verb(sessions, "POST", "openProblem", true, [&options](ClientSession& session, const ApiRequest& request) {
-    body::onlyFields(request.body, {"problem", "robot"});
     const std::string problem = body::string(request.body, "problem", options.defaultProblem);
     const std::string robot = servedRobot(options, body::string(request.body, "robot", "panda"));
     LoadedProblem loaded = loadProblem(servedProblem(options, problem), robot);
@@ -100,7 +102,7 @@ std::vector<ApiRoute> problemVerbs(SessionRegistry& sessions, const ServerOption
     session.problemName = loaded.name;
     return json{{"ok", true}, {"verb", "openProblem"}, {"problem", loaded.name}, {"format", loaded.format},
                 {"queries", session.planning.problem().queries.size()}};
-  }));
+  }, {"problem", "robot"}));
   routes.push_back(change(sessions, "closeProblem", {}, [](ClientSession& session, const json&) {
     session.planning.closeProblem();
     session.problemName.clear();
@@ -150,12 +152,11 @@ std::vector<ApiRoute> plannerVerbs(SessionRegistry& sessions) {
     session.planning.setGoal(body::numbers(request, "goal"));
   }));
   routes.push_back(verb(sessions, "POST", "solve", false, [](ClientSession& session, const ApiRequest& request) {
-    body::onlyFields(request.body, {"time_limit"});
     const double timeLimit = body::number(request.body, "time_limit", 0.0);
     if (timeLimit < 0.0 || timeLimit > 3600.0) throw ApiError(400, "bad_request", "body field \"time_limit\": expected 0 to 3600 seconds");
-    if (timeLimit > 0.0) session.planning.setPlannerParameter("_Max Planning Time", std::to_string(timeLimit));
-    return solveJson(session.planning, session.planning.solve());
-  }));
+    // For this solve only: the session's planner keeps its own _Max Planning Time.
+    return solveJson(session.planning, timeLimit > 0.0 ? session.planning.solveWithin(timeLimit) : session.planning.solve());
+  }, {"time_limit"}));
   routes.push_back(verb(sessions, "GET", "getPath", false, [](ClientSession& session, const ApiRequest&) {
     const MotionPlan& plan = session.planning.getPath();
     return json{{"dof_names", session.planning.pathDofNames()}, {"path", pathToJson(plan.path)},
@@ -167,12 +168,11 @@ std::vector<ApiRoute> plannerVerbs(SessionRegistry& sessions) {
 std::vector<ApiRoute> worldVerbs(SessionRegistry& sessions, const ServerOptions& options) {
   std::vector<ApiRoute> routes;
   routes.push_back(verb(sessions, "POST", "checkCollision", false, [](ClientSession& session, const ApiRequest& request) {
-    body::onlyFields(request.body, {"controls"});
     const CollisionReport report = session.planning.checkCollision(body::numbers(request.body, "controls"));
     json answer = collisionReportJson(report);
     answer["summary"] = collisionSummary(report);
     return answer;
-  }));
+  }, {"controls"}));
   routes.push_back(change(sessions, "setRobotsConfig", {"controls"}, [](ClientSession& session, const json& request) {
     session.planning.setRobotsConfig(body::numbers(request, "controls"));
   }));

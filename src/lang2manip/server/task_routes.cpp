@@ -39,7 +39,6 @@ LoadedProblem problemOf(const json& request, const ServerOptions& options) {
 }
 
 ApiResponse observe(const ApiRequest& request, const ServerOptions& options) {
-  body::onlyFields(request.body, {"problem", "robot"});
   const LoadedProblem loaded = problemOf(request.body, options);
   const json observation = observeEnvironment(loaded.problem.scene);
   return ApiResponse::json({{"problem", loaded.name}, {"observation", observation}, {"text", observationText(observation)}});
@@ -56,7 +55,6 @@ json roundsJson(const RepairResult& result) {
 }
 
 ApiResponse plan(const ApiRequest& request, const ServerOptions& options) {
-  body::onlyFields(request.body, {"problem", "robot", "task", "llm", "rounds"});
   const std::string task = taskOf(request.body, "");
   const int rounds = static_cast<int>(body::integer(request.body, "rounds", RepairOptions{}.maxRounds, 1, 10));
   const LoadedProblem loaded = problemOf(request.body, options);
@@ -73,9 +71,8 @@ ApiResponse plan(const ApiRequest& request, const ServerOptions& options) {
   return ApiResponse::json(answer);
 }
 
-RunRequest runRequestOf(const json& request, const ServerOptions& options) {
-  body::onlyFields(request, {"problem", "robot", "task", "llm", "planner", "ik", "arm", "rounds", "seed", "time_limit", "ik_timeout", "record_tree",
-                              "timing", "velocity_scaling", "acceleration_scaling"});
+/// A run request checked as `run` checks it, and the name of its problem.
+std::pair<RunRequest, std::string> runRequestOf(const json& request, const ServerOptions& options) {
   RunRequest run;
   run.problem = servedProblem(options, body::string(request, "problem", options.defaultProblem));
   run.robot = servedRobot(options, body::string(request, "robot", run.robot));
@@ -103,21 +100,30 @@ RunRequest runRequestOf(const json& request, const ServerOptions& options) {
       throw ApiError(400, "bad_request", std::string("body field \"") + field + "\": " + problem);
     }
   }
-  return run;
+  try {
+    std::string problem = checkRunNames(run);  // as `run` does, but before the run waits in the queue
+    return {std::move(run), std::move(problem)};
+  } catch (const RunNameError& error) {
+    throw ApiError(400, "bad_request", "body field \"" + error.field() + "\": " + error.what());
+  }
 }
 
 }  // namespace
 
 std::vector<ApiRoute> taskRoutes(RunRegistry& runs, const ServerOptions& options) {
   std::vector<ApiRoute> routes;
-  routes.push_back({"POST", "/api/observe", [&options](const ApiRequest& request) { return observe(request, options); }});
-  routes.push_back({"POST", "/api/plan", [&options](const ApiRequest& request) { return plan(request, options); }});
+  routes.push_back({"POST", "/api/observe", [&options](const ApiRequest& request) { return observe(request, options); }, {"problem", "robot"}});
+  routes.push_back({"POST", "/api/plan", [&options](const ApiRequest& request) { return plan(request, options); },
+                    {"problem", "robot", "task", "llm", "rounds"}});
   routes.push_back({"POST", "/api/runs", [&runs, &options](const ApiRequest& request) {
-                      const std::string id = runs.start(runRequestOf(request.body, options));
+                      auto [run, problem] = runRequestOf(request.body, options);
+                      const std::string id = runs.start(std::move(run), std::move(problem));
                       return ApiResponse::json({{"id", id}, {"state", "queued"}, {"status", "/api/runs/" + id},
                                                 {"events", "/api/runs/" + id + "/events"}},
                                                202);
-                    }});
+                    },
+                    {"problem", "robot", "task", "llm", "planner", "ik", "arm", "rounds", "seed", "time_limit", "ik_timeout", "record_tree",
+                     "timing", "velocity_scaling", "acceleration_scaling"}});
   routes.push_back({"GET", "/api/runs", [&runs](const ApiRequest&) { return ApiResponse::json(runs.list()); }});
   routes.push_back({"GET", "/api/runs/{run}", [&runs](const ApiRequest& request) {
                       return ApiResponse::json(runs.status(request.pathParameters.at(0)));
