@@ -35,6 +35,15 @@ TEST_F(PandaDeskSession, SolveThenGetPathReturnsTheStoredSolution) {
   EXPECT_EQ(stored.trajectory.jointNames.front(), "panda/panda_joint1");
 }
 
+TEST_F(PandaDeskSession, SolveWithinATimeLimitLeavesThePlannersOwnLimit) {
+  const MotionPlan& plan = session.solveWithin(5.0);
+  ASSERT_TRUE(plan.solved()) << plan.message;
+  EXPECT_DOUBLE_EQ(session.plannerSettings().maxPlanningTime(), 10.0);
+  EXPECT_TRUE(session.hasPath());
+  session.closeProblem();
+  EXPECT_THROW((void)session.solveWithin(5.0), InputError);
+}
+
 TEST_F(PandaDeskSession, CollidingQueryIsRejectedAndThePreviousOneKept) {
   const auto& query = session.problem().queries.front();
   std::vector<double> colliding = query.init;

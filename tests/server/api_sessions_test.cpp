@@ -270,6 +270,10 @@ TEST(ApiRequests, PostsWithoutABodyMeanAnEmptyObject) {
   const std::string cancel = test::rawExchange(server.port(), rawPost("/api/runs/run-1/cancel"));
   EXPECT_EQ(test::rawStatus(cancel), 404) << cancel;
   EXPECT_THAT(test::rawBody(cancel)["error"].value("message", ""), HasSubstr("run-1"));
+  const auto started = std::chrono::steady_clock::now();
+  const std::string unknown = test::rawExchange(server.port(), rawPost("/api/sessions/n/fly"));
+  EXPECT_EQ(test::rawStatus(unknown), 404) << unknown;
+  EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(3)) << "answered without waiting for a body";
   const std::string remove = test::rawExchange(server.port(), "DELETE /api/sessions/n HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n");
   EXPECT_EQ(test::rawStatus(remove), 200) << remove;
 }

@@ -354,6 +354,14 @@ void ApiServer::Impl::configure() {
   for (ApiRoute& route : taskRoutes(runs, options)) routes.push_back(std::move(route));
   for (const ApiRoute& route : routes) addRoute(route);
   addEventStream();
+  // Other POST and DELETE paths are answered without reading a body (httplib would wait for one
+  // that has no length until the read timeout); the connection closes, as a body may follow.
+  const auto unrouted = [this](const httplib::Request& request, httplib::Response& response, const httplib::ContentReader&) {
+    response.set_header("Connection", "close");
+    answerUnrouted(request, response);
+  };
+  http.Post("/(.*)", unrouted);
+  http.Delete("/(.*)", unrouted);
   http.Get("/(.*)", [this](const httplib::Request& request, httplib::Response& response) {
     if (request.path.rfind("/api/", 0) == 0) return answerUnrouted(request, response);
     try {
