@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstring>
 #include <regex>
 #include <set>
@@ -20,6 +21,14 @@ using test::ApiTestServer;
 using test::bodyOf;
 using test::errorOf;
 using ::testing::HasSubstr;
+
+/// The JSON chunk of a GLB file (the chunk after the 12-byte header and the 8-byte chunk header).
+json glbJsonChunk(const std::string& glb) {
+  if (glb.size() < 20) return json();
+  std::uint32_t length = 0;
+  std::memcpy(&length, glb.data() + 12, sizeof length);
+  return json::parse(glb.substr(20, length));
+}
 
 TEST(ApiOpenApi, DocumentsExactlyTheEndpointsTheServerAnswers) {
   ApiTestServer server;
@@ -109,6 +118,9 @@ TEST(ApiSessions, OpenSolveGetPathCheckAndEditTheWorld) {
   ASSERT_GE(path["path"].size(), 2U);
   EXPECT_EQ(path["path"][0].size(), path["dof_names"].size());
   EXPECT_GT(path["duration"].get<double>(), 0.0);
+  const json solvedScene = glbJsonChunk(server.get(base + "/scene.glb")->body);
+  ASSERT_EQ(solvedScene["animations"].size(), 1U) << "the solved path is animated in the session's scene";
+  EXPECT_EQ(solvedScene["animations"][0]["name"], "trajectory");
 
   const json collision = bodyOf(server.postJson(base + "/checkCollision", {{"controls", init}}));
   EXPECT_TRUE(collision["valid"].get<bool>()) << collision.dump();
@@ -124,6 +136,7 @@ TEST(ApiSessions, OpenSolveGetPathCheckAndEditTheWorld) {
   ASSERT_EQ(glb->status, 200);
   EXPECT_EQ(glb->body.substr(0, 4), "glTF");
   EXPECT_EQ(glb->get_header_value("Content-Type"), "model/gltf-binary");
+  EXPECT_FALSE(glbJsonChunk(glb->body).contains("animations")) << "no path, no motion";
 
   ASSERT_EQ(server.del(base)->status, 200);
   EXPECT_EQ(server.get(base)->status, 404);

@@ -5,6 +5,7 @@
 
 #include "lang2manip/cli/collision_queries.hpp"
 #include "lang2manip/cli/problem_loading.hpp"
+#include "lang2manip/cli/solve_scene.hpp"
 #include "lang2manip/model/gltf_writer.hpp"
 #include "lang2manip/planning/motion_plan_json.hpp"
 #include "lang2manip/server/server_routes.hpp"
@@ -209,15 +210,23 @@ std::vector<ApiRoute> worldVerbs(SessionRegistry& sessions, const ServerOptions&
   return routes;
 }
 
-/// The session's scene as GLB (binary, so not through verb()).
+/// The session's scene as GLB (binary, so not through verb()), with both geometries (the viewer
+/// toggles between them); after a solve that found a path, that path animated and drawn (as
+/// `solve --html` draws a query).
 ApiRoute sceneRoute(SessionRegistry& sessions) {
   return {"GET", "/api/sessions/{client}/scene.glb", [&sessions](const ApiRequest& request) {
             ApiResponse response{200, "model/gltf-binary", ""};
-            // Both geometries: the viewer toggles between them.
-            GltfOptions gltf;
-            gltf.geometry = GltfGeometry::kBoth;
-            sessions.use(request.pathParameters.at(0), false,
-                         [&](ClientSession& session) { response.body = sceneToGlb(session.planning.problem().scene, gltf); });
+            sessions.use(request.pathParameters.at(0), false, [&](ClientSession& session) {
+              const KauthamProblem& problem = session.planning.problem();
+              if (session.planning.hasPath()) {
+                const MotionPlan& plan = session.planning.getPath();
+                response.body = solveSceneGlb(problem, {SolvedQuery{0, "solved", plan.trajectory, plan.tree}});
+                return;
+              }
+              GltfOptions gltf;
+              gltf.geometry = GltfGeometry::kBoth;
+              response.body = sceneToGlb(problem.scene, gltf);
+            });
             return response;
           }};
 }
