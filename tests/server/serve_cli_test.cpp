@@ -104,6 +104,8 @@ TEST(BenchApiCli, HundredConcurrentClientsWithoutAnError) {
   EXPECT_EQ(report["errors"], 0);
   EXPECT_EQ(report["api_solve_concurrent"]["count"], 100);
   EXPECT_GT(report["api_overhead_ratio"].get<double>(), 0.0);
+  EXPECT_EQ(report["api_get_path_one_client"]["count"], 3);
+  EXPECT_GT(report["api_get_path_one_client"]["median_ms"].get<double>(), 0.0);
 }
 
 }  // namespace

@@ -35,6 +35,8 @@ struct BenchApiOptions {
 struct ClientResults {
   std::mutex mutex;
   std::vector<double> solveSeconds;
+  /// getPath round trips: the API's cost of a request that plans nothing.
+  std::vector<double> pathSeconds;
   std::vector<std::string> errors;
 };
 
@@ -69,10 +71,13 @@ void runClient(int port, int index, const BenchApiOptions& options, ClientResult
     auto solved = client.Post((base + "/solve").c_str(), "{}", "application/json");
     const double seconds = secondsSince(began);
     if (!solved || solved->status != 200 || !json::parse(solved->body).value("solved", false)) return fail("solve", solved);
+    const auto asked = Clock::now();
     auto path = client.Get((base + "/getPath").c_str());
+    const double pathSeconds = secondsSince(asked);
     if (!path || path->status != 200) return fail("getPath", path);
     const std::lock_guard lock(results.mutex);
     results.solveSeconds.push_back(seconds);
+    results.pathSeconds.push_back(pathSeconds);
   }
   auto closed = client.Delete(base.c_str());
   if (!closed || closed->status != 200) fail("DELETE", closed);
@@ -112,6 +117,7 @@ void benchApi(const BenchApiOptions& options, std::ostream& out) {
               {"in_process_solve", figures(baseline)},
               {"api_solve_one_client", figures(alone.solveSeconds)},
               {"api_overhead_ratio", baselineMedian > 0.0 ? percentile(alone.solveSeconds, 0.5) / baselineMedian : 0.0},
+              {"api_get_path_one_client", figures(alone.pathSeconds)},
               {"clients", options.clients},
               {"api_solve_concurrent", figures(concurrent.solveSeconds)},
               {"errors", alone.errors.size() + concurrent.errors.size()}};
@@ -122,10 +128,12 @@ void benchApi(const BenchApiOptions& options, std::ostream& out) {
     std::snprintf(text, sizeof text,
                   "solve round trips (median / p95):\n  in process         %8.2f / %8.2f ms (%zu solves, the baseline)\n"
                   "  API, one client    %8.2f / %8.2f ms  median ratio to in process %.2f\n"
+                  "  API getPath alone  %8.2f / %8.2f ms (a request that plans nothing: the API's own cost)\n"
                   "  API, %d clients %8.2f / %8.2f ms (%zu solves; the clients share the machine's cores)\n",
                   report["in_process_solve"]["median_ms"].get<double>(), report["in_process_solve"]["p95_ms"].get<double>(), baseline.size(),
                   report["api_solve_one_client"]["median_ms"].get<double>(), report["api_solve_one_client"]["p95_ms"].get<double>(),
-                  report["api_overhead_ratio"].get<double>(), options.clients, report["api_solve_concurrent"]["median_ms"].get<double>(),
+                  report["api_overhead_ratio"].get<double>(), report["api_get_path_one_client"]["median_ms"].get<double>(),
+                  report["api_get_path_one_client"]["p95_ms"].get<double>(), options.clients, report["api_solve_concurrent"]["median_ms"].get<double>(),
                   report["api_solve_concurrent"]["p95_ms"].get<double>(), concurrent.solveSeconds.size());
     out << text << "errors: " << report["errors"].get<std::size_t>() << '\n';
   }
