@@ -91,6 +91,10 @@ std::string llmLabel(const TaskPlannerChoice& choice) {
 
 }  // namespace
 
+namespace {
+
+/// Standard input, surrounding whitespace dropped; CLI::ValidationError naming `option` when it
+/// is longer than maxBytes.
 std::string standardInputText(const std::string& option, const std::string& what, std::size_t maxBytes) {
   std::string text;
   char buffer[4096];
@@ -102,6 +106,8 @@ std::string standardInputText(const std::string& option, const std::string& what
   }
   return std::string(trimmed(text));
 }
+
+}  // namespace
 
 std::string taskFromStandardInput() { return standardInputText("--task -", "the instruction", std::size_t{64} * 1024); }
 

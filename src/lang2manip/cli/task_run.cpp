@@ -81,10 +81,16 @@ void observe(const RunRequest& request, const Scene& scene, const std::string& r
 
 /// The plan of `file` for `scene`: object and planner names checked. Throws InputError naming
 /// the file and every problem.
+/// Where `request`'s plan document comes from, for messages and the report: "plan file F" or
+/// "plan on standard input".
+std::string planSource(const RunRequest& request) {
+  return (request.planText ? "plan on " : "plan file ") + request.planFile;
+}
+
 /// The plan of `request`'s plan document (the file, or the text it carries), its names checked
 /// against `scene`. The document must be JSON, nothing around it (unlike an LLM's answer).
 Plan readPlanDocument(const RunRequest& request, const Scene& scene, const std::string& robot) {
-  const std::string name = request.planText ? "plan on " + request.planFile : "plan file " + request.planFile;
+  const std::string name = planSource(request);
   std::string text;
   if (request.planText) {
     text = *request.planText;
@@ -115,7 +121,7 @@ Plan readPlanDocument(const RunRequest& request, const Scene& scene, const std::
 SelectedTaskPlanner taskPlannerFor(const RunRequest& request, const Scene& scene, const std::string& robot) {
   if (request.planFile.empty()) return makeTaskPlanner(request.planner);
   if (!request.planner.offline()) throw InputError("run: --plan executes the given plan; --llm chooses a task planner: give one of them");
-  const std::string source = request.planText ? "plan on " + request.planFile : "plan file " + request.planFile;
+  const std::string source = planSource(request);
   return SelectedTaskPlanner(nullptr, std::make_unique<GivenPlanTaskPlanner>(readPlanDocument(request, scene, robot), source), source);
 }
 

@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 
 namespace lang2manip {
 namespace {
@@ -46,27 +47,21 @@ AlignedBox3 meshBounds(const MeshGeometry& mesh, const Pose& X_FG) {
   return box;
 }
 
-std::string lengthText(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
 std::string rangeText() {
-  return "[" + lengthText(kMinModelLength) + ", " + lengthText(kMaxModelLength) + "] m";
+  return "[" + numberText(kMinModelLength) + ", " + numberText(kMaxModelLength) + "] m";
 }
 
 }  // namespace
 
 std::string dimensionRangeProblem(double value) {
   if (value == 0.0 || (value >= kMinModelLength && value <= kMaxModelLength)) return {};
-  return lengthText(value) + " m is outside " + rangeText();
+  return numberText(value) + " m is outside " + rangeText();
 }
 
 std::string positionRangeProblem(const Vector3& position) {
   if (position.cwiseAbs().maxCoeff<Eigen::PropagateNaN>() <= kMaxModelLength) return {};
-  return "(" + lengthText(position.x()) + ", " + lengthText(position.y()) + ", " +
-         lengthText(position.z()) + ") m is more than " + lengthText(kMaxModelLength) +
+  return "(" + numberText(position.x()) + ", " + numberText(position.y()) + ", " +
+         numberText(position.z()) + ") m is more than " + numberText(kMaxModelLength) +
          " m from the origin";
 }
 
@@ -95,7 +90,7 @@ void requireShapeInRange(const Shape& shape, std::string_view what, const Source
     for (int i = 0; i < 3; ++i) {
       // A mirroring (negative) scale is allowed; its magnitude is a length factor.
       if (!(std::abs(mesh.scale[i]) >= kMinModelLength && std::abs(mesh.scale[i]) <= kMaxModelLength)) {
-        throw InputError(where, name + " mesh scale " + lengthText(mesh.scale[i]) + " is outside +-" +
+        throw InputError(where, name + " mesh scale " + numberText(mesh.scale[i]) + " is outside +-" +
                                     rangeText());
       }
     }

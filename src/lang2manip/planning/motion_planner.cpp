@@ -21,6 +21,7 @@
 #include <ompl/util/Console.h>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/core/log.hpp"
 #include "lang2manip/planning/ompl_bridge.hpp"
 #include "lang2manip/planning/planner_registry.hpp"
@@ -44,12 +45,6 @@ class LogOutputHandler final : public ompl::msg::OutputHandler {
     logMessage(ours, "OMPL: " + text);
   }
 };
-
-std::string formatSeconds(double seconds) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", seconds);
-  return text;
-}
 
 ob::State* newState(const ob::SpaceInformationPtr& si, const VectorX& x) {
   ob::State* state = si->allocState();
@@ -81,7 +76,7 @@ std::string rangeHint(ob::Planner& planner) {
   const double range = std::atof(planner.params()["range"].getValue().c_str());
   const double extent = planner.getSpaceInformation()->getMaximumExtent();
   if (!(range > extent)) return "";
-  return " (its range " + formatSeconds(range) + " exceeds the extent " + formatSeconds(extent) +
+  return " (its range " + numberText(range) + " exceeds the extent " + numberText(extent) +
          " of the planning space, so each extension must reach its sample in one collision-free motion; "
          "Kautham measures Range in its own state space, where the same number may mean a shorter step)";
 }
@@ -187,7 +182,7 @@ std::string MotionPlanner::verifyPath(const std::vector<VectorX>& path) const {
         }
       }
       return "path segment " + std::to_string(i - 1) + " -> " + std::to_string(i) +
-             " collides at resolution " + formatSeconds(options_.verificationResolution) + pairs;
+             " collides at resolution " + numberText(options_.verificationResolution) + pairs;
     }
   }
   return {};
@@ -378,7 +373,7 @@ MotionPlan MotionPlanner::solve(const VectorX& start, const std::vector<VectorX>
       plan.message = !rejected.empty() ? rejected
                      : plan.status == MotionPlanStatus::kStopped
                          ? "stopped before a path was found by " + settings.planner()
-                         : "no path found in " + formatSeconds(settings.maxPlanningTime()) + " s by " +
+                         : "no path found in " + numberText(settings.maxPlanningTime()) + " s by " +
                                settings.planner() + rangeHint(*ompl_->planner);
       break;
     }

@@ -5,17 +5,9 @@
 #include <cstdio>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 
 namespace lang2manip {
-namespace {
-
-std::string formatNumber(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
-}  // namespace
 
 double JointLimitDefaults::velocityLimit(const RobotModel& model, int variable) const {
   const double limit = model.velocityLimits()[variable];
@@ -44,8 +36,8 @@ void PlanningSpace::checkPoint(const VectorX& x, const std::string& what) const 
     const std::string name = dofNames_[static_cast<std::size_t>(i)];
     if (!std::isfinite(x[i])) throw InputError(what + ": " + name + " is not a finite number");
     if (x[i] < lower_[i] - 1e-9 || x[i] > upper_[i] + 1e-9) {
-      throw InputError(what + ": " + name + " = " + formatNumber(x[i]) + " is outside its limits [" +
-                       formatNumber(lower_[i]) + ", " + formatNumber(upper_[i]) + "]");
+      throw InputError(what + ": " + name + " = " + numberText(x[i]) + " is outside its limits [" +
+                       numberText(lower_[i]) + ", " + numberText(upper_[i]) + "]");
     }
   }
 }
