@@ -94,7 +94,7 @@ TEST(CliPlan, OfflineJsonIsThePlanDocument) {
   ASSERT_EQ(plan["goals"].size(), 2U);
   EXPECT_EQ(plan["goals"][0], json({{"kind", "relation"}, {"object", "marker"}, {"relation", "in"}, {"target", "holder"},
                                     {"distance", nullptr}, {"displacement", nullptr}, {"configuration", nullptr},
-                                    {"position", nullptr}, {"angle", nullptr}}));
+                                    {"position", nullptr}, {"angle", nullptr}, {"region", nullptr}}));
 }
 
 TEST(CliPlan, OfflinePlansOnOtherBuiltInProblems) {

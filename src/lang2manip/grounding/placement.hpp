@@ -72,6 +72,8 @@ struct PlacementTarget {
   /// turned about the vertical by 90, 180 and 270 degrees).
   std::optional<Vector3> position;
   std::optional<Quaternion> orientation;
+  /// For on: the region of the target's reachable top the object's centre goes in.
+  std::optional<SurfaceRegion> region;
 };
 
 /// The target of a place action's parameters (relation + target + distance, or position +

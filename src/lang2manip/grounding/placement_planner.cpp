@@ -178,11 +178,11 @@ PlacementPlan noPlacement(PlacementPlan plan, const std::string& what) {
 /// that are free of the scene's other objects (the object being placed now is held, so it is
 /// not among them).
 std::vector<AlignedBox3> laterObjectRoom(const Scene& scene, const std::string& later, const PlacementRequest& request,
-                                         const Pose& robotBase) {
+                                         const SceneRobot& robot) {
   const SceneObject* object = scene.findObject(later);
   if (object == nullptr || scene.findAttachment(later) != nullptr) return {};
   const Pose current = currentObjectPose(scene, later);
-  const PoseSamplingInput input{&scene, object, Quaternion(current.linear()), current.translation(), robotBase};
+  const PoseSamplingInput input{&scene, object, Quaternion(current.linear()), current.translation(), robot.basePose, robot.name};
   const PoseSampling sampling = samplePlacementPoses(input, request.target, request.settings);
   const ObjectCollisionWorld world(scene, later);
   std::vector<AlignedBox3> room;
@@ -196,10 +196,10 @@ std::vector<AlignedBox3> laterObjectRoom(const Scene& scene, const std::string& 
 /// position at the target (several objects into one container: the first must not take the
 /// middle that the next one needs). Boxes are compared, which is conservative: it only orders.
 void leaveRoomForLaterObjects(const Scene& scene, const PlacementRequest& request, const SceneObject& object,
-                              const Pose& robotBase, std::vector<PoseCandidate>& poses) {
+                              const SceneRobot& robot, std::vector<PoseCandidate>& poses) {
   std::vector<std::vector<AlignedBox3>> rooms;
   for (const std::string& later : request.placedAfter) {
-    if (later != object.name) rooms.push_back(laterObjectRoom(scene, later, request, robotBase));
+    if (later != object.name) rooms.push_back(laterObjectRoom(scene, later, request, robot));
   }
   if (rooms.empty()) return;
   std::stable_partition(poses.begin(), poses.end(), [&](const PoseCandidate& pose) {
@@ -244,11 +244,12 @@ PlacementPlan planPlacement(const ReachabilityChecker& reach, const PlacementReq
   const std::vector<Pose> grasps = graspsToTry(reach, request, held);
   const std::string what = object.name + " " + describePlacementTarget(request.target);
   const Pose current = currentObjectPose(scene, object.name);
-  const PoseSamplingInput input{&scene, &object, Quaternion(object.pose.linear()), current.translation(), reach.robot().basePose};
+  const PoseSamplingInput input{&scene, &object, Quaternion(object.pose.linear()), current.translation(), reach.robot().basePose,
+                                 reach.robot().name};
   PoseSampling sampling = samplePlacementPoses(input, request.target, request.settings);
   PlacementPlan plan;
   if (sampling.poses.empty()) return failed(std::move(plan), sampling.failure, what + ": " + sampling.reason);
-  leaveRoomForLaterObjects(scene, request, object, reach.robot().basePose, sampling.poses);
+  leaveRoomForLaterObjects(scene, request, object, reach.robot(), sampling.poses);
 
   const ObjectCollisionWorld world(scene, object.name);
   HeldObjectReach heldReach(reach, object.name, held);
@@ -276,6 +277,7 @@ PlacementTarget placementTargetFromParams(const ActionParams& params) {
   target.distance = params.distance;
   target.position = params.position;
   target.orientation = params.orientation;
+  target.region = params.region;
   return target;
 }
 
@@ -287,6 +289,7 @@ std::string describePlacementTarget(const PlacementTarget& target) {
     return buffer;
   }
   std::string text = spatialRelationName(*target.relation) + " " + target.target;
+  if (target.region) text += " (" + surfaceRegionName(*target.region) + ")";
   if (target.distance) {
     std::snprintf(buffer, sizeof buffer, " (%.3f m)", *target.distance);
     text += buffer;

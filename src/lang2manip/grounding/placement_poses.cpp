@@ -7,6 +7,7 @@
 #include "lang2manip/core/random.hpp"
 #include "lang2manip/grounding/object_geometry.hpp"
 #include "lang2manip/symbolic/support_surface.hpp"
+#include "lang2manip/symbolic/surface_region.hpp"
 
 namespace lang2manip {
 namespace {
@@ -94,9 +95,67 @@ std::vector<Quaternion> uprightYaws(const Quaternion& current) {
   return all;
 }
 
-PoseSampling onSurface(const PoseSamplingInput& in, const SceneObject& surface, const PlacementSettings& s) {
+/// The point of a region things are put nearest first: a quarter of the region in from a
+/// corner's corner or an edge's midpoint (near the edge, not on it, so that the candidates after
+/// it spread over the region), the centre of the rest (base frame).
+Vector3 regionAnchor(const AlignedBox3& area, const SurfaceRegion& region) {
+  const AlignedBox3 box = regionBox(area, region);
+  Vector3 anchor = box.center();
+  if (region.kind != SurfaceRegion::Kind::kCorner && region.kind != SurfaceRegion::Kind::kEdge) return anchor;
+  anchor.x() += region.depth * box.sizes().x() / 4.0;
+  anchor.y() += region.side * box.sizes().y() / 4.0;
+  return anchor;
+}
+
+/// In `region` of the reachable top of `surface`: a 2 cm grid of the centres that keep the
+/// footprint inside (regionCentres()), nearest to the region's anchor first, in the object's
+/// upright yaws.
+PoseSampling inRegion(const PoseSamplingInput& in, const SceneObject& surface, const SurfaceRegion& region, double height,
+                      const PlacementSettings& s) {
+  std::string why;
+  const auto area = supportArea(*in.scene, surface.name, in.robot, &why);
+  const std::string name = surfaceRegionName(region);
+  if (!area) return failure(PlacementFailure::kNoSupport, in.object->name + " cannot go in the " + name + " of " + surface.name + ": " + why);
+  const Vector3 anchor = regionAnchor(area->reachable, region);
+  struct Spot {
+    Vector3 point;
+    Quaternion orientation;
+  };
+  std::vector<Spot> spots;
+  for (const Quaternion& q : uprightYaws(in.orientation)) {
+    const Vector3 size = rotatedSize(*in.object, Quaternion(in.robotBase.linear().transpose() * q.toRotationMatrix()));
+    const auto centres = regionCentres(area->reachable, region, size, s.edgeMargin);
+    if (!centres) continue;
+    const Vector3 extent = centres->sizes();
+    const int nx = static_cast<int>(std::floor(extent.x() / 0.02)) + 1, ny = static_cast<int>(std::floor(extent.y() / 0.02)) + 1;
+    for (int i = 0; i < nx; ++i) {
+      for (int j = 0; j < ny; ++j) {
+        const double x = nx == 1 ? centres->center().x() : centres->min().x() + extent.x() * i / (nx - 1);
+        const double y = ny == 1 ? centres->center().y() : centres->min().y() + extent.y() * j / (ny - 1);
+        spots.push_back({Vector3(x, y, 0.0), q});
+      }
+    }
+  }
+  std::stable_sort(spots.begin(), spots.end(), [&](const Spot& a, const Spot& b) {
+    return (a.point - anchor).head<2>().squaredNorm() < (b.point - anchor).head<2>().squaredNorm();
+  });
+  PoseSampling sampling;
+  for (const Spot& spot : spots) {
+    Vector3 world = in.robotBase * spot.point;
+    sampling.poses.push_back({restingPose(*in.object, spot.orientation, world.x(), world.y(), height + s.releaseGap), surface.name,
+                              "on " + surface.name + " (" + name + ") at " + pointText(world.x(), world.y(), height)});
+  }
+  if (sampling.poses.empty()) {
+    return failure(PlacementFailure::kTooLarge, in.object->name + " does not fit in the " + name + " of " + surface.name);
+  }
+  return sampling;
+}
+
+PoseSampling onSurface(const PoseSamplingInput& in, const SceneObject& surface, const std::optional<SurfaceRegion>& region,
+                       const PlacementSettings& s) {
   const SupportSurface support = supportSurface(surface);
   if (!support.top) return failure(PlacementFailure::kNoSupport, in.object->name + " cannot rest on " + surface.name + ": " + support.why);
+  if (region) return inRegion(in, surface, *region, support.top->max().z(), s);
   const AlignedBox3 top = *support.top;
   Random random(s.seed);
   std::vector<Vector3> points;
@@ -210,7 +269,7 @@ PoseSampling samplePlacementPoses(const PoseSamplingInput& in, const PlacementTa
   const SceneObject& reference = in.scene->object(target.target);
   switch (*target.relation) {
     case SpatialRelation::kIn: return inContainer(in, reference, s);
-    case SpatialRelation::kOn: return onSurface(in, reference, s);
+    case SpatialRelation::kOn: return onSurface(in, reference, target.region, s);
     default: {
       PoseSampling sampling = besideObject(in, reference, *target.relation, target.distance, s);
       if (!sampling.poses.empty()) sampling.failure = PlacementFailure::kNone;

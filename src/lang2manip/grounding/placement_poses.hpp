@@ -33,6 +33,8 @@ struct PoseSamplingInput {
   /// Its current world position (surface samples near it come first) and the robot base X_WB.
   Vector3 position = Vector3::Zero();
   Pose robotBase = Pose::Identity();
+  /// The robot placing it: regions are of the part of a top it reaches.
+  std::string robot;
 };
 
 /// Candidate poses for `target`:
@@ -40,7 +42,9 @@ struct PoseSamplingInput {
 ///   footprint fits the cavity and whose centre stays below the rim, on a grid of positions on
 ///   the cavity floor, the centre first;
 /// - on: the top of the target, seeded random positions within its footprint (nearest to the
-///   object's current position first), in the object's current orientation and its yaws;
+///   object's current position first), in the object's current orientation and its yaws; with a
+///   region, positions within it (regionCentres(), base frame), nearest to the region's outer
+///   point first (a corner's corner, an edge's midpoint, the centre);
 /// - left_of / right_of / in_front_of / behind: beside the target along that robot-base axis,
 ///   at the given centre offset or with sideGap between the boxes, shifted sideways by
 ///   lateralShifts, on the target's support;

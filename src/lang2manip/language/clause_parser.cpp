@@ -241,6 +241,7 @@ bool StepParser::parseRelations(Step& step) {
 
 
 bool StepParser::parseRelation(Step& step) {
+  if (parseRegion(step)) return true;
   const Words& words = step.words;
   std::size_t at = step.at;
   std::optional<double> distance;
@@ -344,7 +345,7 @@ void StepParser::addRelationGoals(Step& step, const RelationSpec& relation) {
   step.target = relation.target;
   lastRelation_ = relation;
   if (step.verb.stacks) {
-    addStackGoals(step, relation.target);
+    addStackGoals(step, relation.target, relation.region);
     return;
   }
   for (const std::string& object : step.objects) {
@@ -354,11 +355,12 @@ void StepParser::addRelationGoals(Step& step, const RelationSpec& relation) {
     goal.relation = relation.relation;
     goal.target = relation.target;
     goal.distance = relation.distance;
+    goal.region = relation.region;
     specification_.goals.push_back(goal);
   }
 }
 
-void StepParser::addStackGoals(Step& step, const std::optional<std::string>& base) {
+void StepParser::addStackGoals(Step& step, const std::optional<std::string>& base, const std::optional<SurfaceRegion>& region) {
   std::vector<std::string> order = step.objects;
   if (!step.listedExplicitly) {
     std::stable_sort(order.begin(), order.end(), [this](const std::string& a, const std::string& b) {
@@ -373,6 +375,7 @@ void StepParser::addStackGoals(Step& step, const std::optional<std::string>& bas
     goal.object = order[i];
     goal.relation = SpatialRelation::kOn;
     goal.target = order[i - 1];
+    if (i == 1 && base) goal.region = region;
     specification_.goals.push_back(goal);
   }
 }

@@ -29,6 +29,8 @@ struct RelationSpec {
   SpatialRelation relation = SpatialRelation::kOn;
   std::string target;
   std::optional<double> distance;
+  /// For on: the region of the target's top ("in the far left corner of the table").
+  std::optional<SurfaceRegion> region;
 };
 
 /// Parses the steps of one instruction in order, adding goals to a TaskSpecification.
@@ -100,6 +102,22 @@ class StepParser {
   /// One or more relation phrases in a row; false when none.
   bool parseRelations(Step& step);
   bool parseRelation(Step& step);
+  /// "in the top left corner (of the table)", "to the middle", "on the bottom side", "in the
+  /// corner closest to the bowl": an on goal with a region of the support's top (the support the
+  /// step's objects stand on when none is named); a side of an object that is not a support is
+  /// a relation beside it ("on the left side of the box": left_of). False when none follows.
+  bool parseRegion(Step& step);
+  /// The support a region phrase without "of ..." is of: the one the step's first object stands
+  /// on, else the only support.
+  [[nodiscard]] std::string defaultRegionSupport(const Step& step) const;
+  /// Gives the step's goals "on <spec.target>" without a region `spec.region` ("on the desk, in
+  /// the far left corner"); false when it has none.
+  bool refineGoalsOnSupport(Step& step, const RelationSpec& spec);
+  /// A corner the phrase left open ("a corner", "the left corner", "the corner closest to X"):
+  /// among the corners it allows, the one nearest to (or farthest from) `reference`'s centre (the
+  /// robot's base when `fromRobot`), or nearest to the step's first object.
+  [[nodiscard]] SurfaceRegion chooseCorner(const Step& step, SurfaceRegion corner, const std::string& support,
+                                           const std::string& reference, bool fromRobot, bool farthest) const;
   /// True when `object` rests on top of `support` (their boxes, within 1.5 cm).
   [[nodiscard]] bool standsOn(const std::string& object, const std::string& support) const;
   bool parseDisplacement(Step& step);
@@ -128,7 +146,8 @@ class StepParser {
   std::string groundTarget(Step& step, const NounPhrase& phrase, bool intoSomething);
   SpatialRelation relationByRole(const std::string& target) const;
   void addRelationGoals(Step& step, const RelationSpec& relation);
-  void addStackGoals(Step& step, const std::optional<std::string>& base);
+  /// The step's objects stacked on `base` (the lowest in `region` of its top, when given).
+  void addStackGoals(Step& step, const std::optional<std::string>& base, const std::optional<SurfaceRegion>& region = {});
   [[noreturn]] void failStep(const Step& step, const std::string& why) const;
 
   const NounPhraseReader& reader_;

@@ -16,7 +16,10 @@ bool restsIn(SpatialRelation relation) { return relation == SpatialRelation::kIn
 /// True when `a` and `b` (relation goals of one object) cannot both hold.
 bool conflict(const Goal& a, const Goal& b) {
   if (a.kind != GoalKind::kRelation || b.kind != GoalKind::kRelation || !a.relation || !b.relation) return false;
-  if (restsIn(*a.relation) && restsIn(*b.relation)) return a.target != b.target || *a.relation != *b.relation;
+  if (restsIn(*a.relation) && restsIn(*b.relation)) {
+    if (a.region && b.region && a.target == b.target && !regionsOverlap(*a.region, *b.region)) return true;
+    return a.target != b.target || *a.relation != *b.relation;
+  }
   // Inside a container it is where the container is: not beside something else.
   if (*a.relation == SpatialRelation::kIn || *b.relation == SpatialRelation::kIn) return a.target != b.target;
   return a.target == b.target && opposite(*a.relation, *b.relation);

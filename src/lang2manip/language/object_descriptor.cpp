@@ -8,6 +8,7 @@
 
 #include "lang2manip/language/words.hpp"
 #include "lang2manip/symbolic/object_heading.hpp"
+#include "lang2manip/symbolic/surface_region.hpp"
 
 namespace lang2manip {
 namespace {
@@ -190,6 +191,9 @@ std::vector<ObjectDescriptor> describeObjects(const Scene& scene, const std::str
     if (const auto side = longSideYaw(object, worldToBase.linear() * object.pose.linear())) descriptor.longSideYaw = *side;
     descriptor.movable = object.movable;
     descriptor.role = object.role;
+    if (object.role == ObjectRole::kSupport) {
+      if (const auto area = supportArea(scene, object.name, robot)) descriptor.reachableTop = area->reachable;
+    }
     descriptors.push_back(std::move(descriptor));
   }
   classifySizes(descriptors);

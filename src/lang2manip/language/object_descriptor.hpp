@@ -42,6 +42,9 @@ struct ObjectDescriptor {
   std::optional<double> longSideYaw;
   bool movable = false;
   ObjectRole role = ObjectRole::kNone;
+  /// For a support: the part of its top the robot reaches (base frame), what its regions are of
+  /// (supportArea()).
+  std::optional<AlignedBox3> reachableTop;
 };
 
 /// Descriptors of every object of `scene`, in scene order. Positions are in the base frame of

@@ -164,6 +164,9 @@ class Sequencer {
     switch (goal.kind) {
       case GoalKind::kRelation:
         if (goal.relation == SpatialRelation::kIn) return lookup(state.inside, goal.object) == goal.target;
+        if (goal.relation == SpatialRelation::kOn && goal.region) {
+          return lookup(state.onTopOf, goal.object) == goal.target && (world.achieved.count(index) > 0 || standsInRegion(goal, world));
+        }
         if (goal.relation == SpatialRelation::kOn) return lookup(state.onTopOf, goal.object) == goal.target;
         return world.achieved.count(index) > 0;
       case GoalKind::kHolding: return state.held == goal.object;
@@ -182,6 +185,17 @@ class Sequencer {
       }
     }
     return false;
+  }
+
+  /// True when the object's centre stands in the goal's region of the reachable top (as the goal
+  /// check measures it, without its slack).
+  static bool standsInRegion(const Goal& goal, const World& world) {
+    const auto at = world.layout.find(goal.object);
+    const auto area = world.state.reachableTops.find(goal.target);
+    if (at == world.layout.end() || at->second.placeUnknown || area == world.state.reachableTops.end()) return false;
+    const AlignedBox3 box = regionBox(area->second, *goal.region);
+    const Vector3 centre = at->second.bounds.center();
+    return centre.x() >= box.min().x() && centre.x() <= box.max().x() && centre.y() >= box.min().y() && centre.y() <= box.max().y();
   }
 
   static std::string lookup(const std::map<std::string, std::string>& map, const std::string& key) {
@@ -307,9 +321,10 @@ class Sequencer {
     params.relation = goal.relation;
     params.target = goal.target;
     params.distance = goal.distance;
+    params.region = goal.region;
     const std::string restingOn = isDirectional(goal) ? supportBelow(state, goal.target) : goal.target;
     place(world, goal.object, params, goal.relation == SpatialRelation::kIn, restingOn);
-    if (isDirectional(goal)) world.achieved.insert(index);
+    if (isDirectional(goal) || goal.region) world.achieved.insert(index);
   }
 
   void push(std::size_t index, World& world) {

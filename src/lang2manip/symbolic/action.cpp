@@ -86,6 +86,7 @@ std::string describeGoal(const Goal& goal) {
            << (goal.relation ? spatialRelationName(*goal.relation) : std::string("?")) << ' '
            << goal.target;
       if (goal.distance) text << " at " << *goal.distance << " m";
+      if (goal.region) text << " (" << surfaceRegionName(*goal.region) << ")";
       break;
     case GoalKind::kHolding:
       text << "holding " << goal.object;

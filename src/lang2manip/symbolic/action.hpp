@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lang2manip/core/types.hpp"
+#include "lang2manip/symbolic/surface_region.hpp"
 
 namespace lang2manip {
 
@@ -39,7 +40,8 @@ std::vector<std::string> graspDirectionNames();
 
 /// Parameters p of an action; which fields are meaningful depends on the action type:
 /// - place: `relation` + `target` (+ optional `distance` for left_of/right_of/in_front_of/
-///   behind/next_to), or an explicit `position` (+ optional `orientation`);
+///   behind/next_to, + optional `region` of the target's top for on), or an explicit
+///   `position` (+ optional `orientation`);
 /// - move: a `position` (+ `orientation`) of the tool frame, or a `configuration` name such as
 ///   "home" (then `object` of the action is empty);
 /// - push: a `direction` (unit vector, robot base frame) and a `distance` in metres;
@@ -52,6 +54,9 @@ struct ActionParams {
   std::optional<Quaternion> orientation;
   std::string configuration;
   std::optional<Vector3> direction;
+  /// For place on a support: the region of its top face ("far_left_corner", see
+  /// surface_region.hpp).
+  std::optional<SurfaceRegion> region;
 };
 
 /// Refinements r: how to grasp and approach.
@@ -114,6 +119,8 @@ struct Goal {
   /// kTurned: the turn about the vertical, rad (counter-clockwise seen from above); kFacing
   /// without a target: the heading of the long side, rad (base frame, 0 = front).
   double angle = 0.0;
+  /// For an on relation: the region of the target's top face the object's centre must be in.
+  std::optional<SurfaceRegion> region;
 };
 
 struct Plan {

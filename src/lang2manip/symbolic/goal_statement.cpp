@@ -14,8 +14,8 @@ using nlohmann::json;
 constexpr GoalKind kGoalKinds[] = {GoalKind::kRelation, GoalKind::kHolding, GoalKind::kDisplaced,
                                    GoalKind::kAtConfiguration, GoalKind::kHandedOver, GoalKind::kAtPosition,
                                    GoalKind::kTurned, GoalKind::kFacing};
-const std::vector<std::string> kGoalFields{"kind",         "object",        "relation", "target", "distance",
-                                           "displacement", "configuration", "position", "angle"};
+const std::vector<std::string> kGoalFields{"kind",          "object",   "relation", "target", "distance", "displacement",
+                                           "configuration", "position", "angle",    "region"};
 
 json nullableOf(const json& type, const std::string& description) {
   return {{"anyOf", {type, {{"type", "null"}}}}, {"description", description}};
@@ -33,7 +33,7 @@ class GoalReader {
     if (!item.is_object()) return fail(path, "expected a goal object, got " + shown(item));
     for (const auto& [name, value] : item.items()) {
       if (std::find(kGoalFields.begin(), kGoalFields.end(), name) == kGoalFields.end()) {
-        report(path + "." + name, "unknown field (valid fields: kind, object, relation, target, distance, displacement, configuration, position, angle)");
+        report(path + "." + name, "unknown field (valid fields: kind, object, relation, target, distance, displacement, configuration, position, angle, region)");
       }
     }
     const std::optional<GoalKind> kind = readKind(item, path);
@@ -53,6 +53,10 @@ class GoalReader {
     }
     if (const json* position = given(item, "position")) goal.position = readVector(*position, path + ".position");
     if (const json* angle = given(item, "angle")) goal.angle = readAngle(*angle, path + ".angle", goal.kind == GoalKind::kFacing);
+    if (const json* region = given(item, "region")) goal.region = readRegion(*region, path + ".region");
+    if (goal.region && goal.relation && *goal.relation != SpatialRelation::kOn) {
+      report(path + ".region", "only used with relation \"on\" (a region of the target's top face)");
+    }
     if (goal.kind == GoalKind::kFacing && (given(item, "target") == nullptr) == (given(item, "angle") == nullptr)) {
       report(path, "a facing goal needs a target to point at or an angle (the heading of its long side), not both");
     }
@@ -86,7 +90,7 @@ class GoalReader {
     return {};
   }
   static std::vector<std::string> optionalFields(GoalKind kind) {
-    if (kind == GoalKind::kRelation) return {"distance"};
+    if (kind == GoalKind::kRelation) return {"distance", "region"};
     if (kind == GoalKind::kAtPosition) return {"target"};
     if (kind == GoalKind::kFacing) return {"target", "angle"};
     if (kind == GoalKind::kTurned) return {"position"};
@@ -144,6 +148,16 @@ class GoalReader {
     std::string names;
     for (const std::string& name : spatialRelationNames()) names += (names.empty() ? "" : ", ") + name;
     report(path, "unknown relation " + shown(value) + " (relations: " + names + ")");
+    return std::nullopt;
+  }
+
+  std::optional<SurfaceRegion> readRegion(const json& value, const std::string& path) {
+    if (value.is_string()) {
+      if (auto region = surfaceRegionFromName(value.get<std::string>())) return region;
+    }
+    std::string names;
+    for (const std::string& name : surfaceRegionNames()) names += (names.empty() ? "" : ", ") + name;
+    report(path, "unknown region " + shown(value) + " (regions: " + names + ")");
     return std::nullopt;
   }
 
@@ -224,6 +238,7 @@ nlohmann::json goalStatementSchema() {
         {"displacement", nullableOf(vector, "displaced: how far the object moves, metres, robot base frame")},
         {"configuration", nullableOf({{"type", "string"}}, "at_configuration: the named configuration, e.g. home")},
         {"position", nullableOf(vector, "at_position: where the object frame's origin ends up, metres, robot base frame (x and y are checked); turned: where it stands turned when the plan moved it first (null: where it stood)")},
+        {"region", nullableOf({{"type", "string"}, {"enum", surfaceRegionNames()}}, "relation on a support: the region of its top face the object's centre ends up in (corners, edges, centre, halves, quadrants of the reachable part)")},
         {"angle", nullableOf(number, "turned: the turn about the vertical from where it started, radians, counter-clockwise seen from above; facing without a target: the heading of the long side, radians, base frame (0 = front)")}}},
       {"required", kGoalFields},
       {"additionalProperties", false}};
@@ -245,7 +260,8 @@ nlohmann::json goalStatementJson(const std::vector<Goal>& goals) {
                     {"displacement", displaced ? vectorJson(goal.displacement) : json(nullptr)},
                     {"configuration", goal.configuration.empty() ? json(nullptr) : json(goal.configuration)},
                     {"position", (goal.kind == GoalKind::kAtPosition || goal.kind == GoalKind::kTurned) && goal.position ? vectorJson(*goal.position) : json(nullptr)},
-                    {"angle", goal.kind == GoalKind::kTurned || (goal.kind == GoalKind::kFacing && goal.target.empty()) ? json(goal.angle) : json(nullptr)}});
+                    {"angle", goal.kind == GoalKind::kTurned || (goal.kind == GoalKind::kFacing && goal.target.empty()) ? json(goal.angle) : json(nullptr)},
+                    {"region", relation && goal.region ? json(surfaceRegionName(*goal.region)) : json(nullptr)}});
   }
   return list;
 }

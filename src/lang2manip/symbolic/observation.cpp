@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "lang2manip/model/scene.hpp"
+#include "lang2manip/symbolic/surface_region.hpp"
 
 namespace lang2manip {
 namespace {
@@ -160,6 +162,40 @@ json objectJson(const SceneObject& object, const Pose& base, const SymbolicState
   return report;
 }
 
+json areaJson(const AlignedBox3& box) {
+  return {{"x", {rounded(box.min().x()), rounded(box.max().x())}}, {"y", {rounded(box.min().y()), rounded(box.max().y())}}};
+}
+
+/// The top face and its reachable part for every object that offers a flat top (base frame).
+std::map<std::string, SupportArea> supportAreas(const Scene& scene, const std::string& robot) {
+  std::map<std::string, SupportArea> areas;
+  for (const SceneObject& object : scene.objects()) {
+    if (object.role != ObjectRole::kSupport) continue;
+    if (auto area = supportArea(scene, object.name, robot)) areas.emplace(object.name, *area);
+  }
+  return areas;
+}
+
+/// Adds to the objects' reports the top faces of supports and the region of their top each object
+/// on one stands in.
+void addRegions(json& objects, const std::map<std::string, SupportArea>& areas, const Scene& scene, const Pose& base) {
+  for (json& report : objects) {
+    const std::string name = report["name"].get<std::string>();
+    if (const auto area = areas.find(name); area != areas.end()) {
+      report["top"] = {{"height", rounded(area->second.top.max().z())}, {"area", areaJson(area->second.top)},
+                       {"reachable", areaJson(area->second.reachable)}, {"clipped", area->second.clipped}};
+    }
+    if (!report["on"].is_string()) continue;
+    const auto support = areas.find(report["on"].get<std::string>());
+    if (support == areas.end()) continue;
+    const Vector3 centre = base.inverse() * scene.object(name).worldBounds().center();
+    const AlignedBox3& reachable = support->second.reachable;
+    const bool inside = centre.x() >= reachable.min().x() && centre.x() <= reachable.max().x() &&
+                        centre.y() >= reachable.min().y() && centre.y() <= reachable.max().y();
+    report["region"] = inside ? json(surfaceRegionName(cellOfPoint(reachable, centre))) : json("out_of_reach");
+  }
+}
+
 json fact(const std::string& subject, const std::string& relation, const std::string& object) {
   return {{"subject", subject}, {"relation", relation}, {"object", object}};
 }
@@ -211,6 +247,7 @@ nlohmann::json observeEnvironment(const Scene& scene, const ObservationOptions& 
   }
   json objects = json::array();
   for (const SceneObject& object : scene.objects()) objects.push_back(objectJson(object, base, state, options.spatial));
+  addRegions(objects, supportAreas(scene, options.robot), scene, base);
   return {{"frames", "world frame z up; relations and base-frame positions use the base frame of robot " +
                          (mainRobot.empty() ? std::string("(none)") : mainRobot) +
                          ": x front, y left, z up; lengths in metres, angles in radians"},

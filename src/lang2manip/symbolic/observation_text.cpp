@@ -79,13 +79,34 @@ std::string robotText(const json& robot) {
   return text + "\n";
 }
 
+std::string regionText(const json& object) {
+  const auto region = object.find("region");
+  if (region == object.end()) return "";
+  return " in its " + region->get<std::string>();
+}
+
 std::string objectState(const json& object) {
   std::string text;
   if (object["held"].get<bool>()) text = "held by the robot";
   if (!object["in"].is_null()) text = "in " + object["in"].get<std::string>();
-  if (!object["on"].is_null()) text = "on " + object["on"].get<std::string>();
+  if (!object["on"].is_null()) text = "on " + object["on"].get<std::string>() + regionText(object);
   if (text.empty()) text = "not on any object";
   return text + (object["clear"].get<bool>() ? ", clear" : ", not clear");
+}
+
+std::string span(const json& range) { return "[" + number(range[0]) + ", " + number(range[1]) + "]"; }
+
+/// "; top at z 0.000, x [0.100, 0.900] y [-0.600, 0.600], reachable x [...] y [...]".
+std::string topText(const json& object) {
+  const auto top = object.find("top");
+  if (top == object.end()) return "";
+  const json& area = (*top)["area"];
+  const json& reach = (*top)["reachable"];
+  std::string text = "; flat top at z " + number((*top)["height"]) + " (base frame), x " + span(area["x"]) + " y " + span(area["y"]);
+  if ((*top)["clipped"].get<bool>()) {
+    text += ", of which the arm reaches x " + span(reach["x"]) + " y " + span(reach["y"]) + " (its regions are of that part)";
+  }
+  return text;
 }
 
 std::string objectText(const json& object) {
@@ -97,7 +118,7 @@ std::string objectText(const json& object) {
          "; at " + numbers(object["position"]) + " world, " + numbers(object["position_in_base"]) +
          " in the base frame (" + object["side_of_robot"].get<std::string>() + " of the robot, " +
          number(object["distance_from_robot"]) + " m away); yaw " + degrees(object["yaw"]) + "; size " +
-         number(d[0]) + " x " + number(d[1]) + " x " + number(d[2]) + " m; " + objectState(object) + "\n";
+         number(d[0]) + " x " + number(d[1]) + " x " + number(d[2]) + " m; " + objectState(object) + topText(object) + "\n";
 }
 
 }  // namespace

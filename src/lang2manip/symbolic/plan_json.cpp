@@ -59,7 +59,10 @@ json paramsSchema() {
        {"position", vectorSchema("place/move: explicit position in metres, robot base frame")},
        {"orientation", quaternionSchema()},
        {"configuration", nullableString("move: a named robot configuration such as home")},
-       {"direction", vectorSchema("push: unit direction, robot base frame (x front, y left)")}},
+       {"direction", vectorSchema("push: unit direction, robot base frame (x front, y left)")},
+       {"region", nullableEnum(surfaceRegionNames(),
+                               "place on a support: the region of its top face the object goes to "
+                               "(corners, edges, centre, halves, quadrants of the reachable part)")}},
       "Action parameters; null for pick"));
 }
 
@@ -94,7 +97,7 @@ json stringOrNull(const std::string& text) { return text.empty() ? json(nullptr)
 
 bool hasParams(const ActionParams& p) {
   return p.relation || !p.target.empty() || p.distance || p.position || p.orientation ||
-         !p.configuration.empty() || p.direction;
+         !p.configuration.empty() || p.direction || p.region;
 }
 
 json paramsJson(const ActionParams& p) {
@@ -105,7 +108,8 @@ json paramsJson(const ActionParams& p) {
           {"position", vectorJson(p.position)},
           {"orientation", quaternionJson(p.orientation)},
           {"configuration", stringOrNull(p.configuration)},
-          {"direction", vectorJson(p.direction)}};
+          {"direction", vectorJson(p.direction)},
+          {"region", p.region ? json(surfaceRegionName(*p.region)) : json(nullptr)}};
 }
 
 json refinementsJson(const ActionRefinements& r) {
@@ -153,6 +157,7 @@ std::string describeAction(const SymbolicAction& action) {
   if (p.relation) {
     if (p.distance) text << ' ' << *p.distance << " m";
     text << ' ' << spatialRelationName(*p.relation) << ' ' << p.target;
+    if (p.region) text << " (" << surfaceRegionName(*p.region) << ')';
   }
   if (!p.configuration.empty()) text << " to " << p.configuration;
   if (p.position) text << (action.type == ActionType::kPlace ? " at " : " to ") << vectorText(*p.position);

@@ -17,8 +17,8 @@ using nlohmann::json;
 
 const std::vector<std::string> kPlanFields{"actions", "reasoning", "goals"};
 const std::vector<std::string> kActionFields{"action", "object", "params", "refinements", "planner"};
-const std::vector<std::string> kParamFields{"relation", "target",        "distance", "position",
-                                            "orientation", "configuration", "direction"};
+const std::vector<std::string> kParamFields{"relation",    "target",        "distance",  "position",
+                                            "orientation", "configuration", "direction", "region"};
 const std::vector<std::string> kRefinementFields{"grasp", "approach"};
 
 
@@ -228,6 +228,13 @@ class PlanReader {
     if (const json* direction = find(params, "direction")) {
       out.direction = readVector(*direction, path + ".direction", true);
     }
+    if (auto region = optionalString(params, "region", path + ".region")) {
+      out.region = surfaceRegionFromName(normalizedName(*region));
+      if (!out.region) {
+        report(path + ".region", "unknown region " + inQuotes(*region) + " (valid regions: " +
+                                     joinedNames(surfaceRegionNames()) + ")");
+      }
+    }
   }
 
   void readRefinements(const json& refinements, const std::string& path, ActionRefinements& out) {
@@ -401,12 +408,16 @@ class PlanReader {
       report(params + ".distance", "not used with relation \"" + spatialRelationName(*action.params.relation) + "\"");
     }
     if (given.count("distance") && !relation) report(params + ".distance", "only used with a relation");
+    if (given.count("region") && action.params.relation && *action.params.relation != SpatialRelation::kOn) {
+      report(params + ".region", "only used with relation \"on\" (a region of the target's top face)");
+    }
+    if (given.count("region") && !relation) report(params + ".region", "only used with relation \"on\"");
   }
 
   static std::vector<std::string> allowedParams(ActionType type) {
     switch (type) {
       case ActionType::kPick: return {};
-      case ActionType::kPlace: return {"relation", "target", "distance", "position", "orientation"};
+      case ActionType::kPlace: return {"relation", "target", "distance", "position", "orientation", "region"};
       case ActionType::kMove: return {"position", "orientation", "configuration"};
       case ActionType::kPush: return {"direction", "distance"};
     }

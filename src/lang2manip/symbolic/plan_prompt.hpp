@@ -12,7 +12,7 @@
 namespace lang2manip {
 
 /// Version of the system prompt; changes whenever its text changes (recorded with each plan).
-inline constexpr const char* kPlanPromptVersion = "lang2manip-plan-prompt-3";
+inline constexpr const char* kPlanPromptVersion = "lang2manip-plan-prompt-4";
 
 /// The fixed system prompt. `planners` (may be empty) lists the motion planners an action may
 /// name; they are appended as one line so the prompt's fixed part never changes.

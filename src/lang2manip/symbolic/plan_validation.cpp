@@ -5,6 +5,7 @@
 #include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/symbolic/plan_json.hpp"
 #include "lang2manip/symbolic/support_surface.hpp"
+#include "lang2manip/symbolic/surface_region.hpp"
 
 namespace lang2manip {
 namespace {
@@ -54,6 +55,26 @@ std::vector<std::string> stackingProblems(const std::string& object, const std::
   return {object + text};
 }
 
+/// Whether `object` can stand in `region` of the reachable top of `target` (regionCentres()).
+std::vector<std::string> regionProblems(const std::string& object, const std::string& target, const SurfaceRegion& region,
+                                        const SymbolicState& state) {
+  const std::string name = surfaceRegionName(region);
+  const auto area = state.reachableTops.find(target);
+  if (area == state.reachableTops.end()) {
+    const bool support = state.supports.count(target) > 0 && state.flatTops.count(target) > 0;
+    return {target + " has no " + name + (support ? ": the robot reaches no part of its top" : ": regions are of a support's flat top")};
+  }
+  const auto size = state.sizes.find(object);
+  if (size == state.sizes.end()) return {};
+  const Vector3 turned(size->second.y(), size->second.x(), size->second.z());
+  if (regionCentres(area->second, region, size->second) || regionCentres(area->second, region, turned)) return {};
+  char text[200];
+  std::snprintf(text, sizeof text, " (%.3f x %.3f m) does not fit in the %s of %s (the reachable top is %.3f x %.3f m)",
+                size->second.x(), size->second.y(), name.c_str(), target.c_str(), area->second.sizes().x(),
+                area->second.sizes().y());
+  return {object + text};
+}
+
 std::vector<std::string> placeTargetProblems(const SymbolicAction& action, const SymbolicState& state) {
   const std::string& target = action.params.target;
   if (!action.params.relation) return {};
@@ -69,6 +90,9 @@ std::vector<std::string> placeTargetProblems(const SymbolicAction& action, const
   if (*action.params.relation == SpatialRelation::kOn && !state.supports.count(target) &&
       !state.isClear(target)) {
     return {target + " is not clear: " + joinedNames(state.objectsOn(target)) + " is on it"};
+  }
+  if (*action.params.relation == SpatialRelation::kOn && action.params.region) {
+    return regionProblems(action.object, target, *action.params.region, state);
   }
   if (*action.params.relation == SpatialRelation::kOn) return stackingProblems(action.object, target, state);
   return {};
@@ -227,7 +251,9 @@ std::optional<bool> goalHolds(const SymbolicState& state, const Goal& goal) {
   }
   if (*goal.relation == SpatialRelation::kOn) {
     const auto it = state.onTopOf.find(goal.object);
-    return it != state.onTopOf.end() && it->second == goal.target;
+    const bool on = it != state.onTopOf.end() && it->second == goal.target;
+    if (on && goal.region) return std::nullopt;  // where on it is geometric
+    return on;
   }
   return std::nullopt;
 }

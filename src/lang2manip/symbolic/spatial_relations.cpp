@@ -9,6 +9,7 @@
 #include "lang2manip/model/scene.hpp"
 #include "lang2manip/symbolic/object_heading.hpp"
 #include "lang2manip/symbolic/plan_validation.hpp"
+#include "lang2manip/symbolic/surface_region.hpp"
 
 namespace lang2manip {
 namespace {
@@ -113,6 +114,24 @@ GoalCheck checkTurned(const Scene& scene, const Goal& goal, const GoalCheckOptio
                      degreesText(turn.tilt) + ", moved " + metresText(shift)};
 }
 
+/// The object's centre (x, y, base frame) within the region of the target's reachable top face,
+/// up to half the distance tolerance.
+GoalCheck checkRegion(const Scene& scene, const Goal& goal, const GoalCheckOptions& options) {
+  std::string why;
+  const auto box = regionOnSupport(scene, goal.target, *goal.region, options.robot, &why);
+  const std::string name = surfaceRegionName(*goal.region);
+  if (!box) return {false, goal.target + " has no " + name + ": " + why};
+  const Pose base = robotBaseFrame(scene, options.robot);
+  const Vector3 centre = base.inverse() * objectNamed(scene, goal.object, "object").worldBounds().center();
+  const double slack = options.spatial.distanceTolerance / 2.0;
+  const Vector3 outside = (box->min() - centre).cwiseMax(centre - box->max()).cwiseMax(0.0);
+  const double off = outside.head<2>().norm();
+  char buffer[160];
+  std::snprintf(buffer, sizeof buffer, "%s stands at (%.3f, %.3f), %.3f m from the %s of %s", goal.object.c_str(), centre.x(),
+                centre.y(), off, name.c_str(), goal.target.c_str());
+  return {off <= slack, buffer};
+}
+
 /// The long side's line passes within kTurnTolerance of the target's centre (seen from above), or
 /// lies along the wanted heading (base frame).
 GoalCheck checkFacing(const Scene& scene, const Goal& goal, const GoalCheckOptions& options) {
@@ -165,7 +184,11 @@ std::string spatialConventions(const SpatialOptions& spatial, const SymbolicStat
          "centre lies in B's cavity; explicit distances, displacements and positions are met within " +
          metresText(spatial.distanceTolerance) + "; turns are about the vertical, positive counter-clockwise seen from above "
          "(toward the left), met within " + degreesText(kTurnTolerance) + "; a turn that leaves an object looking the same "
-         "(its shape's symmetry) is no turn";
+         "(its shape's symmetry) is no turn; regions of a support's top (region of an on relation) are of the part of it the arm "
+         "reaches, split in thirds along x (near = bottom = back, toward the robot; far = top = front) and y (right, left): a "
+         "corner is a corner third, an edge (side) the middle third along that edge, the centre the middle third; halves and "
+         "quadrants split it in two; an object is in a region when its centre is, within " +
+         metresText(spatial.distanceTolerance / 2.0);
 }
 
 Pose robotBaseFrame(const Scene& scene, const std::string& robot) {
@@ -204,8 +227,14 @@ GoalCheck checkGoalInScene(const Scene& scene, const Goal& goal, const GoalCheck
   if (!goal.relation) throw InputError("goal \"" + describeGoal(goal) + "\": no relation");
   switch (*goal.relation) {
     case SpatialRelation::kIn:
-    case SpatialRelation::kOn:
       return checkSymbolic(scene, goal, options);
+    case SpatialRelation::kOn: {
+      Goal resting = goal;
+      resting.region.reset();
+      GoalCheck on = checkSymbolic(scene, resting, options);
+      if (!on.holds || !goal.region) return on;
+      return checkRegion(scene, goal, options);
+    }
     case SpatialRelation::kNextTo:
       return checkNextTo(goal, a, b, options.spatial);
     default:

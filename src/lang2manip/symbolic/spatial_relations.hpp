@@ -65,7 +65,9 @@ struct GoalCheck {
 /// of the position (x, y in the base frame); turned when the turn about the vertical from
 /// options.initialScene matches up to the object's symmetry (turnSymmetry()) within
 /// kTurnTolerance, without tilt, the origin staying within distanceTolerance; facing when the
-/// long side's line points at the target's centre within kTurnTolerance. Throws InputError for
+/// long side's line points at the target's centre within kTurnTolerance; on with a region when the
+/// object's centre is also within that region of the target's reachable top (surface_region.hpp),
+/// up to half distanceTolerance. Throws InputError for
 /// unknown objects, or a displacement or turn goal without an initial scene.
 GoalCheck checkGoalInScene(const Scene& scene, const Goal& goal, const GoalCheckOptions& options = {});
 

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "lang2manip/core/types.hpp"
+
 namespace lang2manip {
 
 struct SymbolicState {
@@ -24,6 +26,9 @@ struct SymbolicState {
   std::map<std::string, std::string> onTopOf;
   /// object -> its flat top (supportSurface()), for objects others may rest on.
   std::map<std::string, AlignedBox3> flatTops;
+  /// support -> the part of its flat top the robot reaches, robot base frame (supportArea()):
+  /// what the regions of an on relation are of. Absent when the robot reaches none of it.
+  std::map<std::string, AlignedBox3> reachableTops;
   /// object -> why nothing can rest on it (round, tilted, open at the top).
   std::map<std::string, std::string> noFlatTop;
   /// Movable object -> its size (footprint x, y and height): in its own frame when it stands

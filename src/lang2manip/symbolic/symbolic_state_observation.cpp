@@ -5,6 +5,7 @@
 
 #include "lang2manip/model/scene.hpp"
 #include "lang2manip/symbolic/symbolic_state.hpp"
+#include "lang2manip/symbolic/surface_region.hpp"
 #include "lang2manip/symbolic/support_surface.hpp"
 
 namespace lang2manip {
@@ -115,6 +116,9 @@ SymbolicState observeSymbolicState(const Scene& scene, const SymbolicStateTolera
     const SupportSurface surface = supportSurface(object);
     if (surface.top) state.flatTops[object.name] = *surface.top;
     else state.noFlatTop[object.name] = surface.why;
+    if (object.role == ObjectRole::kSupport && surface.top) {
+      if (const auto area = supportArea(scene, object.name, robot)) state.reachableTops[object.name] = area->reachable;
+    }
   }
   if (!robot.empty()) {
     observeConfiguration(scene.robot(robot), tolerances, state);
