@@ -25,7 +25,8 @@ TEST(SupportSurface, ALevelBoxTopIsItsFace) {
   EXPECT_NEAR(surface.top->sizes().y(), 0.06, 1e-9);
   EXPECT_NEAR(surface.top->max().z(), 0.82, 1e-9);
   EXPECT_TRUE(footprintFits(Vector3(0.05, 0.09, 0.2), *surface.top));  // turned a quarter
-  EXPECT_FALSE(footprintFits(Vector3(0.07, 0.07, 0.01), *surface.top));
+  EXPECT_FALSE(footprintFits(Vector3(0.075, 0.075, 0.01), *surface.top));
+  EXPECT_TRUE(footprintFits(Vector3(0.105, 0.065, 0.01), *surface.top));  // within the slack: equal blocks stack
 }
 
 TEST(SupportSurface, ATurnedBoxOffersTheSquareInsideItsFace) {

@@ -12,6 +12,7 @@ void addBenchCommand(CLI::App& app, std::ostream& out) {
   addBenchKauthamCommand(*bench, out);
   addBenchTaskCommand(*bench, out);
   addBenchInstructionsCommand(*bench, out);
+  addBenchFamiliesCommand(*bench, out);
 }
 
 }  // namespace lang2manip

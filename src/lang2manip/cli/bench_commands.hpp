@@ -26,5 +26,7 @@ void addBenchTaskCommand(CLI::App& bench, std::ostream& out);
 /// `lang2manip bench instructions [CORPUS] [--problems A,B] [--class NAME] [--spread M] [--turn RAD]
 /// [--seed N] [--failures N] [--json]`: an instruction corpus on the built-in desks, per class.
 void addBenchInstructionsCommand(CLI::App& bench, std::ostream& out);
+/// `bench families`: the published benchmarks' instruction families on generated tabletops.
+void addBenchFamiliesCommand(CLI::App& bench, std::ostream& out);
 
 }  // namespace lang2manip

@@ -165,12 +165,19 @@ PoseSampling onSurface(const PoseSamplingInput& in, const SceneObject& surface, 
   std::stable_sort(points.begin(), points.end(), [&](const Vector3& a, const Vector3& b) {
     return (a - in.position).head<2>().norm() < (b - in.position).head<2>().norm();
   });
+  points.insert(points.begin(), top.center());  // a top no larger than the object: centred on it
   PoseSampling sampling;
   for (const Vector3& p : points) {
     for (const Quaternion& q : uprightYaws(in.orientation)) {
-      const Vector3 half = rotatedSize(*in.object, q) / 2.0 + Vector3::Constant(s.edgeMargin);
-      if (p.x() - half.x() < top.min().x() || p.x() + half.x() > top.max().x() || p.y() - half.y() < top.min().y() ||
-          p.y() + half.y() > top.max().y()) continue;
+      const Vector3 size = rotatedSize(*in.object, q);
+      if (!footprintFits(size, top) || (size.x() > top.sizes().x() + kFootprintSlack || size.y() > top.sizes().y() + kFootprintSlack)) continue;
+      // The edge margin where the top has room for it; a top not much larger than the object takes it centred.
+      const Vector3 margin = ((top.sizes() - size) / 2.0).cwiseMax(0.0).cwiseMin(s.edgeMargin);
+      const Vector3 half = size / 2.0 + margin;
+      const bool centred = (p - top.center()).head<2>().norm() < 1e-9;
+      const bool inside = p.x() - half.x() >= top.min().x() - 1e-9 && p.x() + half.x() <= top.max().x() + 1e-9 &&
+                          p.y() - half.y() >= top.min().y() - 1e-9 && p.y() + half.y() <= top.max().y() + 1e-9;
+      if (!inside && !(centred && margin.head<2>().isZero())) continue;
       sampling.poses.push_back({restingPose(*in.object, q, p.x(), p.y(), top.max().z() + s.releaseGap), surface.name,
                                 "on " + surface.name + " at " + pointText(p.x(), p.y(), p.z())});
     }

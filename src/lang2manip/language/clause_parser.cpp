@@ -285,6 +285,9 @@ bool StepParser::parseRelation(Step& step) {
   RelationSpec spec;
   spec.target = target;
   spec.relation = relation->relation ? *relation->relation : relationByRole(target);
+  if (spec.relation == SpatialRelation::kOn && relation->length == 1 && isOpenDish(target)) {
+    spec.relation = SpatialRelation::kIn;  // "on the plate", "on the bowl": what is on a dish is in it
+  }
   if (distance) {
     if (!isDirectional(spec.relation)) {
       throwGroundingError(joinWords(words, 0, step.at),
@@ -295,6 +298,12 @@ bool StepParser::parseRelation(Step& step) {
   }
   addRelationGoals(step, spec);
   return true;
+}
+
+bool StepParser::isOpenDish(const std::string& object) const {
+  const ObjectDescriptor& descriptor = reader_.descriptor(object);
+  return descriptor.role == ObjectRole::kContainer && descriptor.cavitySize &&
+         std::min(descriptor.cavitySize->x(), descriptor.cavitySize->y()) >= descriptor.cavitySize->z();
 }
 
 std::string StepParser::groundTarget(Step& step, const NounPhrase& phrase, bool intoSomething) {

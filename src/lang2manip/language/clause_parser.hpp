@@ -145,6 +145,9 @@ class StepParser {
   /// `intoSomething`: "in" or "to", where "it" prefers a container.
   std::string groundTarget(Step& step, const NounPhrase& phrase, bool intoSomething);
   SpatialRelation relationByRole(const std::string& target) const;
+  /// A container whose opening is at least as wide as it is deep (a bowl, tray or plate): things
+  /// put "on" it go in it ("on top of" it still means its rim).
+  [[nodiscard]] bool isOpenDish(const std::string& object) const;
   void addRelationGoals(Step& step, const RelationSpec& relation);
   /// The step's objects stacked on `base` (the lowest in `region` of its top, when given).
   void addStackGoals(Step& step, const std::optional<std::string>& base, const std::optional<SurfaceRegion>& region = {});

@@ -18,8 +18,10 @@ struct ColourPrototype {
   double r, g, b;
 };
 
-// Several prototypes per name so that dark and light shades find their colour.
-constexpr std::array<ColourPrototype, 27> kColourPrototypes{{
+// Several prototypes per name so that dark and light shades find their colour; the last row holds
+// the muted shades of the tabletop benchmarks' palettes (Code as Policies, Ravens), so that their
+// red is red and their blue is blue.
+constexpr std::array<ColourPrototype, 37> kColourPrototypes{{
     {"black", 0.02, 0.02, 0.02},  {"black", 0.12, 0.12, 0.12},
     {"grey", 0.30, 0.30, 0.30},   {"grey", 0.50, 0.50, 0.50},  {"grey", 0.70, 0.70, 0.70},
     {"white", 1.00, 1.00, 1.00},  {"white", 0.90, 0.90, 0.88},
@@ -32,6 +34,9 @@ constexpr std::array<ColourPrototype, 27> kColourPrototypes{{
     {"pink", 1.00, 0.60, 0.75},   {"pink", 0.95, 0.40, 0.70},
     {"brown", 0.55, 0.35, 0.20},  {"brown", 0.72, 0.52, 0.32}, {"brown", 0.35, 0.20, 0.10},
     {"cyan", 0.10, 0.80, 0.80},
+    {"blue", 0.30, 0.47, 0.65},   {"red", 0.88, 0.34, 0.35},   {"green", 0.35, 0.63, 0.31},  {"orange", 0.95, 0.56, 0.17},
+    {"yellow", 0.93, 0.79, 0.28}, {"purple", 0.69, 0.48, 0.63}, {"pink", 1.00, 0.62, 0.66},  {"cyan", 0.46, 0.72, 0.70},
+    {"brown", 0.61, 0.46, 0.38},  {"grey", 0.73, 0.69, 0.67},
 }};
 
 struct KindSynonyms {
@@ -84,17 +89,19 @@ const Material* mainMaterial(const SceneObject& object) {
   return best;
 }
 
+/// The colour words of its name ("red_block": red), which the author chose; else the nearest named
+/// colour of its main material.
 std::vector<std::string> coloursOf(const SceneObject& object) {
   std::vector<std::string> colours;
-  if (const Material* material = mainMaterial(object)) {
-    colours.push_back(nearestColourName(material->rgba.head<3>()));
-  }
   const std::vector<std::string> known = colourNames();
   for (const std::string& word : tokenize(object.name)) {
     const bool isColour = std::find(known.begin(), known.end(), word) != known.end();
     if (isColour && std::find(colours.begin(), colours.end(), word) == colours.end()) {
       colours.push_back(word);
     }
+  }
+  if (const Material* material = mainMaterial(object); material != nullptr && colours.empty()) {
+    colours.push_back(nearestColourName(material->rgba.head<3>()));
   }
   return colours;
 }
@@ -191,6 +198,7 @@ std::vector<ObjectDescriptor> describeObjects(const Scene& scene, const std::str
     if (const auto side = longSideYaw(object, worldToBase.linear() * object.pose.linear())) descriptor.longSideYaw = *side;
     descriptor.movable = object.movable;
     descriptor.role = object.role;
+    if (object.cavity) descriptor.cavitySize = object.cavity->sizes();
     if (object.role == ObjectRole::kSupport) {
       if (const auto area = supportArea(scene, object.name, robot)) descriptor.reachableTop = area->reachable;
     }

@@ -19,7 +19,8 @@ struct ObjectDescriptor {
   /// Other nouns for it, from its kind: "pen" and "felt tip" for a marker, "rubber" for an
   /// eraser, "cup" and "pot" for a pen holder, "table" for a desk (see kindSynonyms()).
   std::vector<std::string> synonyms;
-  /// Colour names: the nearest named colour of its largest visual, and colour words in its name.
+  /// Colour names: the colour words of its name, else the nearest named colour of its largest
+  /// visual.
   std::vector<std::string> colours;
   /// Volume of its bounding box, m^3; size words compare it among candidates.
   double volume = 0.0;
@@ -42,6 +43,8 @@ struct ObjectDescriptor {
   std::optional<double> longSideYaw;
   bool movable = false;
   ObjectRole role = ObjectRole::kNone;
+  /// For a container: the size of its cavity (x, y, depth), metres.
+  std::optional<Vector3> cavitySize;
   /// For a support: the part of its top the robot reaches (base frame), what its regions are of
   /// (supportArea()).
   std::optional<AlignedBox3> reachableTop;

@@ -71,7 +71,7 @@ SupportSurface supportSurface(const SceneObject& object) {
 }
 
 bool footprintFits(const Vector3& size, const AlignedBox3& top) {
-  const Vector3 room = top.sizes();
+  const Vector3 room = top.sizes() + Vector3::Constant(kFootprintSlack);
   return (size.x() <= room.x() && size.y() <= room.y()) || (size.y() <= room.x() && size.x() <= room.y());
 }
 

@@ -1,0 +1,64 @@
+#pragma once
+/// @file What the instruction families share (internal to the cli module): drawing words, the
+/// checks of final worlds, and reference plans.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lang2manip/cli/instruction_families.hpp"
+#include "lang2manip/symbolic/surface_region.hpp"
+
+namespace lang2manip::families {
+
+/// A region as the benchmarks name it ("top left corner", "bottom side") and what it is.
+struct RegionWords {
+  const char* words;
+  SurfaceRegion region;
+};
+/// CaP's corners and sides.
+const std::vector<RegionWords>& cornersAndSides();
+const std::vector<RegionWords>& corners();
+
+/// One of `items`, drawn with `random`.
+template <typename T>
+const T& drawOne(const std::vector<T>& items, Random& random) {
+  return items[static_cast<std::size_t>(random.uniform(0.0, static_cast<double>(items.size()) - 1e-9))];
+}
+/// A whole number in [low, high].
+int drawCount(int low, int high, Random& random);
+
+/// Centre of an object's bounds in the robot's base frame.
+Vector3 centreInBase(const Scene& scene, const std::string& object);
+
+/// "red" -> "red block" words of an object's name ("red_block_2" -> "red block").
+std::string spoken(const std::string& object);
+
+using Check = std::function<GoalCheck(const Scene& final, const Scene& initial)>;
+
+/// Every goal holds (checkGoalInScene with the initial scene).
+Check allOf(std::vector<Goal> goals);
+/// `object` `relation` `target` (and in `region` of it).
+Goal relationGoal(const std::string& object, SpatialRelation relation, const std::string& target,
+                  std::optional<SurfaceRegion> region = std::nullopt);
+/// The objects form one tower: one of them stands on the desk (in `region`, when given), each
+/// other on exactly one of them, none with two on it.
+Check tower(std::vector<std::string> objects, std::optional<SurfaceRegion> region = std::nullopt);
+/// Each object on the desk in a corner of its own.
+Check differentCorners(std::vector<std::string> objects);
+/// Each object in a container whose colour differs from its own.
+Check mismatchedContainers(std::vector<std::string> objects, std::vector<std::string> containers);
+/// The objects' centres on one line (within 2 cm) along base-frame `heading` (0 = x, pi/2 = y,
+/// within 20 degrees), each at least its width from the next, all on the desk.
+Check inLine(std::vector<std::string> objects, double heading);
+/// `object` on the desk beside `reference` on the side of `relation`, the gap between their
+/// boxes within [least, most] metres.
+Check besideWithin(std::string object, SpatialRelation relation, std::string reference, double least, double most);
+
+/// pick `object`, place it `relation` `target` (in `region`).
+void addPickPlace(Plan& plan, const std::string& object, SpatialRelation relation, const std::string& target,
+                  std::optional<SurfaceRegion> region = std::nullopt);
+/// pick `object`, place it with its frame's origin at `position` (base frame).
+void addPickPlaceAt(Plan& plan, const std::string& object, const Vector3& position);
+
+}  // namespace lang2manip::families

@@ -1,0 +1,166 @@
+#include "lang2manip/cli/tabletop_scenes.hpp"
+
+#include <algorithm>
+#include <map>
+
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/symbolic/spatial_relations.hpp"
+#include "lang2manip/symbolic/surface_region.hpp"
+
+namespace lang2manip {
+namespace {
+
+constexpr double kBowlHeight = 0.05;
+constexpr double kBowlWall = 0.008;
+constexpr double kEdgeClearance = 0.03;
+constexpr int kTries = 200;
+
+Shape coloured(const Geometry& geometry, const Vector3& offset, const PaletteColour& colour) {
+  Shape shape;
+  shape.geometry = geometry;
+  shape.origin.translation() = offset;
+  shape.material = Material{colour.name, Vector4(colour.r, colour.g, colour.b, 1.0), ""};
+  return shape;
+}
+
+SceneObject block(const PaletteColour& colour, double edge) {
+  SceneObject object;
+  object.kind = "block";
+  object.movable = true;
+  object.collisions.push_back(coloured(Box{Vector3::Constant(edge)}, Vector3(0.0, 0.0, edge / 2.0), colour));
+  return object;
+}
+
+SceneObject cylinder(const PaletteColour& colour, double radius, double height) {
+  SceneObject object;
+  object.kind = "cylinder";
+  object.movable = true;
+  object.collisions.push_back(coloured(Cylinder{radius, height}, Vector3(0.0, 0.0, height / 2.0), colour));
+  return object;
+}
+
+/// An open square bowl: a floor and four walls, its cavity the room between them.
+SceneObject bowl(const PaletteColour& colour, double width) {
+  SceneObject object;
+  object.kind = "bowl";
+  object.role = ObjectRole::kContainer;
+  const double half = width / 2.0;
+  object.collisions.push_back(coloured(Box{Vector3(width, width, kBowlWall)}, Vector3(0.0, 0.0, kBowlWall / 2.0), colour));
+  for (int side : {-1, 1}) {
+    object.collisions.push_back(coloured(Box{Vector3(kBowlWall, width, kBowlHeight)},
+                                         Vector3(side * (half - kBowlWall / 2.0), 0.0, kBowlHeight / 2.0), colour));
+    object.collisions.push_back(coloured(Box{Vector3(width - 2.0 * kBowlWall, kBowlWall, kBowlHeight)},
+                                         Vector3(0.0, side * (half - kBowlWall / 2.0), kBowlHeight / 2.0), colour));
+  }
+  const double inner = half - kBowlWall;
+  object.cavity = AlignedBox3(Vector3(-inner, -inner, kBowlWall), Vector3(inner, inner, kBowlHeight));
+  return object;
+}
+
+/// Colours for `count` objects of one kind: distinct while the palette lasts.
+std::vector<PaletteColour> drawColours(int count, bool distinct, Random& random) {
+  std::vector<PaletteColour> palette = tabletopPalette();
+  std::vector<PaletteColour> drawn;
+  for (int i = 0; i < count; ++i) {
+    if (palette.empty() || !distinct) palette = tabletopPalette();
+    const std::size_t pick = static_cast<std::size_t>(random.uniform(0.0, static_cast<double>(palette.size()) - 1e-9));
+    drawn.push_back(palette[pick]);
+    if (distinct) palette.erase(palette.begin() + static_cast<std::ptrdiff_t>(pick));
+  }
+  return drawn;
+}
+
+std::string uniqueName(const std::string& base, std::map<std::string, int>& used) {
+  const int n = ++used[base];
+  return n == 1 ? base : base + "_" + std::to_string(n);
+}
+
+std::vector<SceneObject> drawObjects(const TabletopRequest& request, Random& random) {
+  std::vector<SceneObject> objects;
+  std::map<std::string, int> used;
+  for (const PaletteColour& colour : drawColours(request.bowls, request.distinctColours, random)) {
+    objects.push_back(bowl(colour, random.uniform(0.12, 0.15)));
+    objects.back().name = uniqueName(std::string(colour.name) + "_bowl", used);
+  }
+  for (const PaletteColour& colour : drawColours(request.blocks, request.distinctColours, random)) {
+    objects.push_back(block(colour, random.uniform(request.blockEdgeMin, request.blockEdgeMax)));
+    objects.back().name = uniqueName(std::string(colour.name) + "_block", used);
+  }
+  for (const PaletteColour& colour : drawColours(request.cylinders, request.distinctColours, random)) {
+    objects.push_back(cylinder(colour, random.uniform(0.015, 0.02), random.uniform(0.04, 0.07)));
+    objects.back().name = uniqueName(std::string(colour.name) + "_cylinder", used);
+  }
+  return objects;
+}
+
+/// Sets every object at a random place of `area` (base frame), `gap` apart; false when some
+/// object found no place.
+bool scatter(std::vector<SceneObject>& objects, const AlignedBox3& area, const Pose& base, double gap, Random& random) {
+  std::vector<AlignedBox3> taken;
+  for (SceneObject& object : objects) {
+    const Vector3 size = object.dimensions();
+    bool placed = false;
+    for (int attempt = 0; attempt < kTries && !placed; ++attempt) {
+      const double margin = kEdgeClearance + std::max(size.x(), size.y()) / 2.0;
+      if (area.sizes().x() < 2.0 * margin || area.sizes().y() < 2.0 * margin) return false;
+      const Vector3 centre(random.uniform(area.min().x() + margin, area.max().x() - margin),
+                           random.uniform(area.min().y() + margin, area.max().y() - margin), area.max().z());
+      const AlignedBox3 footprint(centre - size / 2.0, centre + size / 2.0);
+      const bool free = std::none_of(taken.begin(), taken.end(), [&](const AlignedBox3& other) {
+        return boxGap(footprint, other) < gap;
+      });
+      if (!free) continue;
+      taken.push_back(footprint);
+      object.pose = Pose::Identity();
+      object.pose.linear() = base.linear();
+      object.pose.translation() = base * centre;
+      placed = true;
+    }
+    if (!placed) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+const std::vector<PaletteColour>& tabletopPalette() {
+  static const std::vector<PaletteColour> palette{
+      {"blue", 0.30, 0.47, 0.65}, {"red", 0.88, 0.34, 0.35},    {"green", 0.35, 0.63, 0.31},  {"orange", 0.95, 0.56, 0.17},
+      {"yellow", 0.93, 0.79, 0.28}, {"purple", 0.69, 0.48, 0.63}, {"pink", 1.00, 0.62, 0.66}, {"cyan", 0.46, 0.72, 0.70},
+      {"brown", 0.61, 0.46, 0.38},  {"grey", 0.73, 0.69, 0.67},
+  };
+  return palette;
+}
+
+std::optional<Scene> generateTabletop(const Scene& desk, const TabletopRequest& request, Random& random) {
+  if (request.blocks < 0 || request.bowls < 0 || request.cylinders < 0) throw InputError("tabletop: object counts must be >= 0");
+  Scene scene = desk;
+  std::vector<std::string> removed;
+  for (const SceneObject& object : scene.objects()) {
+    if (object.role != ObjectRole::kSupport) removed.push_back(object.name);
+  }
+  for (const std::string& name : removed) scene.removeObject(name);
+  const auto area = supportArea(scene, "desk", "");
+  if (!area) throw InputError("tabletop: the scene has no desk the robot reaches");
+  const Pose base = robotBaseFrame(scene, "");
+  for (int attempt = 0; attempt < kTries; ++attempt) {
+    std::vector<SceneObject> objects = drawObjects(request, random);
+    if (!scatter(objects, area->reachable, base, request.gap, random)) continue;
+    Scene result = scene;
+    for (SceneObject& object : objects) result.addObject(std::move(object));
+    return result;
+  }
+  return std::nullopt;
+}
+
+std::vector<std::string> objectsOfKind(const Scene& scene, const std::string& kind) {
+  std::vector<std::string> names;
+  for (const SceneObject& object : scene.objects()) {
+    if (object.kind == kind) names.push_back(object.name);
+  }
+  return names;
+}
+
+std::string colourOf(const std::string& object) { return object.substr(0, object.find('_')); }
+
+}  // namespace lang2manip
