@@ -241,7 +241,7 @@ bool StepParser::parseRelations(Step& step) {
 
 
 bool StepParser::parseRelation(Step& step) {
-  if (parseRegion(step)) return true;
+  if (parseAssignment(step) || parseRegion(step)) return true;
   const Words& words = step.words;
   std::size_t at = step.at;
   std::optional<double> distance;
@@ -265,6 +265,12 @@ bool StepParser::parseRelation(Step& step) {
   if (direction && direction->length >= relation->length) return false;
   const bool alongALine = matchesAt(words, at, {"away", "from"}) || matchesAt(words, at, {"closer", "to"}) || matchesAt(words, at, {"nearer", "to"});
   if (distance && alongALine) return false;  // "2 cm away from the holder": a displacement
+  if (relation->relation == SpatialRelation::kOn && (matchesAt(words, at + relation->length, {"each", "other"}) ||
+                                                    matchesAt(words, at + relation->length, {"one", "another"}))) {
+    step.at = at + relation->length + 2;  // "on top of each other": a stack
+    addStackGoals(step, std::nullopt);
+    return true;
+  }
   const std::optional<NounPhrase> targetPhrase = reader_.read(words, at + relation->length);
   const bool stranded = at + relation->length == words.size();
   const bool inOrOn = relation->relation && !isDirectional(*relation->relation);

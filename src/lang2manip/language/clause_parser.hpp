@@ -107,6 +107,18 @@ class StepParser {
   /// step's objects stand on when none is named); a side of an object that is not a support is
   /// a relation beside it ("on the left side of the box": left_of). False when none follows.
   bool parseRegion(Step& step);
+  /// "in the bowls with matching colours", "in the bowl of the same colour", "into the bowls by
+  /// colour", "with mismatched colours", "in different corners": a goal per object of the step,
+  /// chosen by a matching (assignment_steps.cpp). False when none follows.
+  bool parseAssignment(Step& step);
+  /// Each object of the step in or on the target of (or, `different`, not of) its colour: the
+  /// nearest such target, unused ones first when `different`. Refused when an object has none.
+  void assignByColour(Step& step, const std::vector<std::string>& targets, bool different);
+  /// Each object of the step in a corner of its own of `support`'s top: the assignment that moves
+  /// them least. Refused for more than four objects.
+  void assignCorners(Step& step, const std::string& support);
+  /// Adds the goal `object` `relation`.
+  void addGoal(const std::string& object, const RelationSpec& relation);
   /// The support a region phrase without "of ..." is of: the one the step's first object stands
   /// on, else the only support.
   [[nodiscard]] std::string defaultRegionSupport(const Step& step) const;

@@ -47,6 +47,15 @@ std::optional<SizeWord> sizeWord(const std::string& word) {
   return std::nullopt;
 }
 
+/// 1-based rank of an ordinal word ("second": 2), kLastRank, kMiddleRank; 0 otherwise.
+int rankWord(const std::string& word) {
+  static const std::vector<std::string> ordinals{"first", "second", "third", "fourth", "fifth", "sixth", "seventh", "eighth", "ninth", "tenth"};
+  if (const auto it = std::find(ordinals.begin(), ordinals.end(), word); it != ordinals.end()) return static_cast<int>(it - ordinals.begin()) + 1;
+  if (word == "last") return kLastRank;
+  if (word == "middle" || word == "center" || word == "centre" || word == "central") return kMiddleRank;
+  return 0;
+}
+
 std::optional<PlaceWord> placeWord(const std::string& word) {
   if (word == "left" || word == "leftmost") return PlaceWord::kLeft;
   if (word == "right" || word == "rightmost") return PlaceWord::kRight;
@@ -260,7 +269,9 @@ bool NounPhraseReader::readAdjective(const Words& words, std::size_t& at, NounPh
     ++at;
     return true;
   }
-  if (auto colour = colourWord(word)) {
+  if (const int rank = rankWord(word); rank != 0 && phrase.rank == 0) {
+    phrase.rank = rank;
+  } else if (auto colour = colourWord(word)) {
     phrase.colours.push_back(*colour);
   } else if (auto size = sizeWord(word)) {
     phrase.size = *size;
@@ -364,6 +375,7 @@ std::optional<NounPhrase> NounPhraseReader::read(const Words& words, std::size_t
       }
     }
   }
+  position = readRankFrom(words, position, phrase);
   position = readModifier(words, position, phrase);
   const std::size_t negated = negatedClauseWords(words, position);  // "the object that is not the eraser"
   if (const std::size_t exception = negated > 0 ? negated : exceptionWords(words, position);
@@ -378,8 +390,27 @@ std::optional<NounPhrase> NounPhraseReader::read(const Words& words, std::size_t
 
 
 
+std::size_t NounPhraseReader::readRankFrom(const Words& words, std::size_t at, NounPhrase& phrase) {
+  if (phrase.rank == 0) return at;
+  static const std::vector<std::pair<Words, RankFrom>> sides{
+      {{"from", "the", "left"}, RankFrom::kLeft},     {{"from", "the", "right"}, RankFrom::kRight},
+      {{"from", "the", "top"}, RankFrom::kTop},       {{"from", "the", "bottom"}, RankFrom::kBottom},
+      {{"from", "the", "far", "side"}, RankFrom::kTop}, {{"from", "the", "back"}, RankFrom::kBottom},
+      {{"from", "the", "front"}, RankFrom::kTop},     {{"from", "left"}, RankFrom::kLeft},
+      {{"from", "right"}, RankFrom::kRight},          {{"from", "top"}, RankFrom::kTop},
+      {{"from", "bottom"}, RankFrom::kBottom},        {{"from", "the", "robot"}, RankFrom::kBottom},
+      {{"counting", "from", "the", "left"}, RankFrom::kLeft}, {{"counting", "from", "the", "right"}, RankFrom::kRight}};
+  for (const auto& [phraseWords, side] : sides) {
+    if (!matchesAt(words, at, phraseWords)) continue;
+    phrase.rankFrom = side;
+    phrase.rankFromGiven = true;
+    return at + phraseWords.size();
+  }
+  return at;
+}
+
 bool NounPhraseReader::headIsAmbiguous(const NounPhrase& phrase) const {
-  if (phrase.isPlural() || phrase.size != SizeWord::kNone || phrase.place != PlaceWord::kNone) return false;
+  if (phrase.isPlural() || phrase.size != SizeWord::kNone || phrase.place != PlaceWord::kNone || phrase.rank != 0) return false;
   if (phrase.one || phrase.other) return true;
   std::size_t count = 0;
   for (const ObjectDescriptor& object : objects_) {

@@ -22,6 +22,11 @@ enum class Pronoun { kNone, kIt, kThem };
 /// Superlatives of size: volume (big, small), height (tall, short) and length (long).
 enum class SizeWord { kNone, kBig, kSmall, kTall, kShort, kLong };
 enum class PlaceWord { kNone, kLeft, kRight, kNear, kFar };
+/// Where an ordinal counts from ("the second block from the left"); top is far from the robot.
+enum class RankFrom { kLeft, kRight, kTop, kBottom };
+/// NounPhrase::rank of "the middle one" and of "the last one".
+inline constexpr int kMiddleRank = -2;
+inline constexpr int kLastRank = -1;
 
 /// The objects a noun names ("markers" -> every marker) and whether it was plural.
 struct NounMatch {
@@ -68,6 +73,11 @@ struct NounPhrase {
   /// Shape words ("cylindrical", "box-shaped"): the shapes it may have (ObjectDescriptor::shape).
   std::vector<std::string> shapes;
   std::optional<NounModifier> modifier;
+  /// "the second block from the left": its 1-based rank counted from `rankFrom` (kLastRank,
+  /// kMiddleRank; 0 when none), and whether "from ..." was said (else counted from the left).
+  int rank = 0;
+  RankFrom rankFrom = RankFrom::kLeft;
+  bool rankFromGiven = false;
   /// "everything except the holder", "all objects but the marker": left out of what it names.
   std::vector<NounPhrase> except;
 
@@ -148,6 +158,11 @@ class NounPhraseReader {
                                                 std::vector<std::string> names) const;
   /// Reads a modifier after the noun at words[at] into `phrase`; the position after it.
   [[nodiscard]] std::size_t readModifier(const Words& words, std::size_t at, NounPhrase& phrase) const;
+  /// "from the left" (and the like) after an ordinal at words[at] into `phrase`; the position after it.
+  [[nodiscard]] static std::size_t readRankFrom(const Words& words, std::size_t at, NounPhrase& phrase);
+  /// The object of rank `phrase.rank` among `names` counted from `phrase.rankFrom`; throws
+  /// PlanningError when there are too few, or no middle one.
+  [[nodiscard]] std::vector<std::string> ranked(const NounPhrase& phrase, std::vector<std::string> names) const;
   /// True when a singular phrase without superlative could name several objects.
   [[nodiscard]] bool headIsAmbiguous(const NounPhrase& phrase) const;
   [[nodiscard]] std::vector<std::string> applyModifier(const NounPhrase& phrase, std::vector<std::string> names,

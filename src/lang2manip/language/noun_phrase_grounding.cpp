@@ -211,12 +211,37 @@ std::vector<std::string> NounPhraseReader::candidates(const NounPhrase& phrase,
   return names;
 }
 
+std::vector<std::string> NounPhraseReader::ranked(const NounPhrase& phrase, std::vector<std::string> names) const {
+  const auto along = [&](const std::string& name) {
+    const Vector3& p = descriptor(name).position;
+    switch (phrase.rankFrom) {
+      case RankFrom::kLeft: return p.y();
+      case RankFrom::kRight: return -p.y();
+      case RankFrom::kTop: return p.x();
+      case RankFrom::kBottom: return -p.x();
+    }
+    return 0.0;
+  };
+  std::stable_sort(names.begin(), names.end(), [&](const std::string& a, const std::string& b) { return along(a) > along(b); });
+  const auto count = static_cast<int>(names.size());
+  if (phrase.rank == kMiddleRank) {
+    if (count % 2 == 0) throwGroundingError(phrase.text, "there is no middle one of " + std::to_string(count) + ": " + describe(names));
+    return {names[static_cast<std::size_t>(count / 2)]};
+  }
+  const int index = phrase.rank == kLastRank ? count - 1 : phrase.rank - 1;
+  if (index >= count) {
+    throwGroundingError(phrase.text, "there " + std::string(count == 1 ? "is" : "are") + " only " + std::to_string(count) + ": " + describe(names));
+  }
+  return {names[static_cast<std::size_t>(index)]};
+}
+
 std::vector<std::string> NounPhraseReader::narrow(const NounPhrase& phrase,
                                                   std::vector<std::string> names) const {
   std::erase_if(names, [this, &phrase](const std::string& name) {
     const ObjectDescriptor& object = descriptor(name);
     return !hasColours(object, phrase.colours) || (!phrase.shapes.empty() && !containsWord(phrase.shapes, object.shape));
   });
+  if (phrase.rank != 0) return ranked(phrase, std::move(names));
   if ((phrase.size == SizeWord::kNone && phrase.place == PlaceWord::kNone) || names.size() < 2) {
     return names;
   }
