@@ -241,13 +241,21 @@ bool StepParser::parseRelations(Step& step) {
 
 
 bool StepParser::parseRelation(Step& step) {
-  if (parseAssignment(step) || parseRegion(step)) return true;
+  if (parseAssignment(step) || parseArrangement(step) || parseRegion(step)) return true;
   const Words& words = step.words;
   std::size_t at = step.at;
   std::optional<double> distance;
   if (auto length = vocabulary::matchLength(words, at)) {
     distance = length->metres;
     at += length->length;
+  }
+  std::optional<double> vagueGap;
+  if (auto magnitude = vocabulary::matchMagnitude(words, at); magnitude && !distance) {
+    const auto following = vocabulary::matchRelation(words, at + magnitude->length);
+    if (following && following->relation && isDirectional(*following->relation)) {
+      vagueGap = magnitude->gap;  // "a little to the left of the bowl"
+      at += magnitude->length;
+    }
   }
   if (matchesAt(words, at, {"there"}) && lastRelation_) {
     RelationSpec relation = *lastRelation_;
@@ -302,8 +310,17 @@ bool StepParser::parseRelation(Step& step) {
     }
     spec.distance = distance;
   }
+  if (vagueGap) spec.distance = gapAsDistance(step, spec, *vagueGap);
   addRelationGoals(step, spec);
   return true;
+}
+
+double StepParser::gapAsDistance(const Step& step, const RelationSpec& spec, double gap) const {
+  if (spec.relation == SpatialRelation::kNextTo || step.objects.empty()) return gap;
+  const int axis = spec.relation == SpatialRelation::kLeftOf || spec.relation == SpatialRelation::kRightOf ? 1 : 0;
+  const double half = reader_.descriptor(step.objects.front()).bounds.sizes()[axis] / 2.0 +
+                      reader_.descriptor(spec.target).bounds.sizes()[axis] / 2.0;
+  return half + gap;
 }
 
 bool StepParser::isOpenDish(const std::string& object) const {

@@ -117,6 +117,14 @@ class StepParser {
   /// Each object of the step in a corner of its own of `support`'s top: the assignment that moves
   /// them least. Refused for more than four objects.
   void assignCorners(Step& step, const std::string& support);
+  /// "in a horizontal line", "in a row", "in a vertical column", "in a diagonal line", "in a line
+  /// along the top edge": an at_position goal per object of the step (arrangement_steps.cpp).
+  bool parseArrangement(Step& step);
+  /// The step's objects evenly spaced on one line of `support`'s reachable top along `direction`
+  /// (base frame; the top's diagonal when `diagonal`; in the middle of the `along` edge when
+  /// given), clear of the other objects; refused when no such line is free.
+  void arrangeInLine(Step& step, const std::string& support, Vector3 direction, bool diagonal,
+                     const std::optional<SurfaceRegion>& along);
   /// Adds the goal `object` `relation`.
   void addGoal(const std::string& object, const RelationSpec& relation);
   /// The support a region phrase without "of ..." is of: the one the step's first object stands
@@ -160,6 +168,9 @@ class StepParser {
   /// A container whose opening is at least as wide as it is deep (a bowl, tray or plate): things
   /// put "on" it go in it ("on top of" it still means its rim).
   [[nodiscard]] bool isOpenDish(const std::string& object) const;
+  /// The distance of a side relation whose boxes are `gap` apart (the centre offset along the side
+  /// for left_of ... behind, of the step's first object; the gap itself for next_to).
+  [[nodiscard]] double gapAsDistance(const Step& step, const RelationSpec& spec, double gap) const;
   void addRelationGoals(Step& step, const RelationSpec& relation);
   /// The step's objects stacked on `base` (the lowest in `region` of its top, when given).
   void addStackGoals(Step& step, const std::optional<std::string>& base, const std::optional<SurfaceRegion>& region = {});

@@ -1,4 +1,5 @@
 #include "lang2manip/language/vocabulary.hpp"
+#include "lang2manip/symbolic/spatial_relations.hpp"
 
 #include <algorithm>
 #include <utility>
@@ -170,6 +171,9 @@ const PhraseTable<RelationValue>& relationTable() {
       {"at the front of", {R::kInFrontOf}},
       {"behind", {R::kBehind}}, {"in back of", {R::kBehind}}, {"at the back of", {R::kBehind}},
       {"to the back of", {R::kBehind}},
+      {"to the top of", {R::kInFrontOf}}, {"toward the top of", {R::kInFrontOf}}, {"towards the top of", {R::kInFrontOf}},
+      {"to the bottom of", {R::kBehind}}, {"toward the bottom of", {R::kBehind}}, {"towards the bottom of", {R::kBehind}},
+      {"to the top side of", {R::kInFrontOf}}, {"to the bottom side of", {R::kBehind}},
       {"to", {std::nullopt, true}}, {"over to", {std::nullopt, true}},
   };
   return table;
@@ -305,6 +309,18 @@ std::optional<DirectionMatch> matchDirection(const Words& words, std::size_t at)
   if (auto match = directionTable().match(words, at)) {
     return DirectionMatch{match->first, match->second};
   }
+  return std::nullopt;
+}
+
+std::optional<MagnitudeMatch> matchMagnitude(const Words& words, std::size_t at) {
+  static const std::vector<Words> little{{"a", "little"}, {"a", "little", "bit"}, {"a", "bit"}, {"slightly"}, {"a", "tad"},
+                                         {"just"}, {"a", "touch"}, {"somewhat"}, {"barely"}, {"a", "few", "centimetres"},
+                                         {"a", "few", "centimeters"}, {"a", "few", "cm"}};
+  static const std::vector<Words> lot{{"a", "lot"}, {"far"}, {"well"}, {"way"}, {"a", "long", "way"}, {"much", "further"},
+                                      {"a", "good", "distance"}, {"far", "off"}, {"quite", "far"}, {"very", "far"}};
+  const SpatialOptions spatial;
+  if (const std::size_t length = longestPhraseAt(words, at, little)) return MagnitudeMatch{spatial.littleGap, length};
+  if (const std::size_t length = longestPhraseAt(words, at, lot)) return MagnitudeMatch{spatial.lotGap, length};
   return std::nullopt;
 }
 

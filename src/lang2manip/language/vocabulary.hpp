@@ -67,6 +67,15 @@ struct LengthMatch {
   std::size_t length = 0;
 };
 std::optional<LengthMatch> matchLength(const Words& words, std::size_t at);
+/// The gap between two objects' boxes that a vague amount before a side relation means
+/// (SpatialOptions::littleGap, lotGap: stated in the observation's conventions).
+struct MagnitudeMatch {
+  double gap = 0.0;
+  std::size_t length = 0;
+};
+/// A vague amount at words[at] ("a little", "slightly", "a bit", "a lot", "far", "well").
+std::optional<MagnitudeMatch> matchMagnitude(const Words& words, std::size_t at);
+
 /// 1 when words[at] is an approximation ("about", "roughly", "around", ...) before a number, else 0.
 std::size_t matchApproximation(const Words& words, std::size_t at);
 

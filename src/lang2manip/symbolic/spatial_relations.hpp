@@ -22,6 +22,10 @@ struct SpatialOptions {
   double nearDistance = 0.10;
   /// How far an explicit distance or displacement may be off, metres.
   double distanceTolerance = 0.02;
+  /// The gap between two objects' boxes meant by "a little" and "a lot" before a side relation
+  /// ("a little to the left of the bowl"), metres.
+  double littleGap = 0.04;
+  double lotGap = 0.18;
 };
 
 /// The spatial conventions in words, with the numbers of `spatial` and `tolerances`: which way

@@ -1,0 +1,62 @@
+// The tabletop benchmarks' language (issue 23) on the workbench scene (red_block, blue_block and
+// green_block at y = 0.2, 0, -0.2; a white and a yellow cup; a box; two markers): ordinals, per-object
+// assignments by colour and by corner, stacks "on top of each other", open dishes, and refusals.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "lang2manip/language/instruction.hpp"
+#include "lang2manip/language/object_descriptor.hpp"
+#include "lang2manip/symbolic/task_planner.hpp"
+#include "language/language_test_scenes.hpp"
+#include "language/language_test_support.hpp"
+
+namespace lang2manip {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::string meaning(const std::string& instruction) {
+  try {
+    return test::summarize(understandInstruction(instruction, describeObjects(test::workbenchScene())));
+  } catch (const PlanningError& error) {
+    return std::string("refused: ") + error.what();
+  }
+}
+
+TEST(TabletopLanguage, OrdinalsCountAlongTheBaseFrame) {
+  EXPECT_EQ(meaning("put the second block from the left in the box"), "blue_block in box");
+  EXPECT_EQ(meaning("put the first block from the right in the box"), "green_block in box");
+  EXPECT_EQ(meaning("pick up the last block from the left and put it in the box"), "green_block in box");
+  EXPECT_EQ(meaning("put the middle block in the box"), "blue_block in box");
+  EXPECT_EQ(meaning("put the third block counting from the right in the box"), "red_block in box");
+  EXPECT_THAT(meaning("put the fourth block from the left in the box"), HasSubstr("there are only 3"));
+  EXPECT_THAT(meaning("put the middle marker in the box"), HasSubstr("there is no middle one of 2"));
+}
+
+TEST(TabletopLanguage, AssignmentsByColourAreAMatchingOverTheObjects) {
+  EXPECT_EQ(meaning("put the blocks in the cups with mismatched colours"),
+            "red_block in white_cup; blue_block in yellow_cup; green_block in yellow_cup");
+  EXPECT_EQ(meaning("put the red block in the cup of a different colour"), "red_block in white_cup");
+  EXPECT_THAT(meaning("put the blocks in the cups with matching colours"),
+              HasSubstr("no matching place for red_block (red) among white_cup, yellow_cup"));
+  EXPECT_THAT(meaning("sort the blocks into the cups by colour"), HasSubstr("no matching place for red_block"));
+}
+
+TEST(TabletopLanguage, DifferentCornersGiveEachObjectACornerOfItsOwn) {
+  EXPECT_EQ(meaning("put the markers in different corners of the table"),
+            "marker_1 on table (far_left_corner); marker_2 on table (far_right_corner)");
+  EXPECT_EQ(meaning("put the blocks in separate corners"),
+            "red_block on table (far_left_corner); blue_block on table (near_left_corner); green_block on table (far_right_corner)");
+  EXPECT_THAT(meaning("put all the movable objects in different corners"), HasSubstr("objects cannot each have a corner of their own: table has 4"));
+}
+
+TEST(TabletopLanguage, StacksOnTopOfEachOtherAndOpenDishes) {
+  EXPECT_EQ(meaning("stack the red block and the blue block on top of each other"), "blue_block on red_block");
+  EXPECT_EQ(meaning("make a tower of the red and the blue block"), "blue_block on red_block");
+  EXPECT_EQ(meaning("put the red block on the box"), "red_block in box");  // an open dish: what is on it is in it
+  EXPECT_THAT(meaning("put the red block on top of the white cup"), HasSubstr("red_block on white_cup"));
+}
+
+}  // namespace
+}  // namespace lang2manip
