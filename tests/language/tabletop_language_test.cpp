@@ -58,5 +58,38 @@ TEST(TabletopLanguage, StacksOnTopOfEachOtherAndOpenDishes) {
   EXPECT_THAT(meaning("put the red block on top of the white cup"), HasSubstr("red_block on white_cup"));
 }
 
+TEST(TabletopLanguage, VagueAmountsAreGapsBetweenTheBoxes) {
+  // 2 cm (half the block) + 4.5 cm (half the cup) + 4 cm for "a little".
+  EXPECT_EQ(meaning("place the red block a little to the left of the white cup"), "red_block left_of white_cup at 0.105 m");
+  // 2 cm + 10 cm (half the box) + 18 cm for "a lot"; "the top of" is the far side.
+  EXPECT_EQ(meaning("place the blue block a lot to the top of the box"), "blue_block in_front_of box at 0.3 m");
+  // 3 cm (half the 6 cm block) + 3 cm (half the small cup) + 4 cm; "the bottom of" is the near side.
+  EXPECT_EQ(meaning("put the green block slightly to the bottom of the yellow cup"), "green_block behind yellow_cup at 0.1 m");
+}
+
+TEST(TabletopLanguage, LinesAreEvenlySpacedPlacesInTheOrderTheObjectsStand) {
+  const TaskSpecification line = understandInstruction("put the blocks in a horizontal line", describeObjects(test::workbenchScene()));
+  ASSERT_EQ(line.goals.size(), 3u) << test::summarize(line);
+  // Along y (left), in the order they stand: green (y -0.2), blue, red; spaced by the widest (6 cm) + 4 cm.
+  EXPECT_EQ(line.goals[0].object, "green_block");
+  EXPECT_EQ(line.goals[2].object, "red_block");
+  for (std::size_t i = 0; i < 3; ++i) {
+    ASSERT_EQ(line.goals[i].kind, GoalKind::kAtPosition);
+    EXPECT_NEAR(line.goals[i].position->x(), line.goals[0].position->x(), 1e-9);
+  }
+  EXPECT_NEAR(line.goals[1].position->y() - line.goals[0].position->y(), 0.10, 1e-9);
+  EXPECT_NEAR(line.goals[2].position->y() - line.goals[1].position->y(), 0.10, 1e-9);
+  const TaskSpecification column = understandInstruction("put the markers in a column", describeObjects(test::workbenchScene()));
+  ASSERT_EQ(column.goals.size(), 2u);
+  EXPECT_NEAR(column.goals[0].position->y(), column.goals[1].position->y(), 1e-9);
+  // The Panda desk's reachable part is 38 cm deep: three objects spaced by the 13 cm marker do not fit.
+  try {
+    (void)understandInstruction("put the marker, the eraser and the holder in a vertical line", describeObjects(test::deskScene()));
+    ADD_FAILURE() << "not refused";
+  } catch (const PlanningError& error) {
+    EXPECT_THAT(error.what(), HasSubstr("3 objects in a line need 34 cm clear on desk"));
+  }
+}
+
 }  // namespace
 }  // namespace lang2manip
