@@ -221,7 +221,7 @@ TEST(Cli, PlanPrintPromptShowsSystemPromptTaskAndObservation) {
   EXPECT_THAT(result.output, HasSubstr("\"additionalProperties\":false"));
   EXPECT_THAT(result.output, HasSubstr("prompt version lang2manip-plan-prompt-4"));
   EXPECT_THAT(result.output, HasSubstr("=== user ===\nTASK: put the marker and eraser in the holder"));
-  EXPECT_THAT(result.output, HasSubstr("marker: kind marker, movable"));
+  EXPECT_THAT(result.output, HasSubstr("marker: kind marker (a cylinder), blue, movable"));
 }
 
 TEST(Cli, PlanPrintPromptNeedsATask) {

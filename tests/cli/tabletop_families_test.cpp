@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/cli_run.hpp"
+#include "fake_llm_server.hpp"
+#include "test_paths.hpp"
 #include "lang2manip/cli/instruction_families.hpp"
 #include "lang2manip/cli/problem_loading.hpp"
 #include "lang2manip/cli/tabletop_scenes.hpp"
@@ -21,6 +23,8 @@ namespace {
 using ::testing::HasSubstr;
 using test::RunResult;
 using test::run;
+using test::FakeLlmServer;
+using test::FakeLlmProtocol;
 
 Scene desk(const std::string& name) { return loadProblem(name, "panda", SceneOptions{}).problem.scene; }
 
@@ -98,6 +102,35 @@ TEST(BenchFamilies, BadArgumentsAreNamed) {
   result = run("bench families --scenes 0");
   EXPECT_EQ(result.exitCode, 1);
   EXPECT_THAT(result.output, HasSubstr("--scenes must be >= 1"));
+}
+
+#if defined(__SANITIZE_ADDRESS__)
+const std::string kBudgets = " --time-limit 50 --ik-timeout 0.1";
+#else
+const std::string kBudgets;
+#endif
+
+// What an LLM needs to plan a region: the observation and prompt carry the regions, the plan and
+// its goal statement express one, and the run verifies it (an instruction the offline parser does
+// not read, so the goals are the LLM's).
+TEST(RegionsForAnLlm, ARegionPlanFromTheLoopbackLlmIsGroundedAndVerified) {
+  FakeLlmServer server(FakeLlmProtocol::kOpenAi);
+  const nlohmann::json place = {{"action", "place"}, {"object", "eraser"},
+                                {"params", {{"relation", "on"}, {"target", "desk"}, {"region", "far_left_corner"}}}};
+  const nlohmann::json goal = {{"kind", "relation"}, {"object", "eraser"}, {"relation", "on"}, {"target", "desk"}, {"region", "far_left_corner"}};
+  server.enqueueAnswer(nlohmann::json({{"actions", {{{"action", "pick"}, {"object", "eraser"}}, place}}, {"goals", {goal}}}).dump());
+  const test::TempDirectory directory;
+  const std::string environment = "env -u OPENAI_API_KEY OPENAI_BASE_URL=" + server.baseUrl() + " OPENAI_API_KEY=sk-test";
+  const RunResult result = run("run --llm openai:gpt-test --task \"tuck the rubber away, far away on my left\"" + kBudgets + " --out " +
+                                   directory.path().string(),
+                               true, environment);
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("goal eraser on desk (far_left_corner): holds"));
+  ASSERT_EQ(server.requests().size(), 1u);
+  const std::string& request = server.requests()[0].body;
+  EXPECT_THAT(request, HasSubstr("of which the arm reaches x"));
+  EXPECT_THAT(request, HasSubstr("far_left_corner"));
+  EXPECT_THAT(request, HasSubstr("(a box), pink"));
 }
 
 }  // namespace

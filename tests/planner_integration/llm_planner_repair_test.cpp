@@ -102,7 +102,7 @@ TEST_P(LlmPlannerRepairTest, ValidPlanIsAcceptedInTheFirstRound) {
   // The prompt carries the task, the observation and the registry's planner names.
   const std::string request = requestText(0);
   EXPECT_THAT(request, HasSubstr(kPaperTask));
-  EXPECT_THAT(request, HasSubstr("marker: kind marker, movable"));
+  EXPECT_THAT(request, HasSubstr("marker: kind marker (a cylinder), blue, movable"));
   EXPECT_THAT(request, HasSubstr("RRTConnect"));
   EXPECT_THAT(request, Not(HasSubstr("was not accepted")));
 }

@@ -75,8 +75,8 @@ TEST(ObservationTest, TextSaysWhatTheJsonSays) {
   EXPECT_THAT(text, HasSubstr("panda_joint1 revolute 0.000 [-2.897, 2.897]"));
   EXPECT_THAT(text, HasSubstr("gripper open"));
   EXPECT_THAT(text, HasSubstr("configuration: home"));
-  EXPECT_THAT(text, HasSubstr("marker: kind marker, movable"));
-  EXPECT_THAT(text, HasSubstr("holder: kind pen_holder, movable container"));
+  EXPECT_THAT(text, HasSubstr("marker: kind marker (a cylinder), blue, movable"));
+  EXPECT_THAT(text, HasSubstr("holder: kind pen_holder (a cup), grey, movable container"));
   EXPECT_THAT(text, HasSubstr("  marker on desk\n"));
   EXPECT_THAT(text, HasSubstr("  marker right_of eraser\n"));
   EXPECT_THAT(text, HasSubstr("panda_link0 > panda_link1"));

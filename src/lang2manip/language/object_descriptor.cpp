@@ -7,37 +7,12 @@
 #include <variant>
 
 #include "lang2manip/language/words.hpp"
+#include "lang2manip/symbolic/object_appearance.hpp"
 #include "lang2manip/symbolic/object_heading.hpp"
 #include "lang2manip/symbolic/surface_region.hpp"
 
 namespace lang2manip {
 namespace {
-
-struct ColourPrototype {
-  const char* name;
-  double r, g, b;
-};
-
-// Several prototypes per name so that dark and light shades find their colour; the last row holds
-// the muted shades of the tabletop benchmarks' palettes (Code as Policies, Ravens), so that their
-// red is red and their blue is blue.
-constexpr std::array<ColourPrototype, 37> kColourPrototypes{{
-    {"black", 0.02, 0.02, 0.02},  {"black", 0.12, 0.12, 0.12},
-    {"grey", 0.30, 0.30, 0.30},   {"grey", 0.50, 0.50, 0.50},  {"grey", 0.70, 0.70, 0.70},
-    {"white", 1.00, 1.00, 1.00},  {"white", 0.90, 0.90, 0.88},
-    {"red", 0.90, 0.10, 0.10},    {"red", 0.60, 0.05, 0.05},
-    {"green", 0.10, 0.75, 0.20},  {"green", 0.10, 0.40, 0.10}, {"green", 0.50, 0.85, 0.40},
-    {"blue", 0.10, 0.20, 0.90},   {"blue", 0.05, 0.10, 0.50},  {"blue", 0.35, 0.55, 0.95},
-    {"yellow", 0.95, 0.90, 0.10}, {"yellow", 1.00, 0.95, 0.50},
-    {"orange", 1.00, 0.55, 0.05}, {"orange", 0.90, 0.40, 0.10},
-    {"purple", 0.50, 0.20, 0.70}, {"purple", 0.30, 0.05, 0.40},
-    {"pink", 1.00, 0.60, 0.75},   {"pink", 0.95, 0.40, 0.70},
-    {"brown", 0.55, 0.35, 0.20},  {"brown", 0.72, 0.52, 0.32}, {"brown", 0.35, 0.20, 0.10},
-    {"cyan", 0.10, 0.80, 0.80},
-    {"blue", 0.30, 0.47, 0.65},   {"red", 0.88, 0.34, 0.35},   {"green", 0.35, 0.63, 0.31},  {"orange", 0.95, 0.56, 0.17},
-    {"yellow", 0.93, 0.79, 0.28}, {"purple", 0.69, 0.48, 0.63}, {"pink", 1.00, 0.62, 0.66},  {"cyan", 0.46, 0.72, 0.70},
-    {"brown", 0.61, 0.46, 0.38},  {"grey", 0.73, 0.69, 0.67},
-}};
 
 struct KindSynonyms {
   const char* kindWord;
@@ -73,37 +48,17 @@ double boundsVolume(const AlignedBox3& box) {
   return size.x() * size.y() * size.z();
 }
 
-/// The material of the visual (or collision) shape with the largest bounding box.
-const Material* mainMaterial(const SceneObject& object) {
-  const std::vector<Shape>& shapes = object.visuals.empty() ? object.collisions : object.visuals;
-  const Material* best = nullptr;
-  double bestVolume = -1.0;
-  for (const Shape& shape : shapes) {
-    if (!shape.material) continue;
-    const double volume = boundsVolume(shapeBounds(shape));
-    if (volume > bestVolume) {
-      best = &*shape.material;
-      bestVolume = volume;
-    }
-  }
-  return best;
-}
-
-/// The colour words of its name ("red_block": red), which the author chose; else the nearest named
-/// colour of its main material.
-std::vector<std::string> coloursOf(const SceneObject& object) {
-  std::vector<std::string> colours;
-  const std::vector<std::string> known = colourNames();
-  for (const std::string& word : tokenize(object.name)) {
-    const bool isColour = std::find(known.begin(), known.end(), word) != known.end();
-    if (isColour && std::find(colours.begin(), colours.end(), word) == colours.end()) {
-      colours.push_back(word);
-    }
-  }
-  if (const Material* material = mainMaterial(object); material != nullptr && colours.empty()) {
-    colours.push_back(nearestColourName(material->rgba.head<3>()));
-  }
-  return colours;
+/// An object whose kind names nothing familiar ("obj_3") answers to its category's nouns ("cube",
+/// "block"); a familiar kind keeps its own (an eraser is not "the box").
+void addCategoryNouns(ObjectDescriptor& descriptor) {
+  if (!descriptor.synonyms.empty() || descriptor.category.empty()) return;
+  const Words kindWords = tokenize(descriptor.kind);
+  const bool familiar = std::any_of(kindSynonymTable().begin(), kindSynonymTable().end(), [&](const KindSynonyms& entry) {
+    return std::find(kindWords.begin(), kindWords.end(), entry.kindWord) != kindWords.end();
+  });
+  if (familiar) return;
+  descriptor.synonyms.push_back(descriptor.category);
+  for (const std::string& synonym : kindSynonyms(descriptor.category)) descriptor.synonyms.push_back(synonym);
 }
 
 /// Size classes by rank of volume among the movable objects.
@@ -142,29 +97,6 @@ std::string shapeName(const SceneObject& object) {
 
 }  // namespace
 
-std::string nearestColourName(const Vector3& rgb) {
-  const char* best = "grey";
-  double bestDistance = std::numeric_limits<double>::infinity();
-  for (const ColourPrototype& prototype : kColourPrototypes) {
-    const double distance = (rgb - Vector3(prototype.r, prototype.g, prototype.b)).squaredNorm();
-    if (distance < bestDistance) {
-      best = prototype.name;
-      bestDistance = distance;
-    }
-  }
-  return best;
-}
-
-std::vector<std::string> colourNames() {
-  std::vector<std::string> names;
-  for (const ColourPrototype& prototype : kColourPrototypes) {
-    if (std::find(names.begin(), names.end(), prototype.name) == names.end()) {
-      names.emplace_back(prototype.name);
-    }
-  }
-  return names;
-}
-
 std::vector<std::string> kindSynonyms(const std::string& kind) {
   const Words kindWords = tokenize(kind);
   std::vector<std::string> synonyms;
@@ -187,7 +119,9 @@ std::vector<ObjectDescriptor> describeObjects(const Scene& scene, const std::str
     descriptor.name = object.name;
     descriptor.kind = object.kind;
     descriptor.synonyms = kindSynonyms(object.kind);
-    descriptor.colours = coloursOf(object);
+    descriptor.category = objectCategory(object);
+    addCategoryNouns(descriptor);
+    descriptor.colours = objectColours(object);
     descriptor.dimensions = object.dimensions();
     descriptor.volume = boundsVolume(object.localBounds());
     descriptor.position = worldToBase * object.worldBounds().center();

@@ -9,6 +9,7 @@
 
 #include "lang2manip/core/types.hpp"
 #include "lang2manip/model/scene.hpp"
+#include "lang2manip/symbolic/object_appearance.hpp"
 
 namespace lang2manip {
 
@@ -36,6 +37,9 @@ struct ObjectDescriptor {
   AlignedBox3 bounds;
   /// The origin of its frame in the robot's base frame, metres.
   Vector3 origin = Vector3::Zero();
+  /// Its category from its shape (objectCategory(): "cube", "cylinder", "bowl", ...), empty when
+  /// the shape says none; its nouns are among the synonyms when the kind names nothing familiar.
+  std::string category;
   /// "box", "cylinder" or "sphere" when its collision geometry is one such shape; empty otherwise.
   std::string shape;
   /// The yaw of its long side in the robot's base frame, in [0, pi) (see longSideYaw()); none for
@@ -55,11 +59,7 @@ struct ObjectDescriptor {
 /// InputError when `robot` is given but not in the scene.
 std::vector<ObjectDescriptor> describeObjects(const Scene& scene, const std::string& robot = "");
 
-/// The nearest named colour of an RGB colour (components 0..1): one of colourNames().
-std::string nearestColourName(const Vector3& rgb);
 
-/// The colour names descriptors use: "red", "green", "blue", ...
-std::vector<std::string> colourNames();
 
 /// Nouns that also name an object of `kind` (the kind's words are matched separately); empty
 /// for an unfamiliar kind.

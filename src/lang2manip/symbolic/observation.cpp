@@ -5,6 +5,7 @@
 #include <map>
 
 #include "lang2manip/model/scene.hpp"
+#include "lang2manip/symbolic/object_appearance.hpp"
 #include "lang2manip/symbolic/surface_region.hpp"
 
 namespace lang2manip {
@@ -155,6 +156,10 @@ json objectJson(const SceneObject& object, const Pose& base, const SymbolicState
               {"position_in_base", vectorJson(inBase)},
               {"side_of_robot", sideOfRobot(inBase, spatial.directionMargin)},
               {"distance_from_robot", rounded(inBase.head<2>().norm())}};
+  const std::vector<std::string> colours = objectColours(object);
+  report["colour"] = colours.empty() ? json(nullptr) : json(colours.front());
+  const std::string category = objectCategory(object);
+  report["category"] = category.empty() ? json(nullptr) : json(category);
   if (object.cavity) {
     report["cavity"] = {{"min", vectorJson(object.cavity->min())}, {"max", vectorJson(object.cavity->max())}};
   }

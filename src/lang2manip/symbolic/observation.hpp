@@ -26,7 +26,9 @@ struct ObservationOptions {
 ///   in the world and in the base frame, gripper joints/values/state, held object),
 ///   configuration (named configuration or null) and named_configurations;
 /// - "objects": name, kind, position, orientation_wxyz, yaw, dimensions, movable, role,
-///   in/on/held/clear, position_in_base, side of the robot, distance from the robot base;
+///   in/on/held/clear, position_in_base, side of the robot, distance from the robot base, colour
+///   and category (object_appearance.hpp, null when none), the region of its support's top it
+///   stands in ("region"), and for supports their "top": height, area and reachable part;
 /// - "relations": {subject, relation, object} facts: in, on, holding, left_of, right_of,
 ///   in_front_of, behind (robot base frame, between objects that are not supports) and near.
 /// Throws InputError for an unknown robot name.

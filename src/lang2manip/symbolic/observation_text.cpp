@@ -114,7 +114,10 @@ std::string objectText(const json& object) {
   if (object["role"] != "none") role += " " + object["role"].get<std::string>();
   if (object.contains("semantics")) role += " (" + object["semantics"].get<std::string>() + ")";
   const json& d = object["dimensions"];
-  return "  " + object["name"].get<std::string>() + ": kind " + object["kind"].get<std::string>() + ", " + role +
+  std::string looks;
+  if (object.contains("category") && object["category"].is_string()) looks += " (a " + object["category"].get<std::string>() + ")";
+  if (object.contains("colour") && object["colour"].is_string()) looks += ", " + object["colour"].get<std::string>();
+  return "  " + object["name"].get<std::string>() + ": kind " + object["kind"].get<std::string>() + looks + ", " + role +
          "; at " + numbers(object["position"]) + " world, " + numbers(object["position_in_base"]) +
          " in the base frame (" + object["side_of_robot"].get<std::string>() + " of the robot, " +
          number(object["distance_from_robot"]) + " m away); yaw " + degrees(object["yaw"]) + "; size " +
