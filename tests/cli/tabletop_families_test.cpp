@@ -51,7 +51,9 @@ TEST(Tabletop, HoldsTheRequestedObjectsApartOnTheReachablePartOfTheDesk) {
       const Vector3 centre = toBase * object.worldBounds().center();
       EXPECT_TRUE(reachable.min().x() <= centre.x() && centre.x() <= reachable.max().x()) << object.name;
       for (const SceneObject& other : scene->objects()) {
-        if (other.name != object.name && other.name != "desk") EXPECT_GE(boxGap(object.worldBounds(), other.worldBounds()), 0.05 - 1e-9);
+        if (other.name != object.name && other.name != "desk") {
+          EXPECT_GE(boxGap(object.worldBounds(), other.worldBounds()), 0.05 - 1e-9);
+        }
       }
     }
     EXPECT_EQ(colourOf("red_block_2"), "red");

@@ -91,5 +91,28 @@ TEST(TabletopLanguage, LinesAreEvenlySpacedPlacesInTheOrderTheObjectsStand) {
   }
 }
 
+TEST(TabletopLanguage, TyposAreReadAsTheOneWordTheyAreNearAndSaid) {
+  const TaskSpecification specification = understandInstruction("put the markr in the holdr", describeObjects(test::deskScene()));
+  EXPECT_EQ(test::summarize(specification), "marker in holder");
+  EXPECT_EQ(specification.corrections, "read \"markr\" as \"marker\"; read \"holdr\" as \"holder\"");
+  EXPECT_EQ(meaning("plase the bleu blokc on the red block"), "blue_block on red_block");
+  EXPECT_EQ(meaning("put the red block in the top lefft cornr"), "red_block on table (far_left_corner)");
+  EXPECT_EQ(meaning("put the second block from the rihgt in the box"), "blue_block in box");
+  // As close to two words: refused, naming both.
+  try {
+    (void)understandInstruction("put the gree marker in the holder", describeObjects(test::deskScene()));
+    ADD_FAILURE() << "not refused";
+  } catch (const PlanningError& error) {
+    EXPECT_THAT(error.what(), HasSubstr("\"gree\": it is a typo of green or grey? say which"));
+  }
+  // An object's own words come first: "gren" is the green block's, not grey.
+  EXPECT_EQ(meaning("pls put the gren block in the box, thx"), "green_block in box");
+  // Between words as near of different sorts, an object's noun comes before a colour, a colour before a verb.
+  EXPECT_THAT(meaning("put the red block in the bown"), HasSubstr("put the red block in the brown"));
+  // Words far from every word stay as they are, and the reader says what it could not ground.
+  EXPECT_THAT(meaning("put the bottle in the box"), HasSubstr("could not ground \"the bottle\""));
+  EXPECT_EQ(understandInstruction("put the marker in the holder", describeObjects(test::deskScene())).corrections, "");
+}
+
 }  // namespace
 }  // namespace lang2manip

@@ -121,7 +121,10 @@ TEST(SurfaceRegion, TheGoalCheckMeasuresTheObjectsCentreInTheRegion) {
   const AlignedBox3 reachable = supportArea(scene, "desk", "")->reachable;
   const AlignedBox3 corner = regionBox(reachable, {Kind::kCorner, 1, 1});
   moveTo(scene, "eraser", corner.center().x(), corner.center().y());
-  Goal goal{GoalKind::kRelation, "eraser", SpatialRelation::kOn, "desk"};
+  Goal goal;
+  goal.object = "eraser";
+  goal.relation = SpatialRelation::kOn;
+  goal.target = "desk";
   goal.region = SurfaceRegion{Kind::kCorner, 1, 1};
   GoalCheck check = checkGoalInScene(scene, goal);
   EXPECT_TRUE(check.holds) << check.explanation;
@@ -144,7 +147,9 @@ TEST(SurfaceRegion, TheObservationGivesTopsTheirReachablePartAndObjectsTheirCell
   EXPECT_THAT(text, HasSubstr("of which the arm reaches x"));
   EXPECT_THAT(text, HasSubstr("regions of a support's top"));
   for (const json& object : observation["objects"]) {
-    if (object["on"] == "desk") EXPECT_TRUE(surfaceRegionFromName(object["region"].get<std::string>()) || object["region"] == "out_of_reach");
+    if (object["on"] == "desk") {
+      EXPECT_TRUE(surfaceRegionFromName(object["region"].get<std::string>()) || object["region"] == "out_of_reach");
+    }
   }
 }
 

@@ -52,8 +52,8 @@ struct InstanceOutcome {
   bool afterRepair = false;
   bool givenPlan = false;
   double seconds = 0.0;
-  std::string why;
-  std::string givenWhy;
+  std::string why{};
+  std::string givenWhy{};
 };
 
 /// Runs `planner` on the instance; true when the run succeeded and the family's check holds on

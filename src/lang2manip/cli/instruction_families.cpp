@@ -277,7 +277,7 @@ std::optional<FamilyInstance> line(const Scene& desk, Random& random) {
   for (double fraction : {0.5, 0.3, 0.7, 0.2, 0.8}) {
     std::vector<Vector3> spots;
     for (std::size_t i = 0; i < blocks.size(); ++i) {
-      const double offset = (static_cast<double>(i) - (blocks.size() - 1) / 2.0) * spacing;
+      const double offset = (static_cast<double>(i) - static_cast<double>(blocks.size() - 1) / 2.0) * spacing;
       const Vector3 middle(horizontal ? reachable.min().x() + fraction * reachable.sizes().x() : reachable.center().x(),
                            horizontal ? reachable.center().y() : reachable.min().y() + fraction * reachable.sizes().y(), reachable.max().z());
       spots.push_back(middle + (horizontal ? Vector3(0.0, offset, 0.0) : Vector3(offset, 0.0, 0.0)));

@@ -73,7 +73,7 @@ struct PlacementTarget {
   std::optional<Vector3> position;
   std::optional<Quaternion> orientation;
   /// For on: the region of the target's reachable top the object's centre goes in.
-  std::optional<SurfaceRegion> region;
+  std::optional<SurfaceRegion> region{};
 };
 
 /// The target of a place action's parameters (relation + target + distance, or position +

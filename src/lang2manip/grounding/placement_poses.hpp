@@ -34,7 +34,7 @@ struct PoseSamplingInput {
   Vector3 position = Vector3::Zero();
   Pose robotBase = Pose::Identity();
   /// The robot placing it: regions are of the part of a top it reaches.
-  std::string robot;
+  std::string robot{};
 };
 
 /// Candidate poses for `target`:

@@ -30,7 +30,7 @@ struct RelationSpec {
   std::string target;
   std::optional<double> distance;
   /// For on: the region of the target's top ("in the far left corner of the table").
-  std::optional<SurfaceRegion> region;
+  std::optional<SurfaceRegion> region{};
 };
 
 /// Parses the steps of one instruction in order, adding goals to a TaskSpecification.

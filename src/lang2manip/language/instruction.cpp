@@ -6,6 +6,7 @@
 #include "lang2manip/language/clause_parser.hpp"
 #include "lang2manip/language/goal_conflicts.hpp"
 #include "lang2manip/language/noun_phrase.hpp"
+#include "lang2manip/language/typo_correction.hpp"
 #include "lang2manip/language/vocabulary.hpp"
 #include "lang2manip/symbolic/task_planner.hpp"
 
@@ -174,10 +175,11 @@ std::vector<Goal> finalStateGoals(const std::vector<Goal>& goals) {
 
 TaskSpecification understandInstruction(const std::string& text,
                                         const std::vector<ObjectDescriptor>& objects) {
-  const Words words = tokenize(text);
+  Words words = tokenize(text);
+  TaskSpecification specification;
+  specification.corrections = language_detail::correctionsText(language_detail::correctTypos(words, objects));
   refuseWhatCannotBeGrounded(words);
   const language_detail::NounPhraseReader reader(objects);
-  TaskSpecification specification;
   language_detail::StepParser parser(reader, specification);
   for (Words& step : splitSteps(withoutFillers(words), specification.orderGiven)) {
     const language_detail::StepModifiers modifiers = language_detail::extractModifiers(step);

@@ -37,6 +37,8 @@ struct TaskSpecification {
   /// True when the instruction orders its steps ("first ..., then ...", "after that", "finally"):
   /// the plan keeps that order; otherwise a repair may change it.
   bool orderGiven = false;
+  /// The typos it read as other words ("read \"markr\" as \"marker\""), empty when none.
+  std::string corrections{};
 };
 
 /// Understands `text` over `objects` (see describeObjects()).
@@ -54,7 +56,9 @@ struct TaskSpecification {
 /// do "do the same with", "same for" and "repeat with"; a stranded "in"/"on" ("then put the
 /// eraser in") means the latest target. Sources ("from the desk", "out of the holder") must name
 /// an object and are otherwise implied by the scene.
-/// Politeness and filler ("could you please", "kindly", "I'd like you to") are ignored.
+/// Politeness and filler ("could you please", "kindly", "I'd like you to") are ignored. A typo of
+/// an object's noun, a colour, a verb or a region word is read as that word and stated
+/// (TaskSpecification::corrections); one as close to two words is refused.
 /// "Stack the blocks" stacks the largest at the bottom; "stack A, B and C" puts A at the bottom.
 ///
 /// Throws PlanningError naming the exact words it could not ground, with the reason (no object

@@ -39,7 +39,7 @@ struct ObjectDescriptor {
   Vector3 origin = Vector3::Zero();
   /// Its category from its shape (objectCategory(): "cube", "cylinder", "bowl", ...), empty when
   /// the shape says none; its nouns are among the synonyms when the kind names nothing familiar.
-  std::string category;
+  std::string category{};
   /// "box", "cylinder" or "sphere" when its collision geometry is one such shape; empty otherwise.
   std::string shape;
   /// The yaw of its long side in the robot's base frame, in [0, pi) (see longSideYaw()); none for
@@ -48,10 +48,10 @@ struct ObjectDescriptor {
   bool movable = false;
   ObjectRole role = ObjectRole::kNone;
   /// For a container: the size of its cavity (x, y, depth), metres.
-  std::optional<Vector3> cavitySize;
+  std::optional<Vector3> cavitySize{};
   /// For a support: the part of its top the robot reaches (base frame), what its regions are of
   /// (supportArea()).
-  std::optional<AlignedBox3> reachableTop;
+  std::optional<AlignedBox3> reachableTop{};
 };
 
 /// Descriptors of every object of `scene`, in scene order. Positions are in the base frame of

@@ -499,6 +499,7 @@ class Sequencer {
       text += (index == 0 ? " " : "; ") + describeGoal(goals_[index]);
       if (initiallyTrue(goals_[index])) text += " (already true)";
     }
+    if (!specification_.corrections.empty()) text += "; " + specification_.corrections;
     return text;
   }
 

@@ -2,6 +2,7 @@
 #include "lang2manip/symbolic/spatial_relations.hpp"
 
 #include <algorithm>
+#include <set>
 #include <utility>
 
 namespace lang2manip::vocabulary {
@@ -228,7 +229,9 @@ const PhraseTable<bool>& fillerTable() {
       {"quickly", true}, {"also", true}, {"too", true}, {"as well", true}, {"for me", true},
       {"thanks", true}, {"thank you", true}, {"ok", true}, {"okay", true}, {"hey", true},
       {"hi", true}, {"hello", true}, {"hey robot", true}, {"ok robot", true},
-      {"you should", true},
+      {"you should", true}, {"pls", true}, {"plz", true}, {"plse", true}, {"could u", true}, {"can u", true},
+      {"would u", true}, {"could u pls", true}, {"can u pls", true}, {"could you pls", true}, {"thx", true}, {"ty", true},
+      {"kindly please", true}, {"if you can", true}, {"if possible", true}, {"when you can", true},
   };
   return table;
 }
@@ -378,6 +381,30 @@ std::optional<std::size_t> matchHome(const Words& words, std::size_t at) {
   if (auto robot = lengthOf(robotTable(), words, position)) position += *robot;
   if (auto home = lengthOf(homeTable(), words, position)) return position + *home - at;
   return std::nullopt;
+}
+
+std::set<std::string> knownWords() {
+  std::set<std::string> words;
+  const auto add = [&words](const auto& table) {
+    for (const auto& entry : table.entries) words.insert(entry.first.begin(), entry.first.end());
+  };
+  add(verbTable());
+  add(relationTable());
+  add(directionTable());
+  add(unitTable());
+  add(smallAmountTable());
+  add(fillerTable());
+  add(sequenceTable());
+  add(stepOrdinalTable());
+  add(homeTable());
+  add(robotTable());
+  return words;
+}
+
+std::vector<std::string> verbWords() {
+  std::set<std::string> words;
+  for (const auto& entry : verbTable().entries) words.insert(entry.first.begin(), entry.first.end());
+  return {words.begin(), words.end()};
 }
 
 }  // namespace lang2manip::vocabulary

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,11 @@ struct VerbMatch {
 
 /// The longest verb phrase at words[at] ("pick up", "put down", "push").
 std::optional<VerbMatch> matchVerb(const Words& words, std::size_t at);
+/// Every word of the vocabulary's phrases (verbs, relations, directions, units, fillers, sequencing
+/// words, home and robot phrases): what a typo is not.
+std::set<std::string> knownWords();
+/// The words of the verb phrases ("pick", "up", "put", ...): what a typo may be of.
+std::vector<std::string> verbWords();
 /// Every verb lemma, for error messages.
 std::vector<std::string> verbLemmas();
 

@@ -56,7 +56,7 @@ struct ActionParams {
   std::optional<Vector3> direction;
   /// For place on a support: the region of its top face ("far_left_corner", see
   /// surface_region.hpp).
-  std::optional<SurfaceRegion> region;
+  std::optional<SurfaceRegion> region{};
 };
 
 /// Refinements r: how to grasp and approach.
@@ -120,7 +120,7 @@ struct Goal {
   /// without a target: the heading of the long side, rad (base frame, 0 = front).
   double angle = 0.0;
   /// For an on relation: the region of the target's top face the object's centre must be in.
-  std::optional<SurfaceRegion> region;
+  std::optional<SurfaceRegion> region{};
 };
 
 struct Plan {
