@@ -32,6 +32,7 @@ TEST(TabletopLanguage, OrdinalsCountAlongTheBaseFrame) {
   EXPECT_EQ(meaning("put the third block counting from the right in the box"), "red_block in box");
   EXPECT_THAT(meaning("put the fourth block from the left in the box"), HasSubstr("there are only 3"));
   EXPECT_THAT(meaning("put the middle marker in the box"), HasSubstr("there is no middle one of 2"));
+  EXPECT_THAT(meaning("put the second block in the box"), HasSubstr("counted from where? say \"from the left\""));
 }
 
 TEST(TabletopLanguage, AssignmentsByColourAreAMatchingOverTheObjects) {

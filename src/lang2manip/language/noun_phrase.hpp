@@ -161,7 +161,8 @@ class NounPhraseReader {
   /// "from the left" (and the like) after an ordinal at words[at] into `phrase`; the position after it.
   [[nodiscard]] static std::size_t readRankFrom(const Words& words, std::size_t at, NounPhrase& phrase);
   /// The object of rank `phrase.rank` among `names` counted from `phrase.rankFrom`; throws
-  /// PlanningError when there are too few, or no middle one.
+  /// PlanningError when there are too few, no middle one, or an ordinal other than "middle" says
+  /// not where it counts from ("the third object").
   [[nodiscard]] std::vector<std::string> ranked(const NounPhrase& phrase, std::vector<std::string> names) const;
   /// True when a singular phrase without superlative could name several objects.
   [[nodiscard]] bool headIsAmbiguous(const NounPhrase& phrase) const;

@@ -222,6 +222,9 @@ std::vector<std::string> NounPhraseReader::ranked(const NounPhrase& phrase, std:
     }
     return 0.0;
   };
+  if (!phrase.rankFromGiven && phrase.rank != kMiddleRank) {
+    throwGroundingError(phrase.text, "counted from where? say \"from the left\" (right, top or bottom)");
+  }
   std::stable_sort(names.begin(), names.end(), [&](const std::string& a, const std::string& b) { return along(a) > along(b); });
   const auto count = static_cast<int>(names.size());
   if (phrase.rank == kMiddleRank) {
