@@ -173,4 +173,18 @@ bool StepParser::standsOn(const std::string& object, const std::string& support)
   return object != support && over && std::abs(a.min().z() - b.max().z()) <= kContactGap;
 }
 
+double StepParser::gapAsDistance(const Step& step, const RelationSpec& spec, double gap) const {
+  if (spec.relation == SpatialRelation::kNextTo || step.objects.empty()) return gap;
+  const int axis = spec.relation == SpatialRelation::kLeftOf || spec.relation == SpatialRelation::kRightOf ? 1 : 0;
+  const double half = reader_.descriptor(step.objects.front()).bounds.sizes()[axis] / 2.0 +
+                      reader_.descriptor(spec.target).bounds.sizes()[axis] / 2.0;
+  return half + gap;
+}
+
+bool StepParser::isOpenDish(const std::string& object) const {
+  const ObjectDescriptor& descriptor = reader_.descriptor(object);
+  return descriptor.role == ObjectRole::kContainer && descriptor.cavitySize &&
+         std::min(descriptor.cavitySize->x(), descriptor.cavitySize->y()) >= descriptor.cavitySize->z();
+}
+
 }  // namespace lang2manip::language_detail

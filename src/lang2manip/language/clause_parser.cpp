@@ -315,20 +315,6 @@ bool StepParser::parseRelation(Step& step) {
   return true;
 }
 
-double StepParser::gapAsDistance(const Step& step, const RelationSpec& spec, double gap) const {
-  if (spec.relation == SpatialRelation::kNextTo || step.objects.empty()) return gap;
-  const int axis = spec.relation == SpatialRelation::kLeftOf || spec.relation == SpatialRelation::kRightOf ? 1 : 0;
-  const double half = reader_.descriptor(step.objects.front()).bounds.sizes()[axis] / 2.0 +
-                      reader_.descriptor(spec.target).bounds.sizes()[axis] / 2.0;
-  return half + gap;
-}
-
-bool StepParser::isOpenDish(const std::string& object) const {
-  const ObjectDescriptor& descriptor = reader_.descriptor(object);
-  return descriptor.role == ObjectRole::kContainer && descriptor.cavitySize &&
-         std::min(descriptor.cavitySize->x(), descriptor.cavitySize->y()) >= descriptor.cavitySize->z();
-}
-
 std::string StepParser::groundTarget(Step& step, const NounPhrase& phrase, bool intoSomething) {
   std::vector<std::string> targets = reader_.ground(phrase, discourse_, true, step.objects, intoSomething);
   // "and the eraser on the desk next to it": "it" is not the desk this clause already named but
@@ -380,16 +366,7 @@ void StepParser::addRelationGoals(Step& step, const RelationSpec& relation) {
     addStackGoals(step, relation.target, relation.region);
     return;
   }
-  for (const std::string& object : step.objects) {
-    Goal goal;
-    goal.kind = GoalKind::kRelation;
-    goal.object = object;
-    goal.relation = relation.relation;
-    goal.target = relation.target;
-    goal.distance = relation.distance;
-    goal.region = relation.region;
-    specification_.goals.push_back(goal);
-  }
+  for (const std::string& object : step.objects) addGoal(object, relation);
 }
 
 void StepParser::addStackGoals(Step& step, const std::optional<std::string>& base, const std::optional<SurfaceRegion>& region) {
