@@ -29,6 +29,9 @@ TEST(TabletopLanguage, OrdinalsCountAlongTheBaseFrame) {
   EXPECT_EQ(meaning("put the first block from the right in the box"), "green_block in box");
   EXPECT_EQ(meaning("pick up the last block from the left and put it in the box"), "green_block in box");
   EXPECT_EQ(meaning("put the middle block in the box"), "blue_block in box");
+  // "from the top" after an ordinal is where it counts from, not a top grasp.
+  EXPECT_EQ(meaning("put the red block next to the first object from the top"), "red_block next_to box");
+  EXPECT_EQ(meaning("pick up the red block from the top and put it in the box"), "red_block in box | grasp red_block=top");
   EXPECT_EQ(meaning("put the third block counting from the right in the box"), "red_block in box");
   EXPECT_THAT(meaning("put the fourth block from the left in the box"), HasSubstr("there are only 3"));
   EXPECT_THAT(meaning("put the middle marker in the box"), HasSubstr("there is no middle one of 2"));

@@ -318,6 +318,48 @@ std::optional<FamilyInstance> ravensColourBlocksInBowl(const Scene& desk, Random
   return result;
 }
 
+/// CLIPort's spatial references: three blocks of one colour, "the left / middle / right red block".
+std::optional<FamilyInstance> ravensSpatialBlock(const Scene& desk, Random& random) {
+  for (int attempt = 0; attempt < 50; ++attempt) {
+    TabletopRequest request;
+    request.blocks = 3;
+    request.bowls = 1;
+    request.distinctColours = false;
+    auto scene = generateTabletop(desk, request, random);
+    if (!scene) return std::nullopt;
+    const auto blocks = objectsOfKind(*scene, "block");
+    if (colourOf(blocks[0]) != colourOf(blocks[1]) || colourOf(blocks[1]) != colourOf(blocks[2])) {
+      // Repaint: three blocks of the first one's colour, renamed as the generator names them.
+      Scene same;
+      for (const SceneRobot& robot : scene->robots()) same.addRobot(robot);
+      int n = 0;
+      for (SceneObject object : scene->objects()) {
+        if (object.kind == "block") {
+          object.name = colourOf(blocks[0]) + "_block" + (n == 0 ? std::string() : "_" + std::to_string(n + 1));
+          object.collisions.front().material = scene->object(blocks[0]).collisions.front().material;
+          ++n;
+        }
+        same.addObject(std::move(object));
+      }
+      scene = std::move(same);
+    }
+    const auto named = objectsOfKind(*scene, "block");
+    std::vector<std::pair<double, std::string>> byLeft;
+    for (const std::string& block : named) byLeft.emplace_back(centreInBase(*scene, block).y(), block);
+    std::sort(byLeft.begin(), byLeft.end());
+    if (byLeft[1].first - byLeft[0].first < 0.04 || byLeft[2].first - byLeft[1].first < 0.04) continue;
+    const int which = drawCount(0, 2, random);  // right, middle, left
+    const char* words[] = {"right", "middle", "left"};
+    const std::string block = byLeft[static_cast<std::size_t>(which)].second;
+    const std::string bowl = objectsOfKind(*scene, "bowl").front();
+    FamilyInstance result = instance("ravens_spatial_block", std::string("put the ") + words[which] + " " + colourOf(block) + " block in the " +
+                                                                 spoken(bowl), *scene, allOf({relationGoal(block, R::kIn, bowl)}));
+    addPickPlace(result.plan, block, R::kIn, bowl);
+    return result;
+  }
+  return std::nullopt;
+}
+
 /// `make`, refusing instances whose check already holds on the scene as drawn.
 std::function<std::optional<FamilyInstance>(const Scene&, Random&)> notYetDone(
     std::optional<FamilyInstance> (*make)(const Scene&, Random&)) {
@@ -346,6 +388,7 @@ const std::vector<InstructionFamily>& instructionFamilies() {
       {"cap_corner_closest_to_bowl", "CaP", notYetDone(cornerClosestToBowl)},
       {"cap_line", "CaP", notYetDone(line)},
       {"ravens_colour_blocks_in_bowl", "Ravens", notYetDone(ravensColourBlocksInBowl)},
+      {"ravens_spatial_block", "Ravens", notYetDone(ravensSpatialBlock)},
   };
   return families;
 }

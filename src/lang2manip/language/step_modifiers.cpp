@@ -85,8 +85,20 @@ void erase(Words& words, std::size_t begin, std::size_t end) {
               words.begin() + static_cast<std::ptrdiff_t>(end));
 }
 
+/// True when "from ..." at words[at] says where an ordinal just before counts from ("the second
+/// block from the top"), not how to grasp.
+bool countsAnOrdinal(const Words& words, std::size_t at) {
+  static const Words ordinals{"first", "second", "third", "fourth", "fifth", "sixth", "seventh", "eighth", "ninth", "tenth", "last"};
+  if (words[at] != "from") return false;
+  for (std::size_t back = 1; back <= 3 && back <= at; ++back) {
+    if (containsWord(ordinals, words[at - back])) return true;
+  }
+  return false;
+}
+
 std::optional<GraspDirection> extractGrasp(Words& words) {
   for (std::size_t at = 0; at < words.size(); ++at) {
+    if (countsAnOrdinal(words, at)) continue;
     for (const auto& [phrase, direction] : graspPhrases()) {
       if (!matchesAt(words, at, phrase)) continue;
       std::size_t end = at + phrase.size();
