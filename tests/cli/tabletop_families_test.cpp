@@ -129,7 +129,7 @@ TEST(RegionsForAnLlm, ARegionPlanFromTheLoopbackLlmIsGroundedAndVerified) {
   ASSERT_EQ(result.exitCode, 0) << result.output;
   EXPECT_THAT(result.output, HasSubstr("goal eraser on desk (far_left_corner): holds"));
   ASSERT_EQ(server.requests().size(), 1u);
-  const std::string& request = server.requests()[0].body;
+  const std::string request = server.requests()[0].body;  // requests() is a copy
   EXPECT_THAT(request, HasSubstr("of which the arm reaches x"));
   EXPECT_THAT(request, HasSubstr("far_left_corner"));
   EXPECT_THAT(request, HasSubstr("(a box), pink"));
