@@ -7,6 +7,7 @@
 
 #include "lang2manip/cli/tabletop_scenes.hpp"
 #include "lang2manip/core/text_parsing.hpp"
+#include "lang2manip/language/words.hpp"
 #include "lang2manip/symbolic/object_heading.hpp"
 #include "lang2manip/symbolic/symbolic_state.hpp"
 
@@ -130,6 +131,19 @@ Check mismatchedContainers(std::vector<std::string> objects, std::vector<std::st
         return fails(object + " is " + location(state, object) + ", in no bowl");
       }
       if (colourOf(in->second) == colourOf(object)) return fails(object + " is in " + in->second + ", of its own colour");
+    }
+    return holds();
+  };
+}
+
+Check inAnyOf(std::vector<std::string> objects, std::vector<std::string> containers) {
+  return [objects = std::move(objects), containers = std::move(containers)](const Scene& final, const Scene&) {
+    const SymbolicState state = observeSymbolicState(final);
+    for (const std::string& object : objects) {
+      const auto in = state.inside.find(object);
+      if (in == state.inside.end() || std::find(containers.begin(), containers.end(), in->second) == containers.end()) {
+        return fails(object + " is " + location(state, object) + ", in none of " + joinNames(containers));
+      }
     }
     return holds();
   };

@@ -48,6 +48,8 @@ Check tower(std::vector<std::string> objects, std::optional<SurfaceRegion> regio
 Check differentCorners(std::vector<std::string> objects);
 /// Each object in a container whose colour differs from its own.
 Check mismatchedContainers(std::vector<std::string> objects, std::vector<std::string> containers);
+/// Each object in one of `containers` (any of them: "in a green bowl").
+Check inAnyOf(std::vector<std::string> objects, std::vector<std::string> containers);
 /// The objects' centres on one line (within 2 cm) along base-frame `heading` (0 = x, pi/2 = y,
 /// within 20 degrees), each at least its width from the next, all on the desk.
 Check inLine(std::vector<std::string> objects, double heading);

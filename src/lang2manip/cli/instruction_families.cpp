@@ -242,6 +242,26 @@ std::optional<FamilyInstance> nthBlock(const Scene& desk, Random& random) {
   return result;
 }
 
+std::optional<FamilyInstance> blockToSideOfBowl(const Scene& desk, Random& random) {
+  auto scene = tabletop(desk, 3, 1, random);
+  if (!scene) return std::nullopt;
+  const std::string bowl = objectsOfKind(*scene, "bowl").front();
+  const Direction& side = drawOne(directions(), random);
+  // The one block that is on that side of the bowl (its centre 2 cm or more that way), others not.
+  std::vector<std::string> onSide;
+  for (const std::string& block : objectsOfKind(*scene, "block")) {
+    const double along = side.sign * (centreInBase(*scene, block)[side.axis] - centreInBase(*scene, bowl)[side.axis]);
+    if (along > 0.02) onSide.push_back(block);
+    else if (along > -0.02) return std::nullopt;  // too close to call
+  }
+  if (onSide.size() != 1) return std::nullopt;
+  const RegionWords& where = drawOne(cornersAndSides(), random);
+  const std::string text = std::string("pick up the block to the ") + side.word + " of the " + spoken(bowl) + " and place it on the " + where.words;
+  FamilyInstance result = instance("cap_block_to_side_of_bowl", text, *scene, allOf({relationGoal(onSide.front(), R::kOn, "desk", where.region)}));
+  addPickPlace(result.plan, onSide.front(), R::kOn, "desk", where.region);
+  return result;
+}
+
 std::optional<FamilyInstance> blockBesideBowl(const Scene& desk, Random& random) {
   auto scene = tabletop(desk, drawCount(1, 3, random), 1, random);
   if (!scene) return std::nullopt;
@@ -304,16 +324,21 @@ std::optional<FamilyInstance> ravensColourBlocksInBowl(const Scene& desk, Random
   const auto blocks = objectsOfKind(*scene, "block");
   const std::string colour = colourOf(drawOne(blocks, random));
   const std::string bowl = drawOne(objectsOfKind(*scene, "bowl"), random);
-  std::vector<Goal> goals;
+  std::vector<std::string> moved;
   Plan plan;
   for (const std::string& block : blocks) {
     if (colourOf(block) != colour) continue;
-    goals.push_back(relationGoal(block, R::kIn, bowl));
+    moved.push_back(block);
     addPickPlace(plan, block, R::kIn, bowl);
   }
-  if (goals.size() > 3) return std::nullopt;  // more than the bowl holds
-  const std::string text = "put the " + colour + (goals.size() > 1 ? " blocks in a " : " block in a ") + spoken(bowl);
-  FamilyInstance result = instance("ravens_colour_blocks_in_bowl", text, *scene, allOf(goals));
+  if (moved.size() > 3) return std::nullopt;  // more than the bowl holds
+  // "a green bowl": any bowl of that colour.
+  std::vector<std::string> ofColour;
+  for (const std::string& other : objectsOfKind(*scene, "bowl")) {
+    if (colourOf(other) == colourOf(bowl)) ofColour.push_back(other);
+  }
+  const std::string text = "put the " + colour + (moved.size() > 1 ? " blocks in a " : " block in a ") + spoken(bowl);
+  FamilyInstance result = instance("ravens_colour_blocks_in_bowl", text, *scene, inAnyOf(moved, ofColour));
   result.plan = plan;
   return result;
 }
@@ -380,6 +405,7 @@ const std::vector<InstructionFamily>& instructionFamilies() {
       {"cap_blocks_in_bowl", "CaP", notYetDone(blocksInBowl)},
       {"cap_matching_bowls", "CaP", notYetDone(matchingBowls)},
       {"cap_block_near_bowl", "CaP", notYetDone(blockNearBowl)},
+      {"cap_block_to_side_of_bowl", "CaP", notYetDone(blockToSideOfBowl)},
       {"cap_nth_block", "CaP", notYetDone(nthBlock)},
       {"cap_different_corners", "CaP", notYetDone(differentCornersFamily)},
       {"cap_mismatched_bowls", "CaP", notYetDone(mismatchedBowls)},
