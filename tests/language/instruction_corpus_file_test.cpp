@@ -64,10 +64,10 @@ TEST(InstructionCorpusFile, TheBuiltInCorpusCoversEveryClassWithFifteenPhrasings
     distinct.insert(entry.instruction);
   }
   EXPECT_EQ(distinct.size(), corpus.size()) << "an instruction is listed twice";
-  for (const char* group : {"intermediate", "container", "reference", "stacking", "rearrange", "rotate", "carry_handover", "any_pose"}) {
+  for (const char* group : {"intermediate", "container", "reference", "stacking", "rearrange", "rotate", "carry_handover", "any_pose", "regions"}) {
     EXPECT_GE(perClass[group], 15) << group;
   }
-  EXPECT_EQ(perClass.size(), 8u);
+  EXPECT_EQ(perClass.size(), 9u);
 }
 
 }  // namespace
