@@ -25,6 +25,13 @@ std::string location(const SymbolicState& state, const std::string& object) {
   return state.held == object ? "held" : "nowhere";
 }
 
+/// The container of `containers` that `object` is in; empty when it is in none of them.
+std::string containerAmong(const SymbolicState& state, const std::string& object, const std::vector<std::string>& containers) {
+  const auto in = state.inside.find(object);
+  if (in == state.inside.end() || std::find(containers.begin(), containers.end(), in->second) == containers.end()) return {};
+  return in->second;
+}
+
 }  // namespace
 
 const std::vector<RegionWords>& corners() {
@@ -126,11 +133,9 @@ Check mismatchedContainers(std::vector<std::string> objects, std::vector<std::st
   return [objects = std::move(objects), containers = std::move(containers)](const Scene& final, const Scene&) {
     const SymbolicState state = observeSymbolicState(final);
     for (const std::string& object : objects) {
-      const auto in = state.inside.find(object);
-      if (in == state.inside.end() || std::find(containers.begin(), containers.end(), in->second) == containers.end()) {
-        return fails(object + " is " + location(state, object) + ", in no bowl");
-      }
-      if (colourOf(in->second) == colourOf(object)) return fails(object + " is in " + in->second + ", of its own colour");
+      const std::string container = containerAmong(state, object, containers);
+      if (container.empty()) return fails(object + " is " + location(state, object) + ", in no bowl");
+      if (colourOf(container) == colourOf(object)) return fails(object + " is in " + container + ", of its own colour");
     }
     return holds();
   };
@@ -140,8 +145,7 @@ Check inAnyOf(std::vector<std::string> objects, std::vector<std::string> contain
   return [objects = std::move(objects), containers = std::move(containers)](const Scene& final, const Scene&) {
     const SymbolicState state = observeSymbolicState(final);
     for (const std::string& object : objects) {
-      const auto in = state.inside.find(object);
-      if (in == state.inside.end() || std::find(containers.begin(), containers.end(), in->second) == containers.end()) {
+      if (containerAmong(state, object, containers).empty()) {
         return fails(object + " is " + location(state, object) + ", in none of " + joinNames(containers));
       }
     }

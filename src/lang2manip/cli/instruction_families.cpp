@@ -349,25 +349,9 @@ std::optional<FamilyInstance> ravensSpatialBlock(const Scene& desk, Random& rand
     TabletopRequest request;
     request.blocks = 3;
     request.bowls = 1;
-    request.distinctColours = false;
-    auto scene = generateTabletop(desk, request, random);
+    request.oneBlockColour = true;
+    const auto scene = generateTabletop(desk, request, random);
     if (!scene) return std::nullopt;
-    const auto blocks = objectsOfKind(*scene, "block");
-    if (colourOf(blocks[0]) != colourOf(blocks[1]) || colourOf(blocks[1]) != colourOf(blocks[2])) {
-      // Repaint: three blocks of the first one's colour, renamed as the generator names them.
-      Scene same;
-      for (const SceneRobot& robot : scene->robots()) same.addRobot(robot);
-      int n = 0;
-      for (SceneObject object : scene->objects()) {
-        if (object.kind == "block") {
-          object.name = colourOf(blocks[0]) + "_block" + (n == 0 ? std::string() : "_" + std::to_string(n + 1));
-          object.collisions.front().material = scene->object(blocks[0]).collisions.front().material;
-          ++n;
-        }
-        same.addObject(std::move(object));
-      }
-      scene = std::move(same);
-    }
     const auto named = objectsOfKind(*scene, "block");
     std::vector<std::pair<double, std::string>> byLeft;
     for (const std::string& block : named) byLeft.emplace_back(centreInBase(*scene, block).y(), block);

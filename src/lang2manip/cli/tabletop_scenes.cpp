@@ -82,7 +82,9 @@ std::vector<SceneObject> drawObjects(const TabletopRequest& request, Random& ran
     objects.push_back(bowl(colour, random.uniform(0.12, 0.15)));
     objects.back().name = uniqueName(std::string(colour.name) + "_bowl", used);
   }
-  for (const PaletteColour& colour : drawColours(request.blocks, request.distinctColours, random)) {
+  std::vector<PaletteColour> blockColours = drawColours(request.oneBlockColour ? 1 : request.blocks, request.distinctColours, random);
+  if (request.oneBlockColour && !blockColours.empty()) blockColours.assign(static_cast<std::size_t>(request.blocks), blockColours.front());
+  for (const PaletteColour& colour : blockColours) {
     objects.push_back(block(colour, random.uniform(request.blockEdgeMin, request.blockEdgeMax)));
     objects.back().name = uniqueName(std::string(colour.name) + "_block", used);
   }

@@ -30,6 +30,8 @@ struct TabletopRequest {
   int cylinders = 0;
   /// Colours are drawn without repetition per kind unless a kind needs more than the palette.
   bool distinctColours = true;
+  /// Every block of one colour, drawn once (Ravens' "the left red block").
+  bool oneBlockColour = false;
   /// Edge of the blocks, metres (each block draws its edge from [blockEdgeMin, blockEdgeMax]).
   double blockEdgeMin = 0.04;
   double blockEdgeMax = 0.04;

@@ -170,7 +170,7 @@ PoseSampling onSurface(const PoseSamplingInput& in, const SceneObject& surface, 
   for (const Vector3& p : points) {
     for (const Quaternion& q : uprightYaws(in.orientation)) {
       const Vector3 size = rotatedSize(*in.object, q);
-      if (!footprintFits(size, top) || (size.x() > top.sizes().x() + kFootprintSlack || size.y() > top.sizes().y() + kFootprintSlack)) continue;
+      if (size.x() > top.sizes().x() + kFootprintSlack || size.y() > top.sizes().y() + kFootprintSlack) continue;  // in this yaw
       // The edge margin where the top has room for it; a top not much larger than the object takes it centred.
       const Vector3 margin = ((top.sizes() - size) / 2.0).cwiseMax(0.0).cwiseMin(s.edgeMargin);
       const Vector3 half = size / 2.0 + margin;

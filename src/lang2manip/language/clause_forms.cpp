@@ -187,4 +187,11 @@ bool StepParser::isOpenDish(const std::string& object) const {
          std::min(descriptor.cavitySize->x(), descriptor.cavitySize->y()) >= descriptor.cavitySize->z();
 }
 
+bool StepParser::parseEachOther(Step& step, std::size_t after) {
+  if (!matchesAt(step.words, after, {"each", "other"}) && !matchesAt(step.words, after, {"one", "another"})) return false;
+  step.at = after + 2;  // "on top of each other": a stack
+  addStackGoals(step, std::nullopt);
+  return true;
+}
+
 }  // namespace lang2manip::language_detail

@@ -13,6 +13,17 @@ bool isDirectional(SpatialRelation relation) {
   return relation != SpatialRelation::kIn && relation != SpatialRelation::kOn;
 }
 
+/// "a little" / "a lot" at words[at] before a side relation ("a little to the left of the bowl"):
+/// the gap it means, `at` moved past it; nullopt otherwise.
+std::optional<double> readVagueGap(const Words& words, std::size_t& at) {
+  const auto magnitude = vocabulary::matchMagnitude(words, at);
+  if (!magnitude) return std::nullopt;
+  const auto following = vocabulary::matchRelation(words, at + magnitude->length);
+  if (!following || !following->relation || !isDirectional(*following->relation)) return std::nullopt;
+  at += magnitude->length;
+  return magnitude->gap;
+}
+
 std::string verbList() {
   std::string text;
   for (const std::string& lemma : vocabulary::verbLemmas()) {
@@ -249,14 +260,7 @@ bool StepParser::parseRelation(Step& step) {
     distance = length->metres;
     at += length->length;
   }
-  std::optional<double> vagueGap;
-  if (auto magnitude = vocabulary::matchMagnitude(words, at); magnitude && !distance) {
-    const auto following = vocabulary::matchRelation(words, at + magnitude->length);
-    if (following && following->relation && isDirectional(*following->relation)) {
-      vagueGap = magnitude->gap;  // "a little to the left of the bowl"
-      at += magnitude->length;
-    }
-  }
+  const std::optional<double> vagueGap = distance ? std::nullopt : readVagueGap(words, at);
   if (matchesAt(words, at, {"there"}) && lastRelation_) {
     RelationSpec relation = *lastRelation_;
     if (distance) relation.distance = distance;
@@ -273,12 +277,7 @@ bool StepParser::parseRelation(Step& step) {
   if (direction && direction->length >= relation->length) return false;
   const bool alongALine = matchesAt(words, at, {"away", "from"}) || matchesAt(words, at, {"closer", "to"}) || matchesAt(words, at, {"nearer", "to"});
   if (distance && alongALine) return false;  // "2 cm away from the holder": a displacement
-  if (relation->relation == SpatialRelation::kOn && (matchesAt(words, at + relation->length, {"each", "other"}) ||
-                                                    matchesAt(words, at + relation->length, {"one", "another"}))) {
-    step.at = at + relation->length + 2;  // "on top of each other": a stack
-    addStackGoals(step, std::nullopt);
-    return true;
-  }
+  if (relation->relation == SpatialRelation::kOn && parseEachOther(step, at + relation->length)) return true;
   const std::optional<NounPhrase> targetPhrase = reader_.read(words, at + relation->length);
   const bool stranded = at + relation->length == words.size();
   const bool inOrOn = relation->relation && !isDirectional(*relation->relation);

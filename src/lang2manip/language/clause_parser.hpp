@@ -102,6 +102,9 @@ class StepParser {
   /// One or more relation phrases in a row; false when none.
   bool parseRelations(Step& step);
   bool parseRelation(Step& step);
+  /// "each other" / "one another" at words[after] (after "on"): the step's objects stacked; false
+  /// when absent.
+  bool parseEachOther(Step& step, std::size_t after);
   /// "in the top left corner (of the table)", "to the middle", "on the bottom side", "in the
   /// corner closest to the bowl": an on goal with a region of the support's top (the support the
   /// step's objects stand on when none is named); a side of an object that is not a support is
