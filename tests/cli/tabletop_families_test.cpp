@@ -33,23 +33,24 @@ TEST(Tabletop, HoldsTheRequestedObjectsApartOnTheReachablePartOfTheDesk) {
     SCOPED_TRACE(problem);
     Random random(3);
     TabletopRequest request;
-    request.blocks = 4;
-    request.bowls = 2;
+    request.blocks = 3;
+    request.bowls = 1;
     request.cylinders = 1;
     const std::optional<Scene> scene = generateTabletop(desk(problem), request, random);
     ASSERT_TRUE(scene);
-    EXPECT_EQ(objectsOfKind(*scene, "block").size(), 4u);
-    EXPECT_EQ(objectsOfKind(*scene, "bowl").size(), 2u);
+    EXPECT_EQ(objectsOfKind(*scene, "block").size(), 3u);
+    EXPECT_EQ(objectsOfKind(*scene, "bowl").size(), 1u);
     EXPECT_EQ(objectsOfKind(*scene, "cylinder").size(), 1u);
     EXPECT_FALSE(scene->findObject("marker"));
     const SymbolicState state = observeSymbolicState(*scene);
-    const AlignedBox3 reachable = supportArea(*scene, "desk", "")->reachable;
+    const AlignedBox3 reachable = deskReach(*scene);
     const Pose toBase = robotBaseFrame(*scene, "").inverse();
     for (const SceneObject& object : scene->objects()) {
       if (object.name == "desk") continue;
       EXPECT_EQ(state.onTopOf.at(object.name), "desk") << object.name;
       const Vector3 centre = toBase * object.worldBounds().center();
       EXPECT_TRUE(reachable.min().x() <= centre.x() && centre.x() <= reachable.max().x()) << object.name;
+      EXPECT_TRUE(reachable.min().y() <= centre.y() && centre.y() <= reachable.max().y()) << object.name;
       for (const SceneObject& other : scene->objects()) {
         if (other.name != object.name && other.name != "desk") {
           EXPECT_GE(boxGap(object.worldBounds(), other.worldBounds()), 0.05 - 1e-9);

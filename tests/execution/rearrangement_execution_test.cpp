@@ -100,7 +100,7 @@ TEST(RearrangementRepair, AFailedFreeSpotOrTurnIsAnsweredWithAnotherSpotOrMoreSt
     EXPECT_LT((*next.actions[3].params.position - *first.actions[3].params.position).norm(), 1e-9);
   }
   // A turn that failed is made in two steps, with a regrasp between them.
-  const Plan turn = planner.plan(PlanningRequest{"rotate the eraser by 90 degrees", &scene, "panda", {}}, StopCondition::never(), statistics);
+  const Plan turn = planner.plan(PlanningRequest{"rotate the eraser by 90 degrees", &scene, "panda", {}, {}}, StopCondition::never(), statistics);
   ASSERT_EQ(turn.actions.size(), 2u);
   const Plan inSteps = answerTo(scene, "rotate the eraser by 90 degrees", turn, 1);
   EXPECT_EQ(inSteps.actions.size(), 4u);

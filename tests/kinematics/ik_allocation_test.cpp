@@ -104,7 +104,7 @@ struct DescentSetup {
 
   [[nodiscard]] IkProblem problem(const IkTarget& target) const {
     return IkProblem{model, chain, target, seed, lower, upper, StopCondition::afterSeconds(10.0),
-                     1e-5, 1e-5, 1, 1};
+                     1e-5, 1e-5, 1, 1, 0};
   }
 
   const RobotModel& model;

@@ -107,6 +107,9 @@ TEST_P(IkSolverBadInput, NoModelAndBadCounts) {
   request = validRequest();
   request.model = nullptr;
   expectRejected(request, "IK request has no robot model");
+  request = validRequest();
+  request.maxAttempts = -1;
+  expectRejected(request, "IK attempt cap must be >= 0");
 }
 
 INSTANTIATE_TEST_SUITE_P(EverySolver, IkSolverBadInput, ::testing::ValuesIn(ikSolverNames()),

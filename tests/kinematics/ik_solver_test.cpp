@@ -185,6 +185,18 @@ TEST_P(IkSolverConformance, ReportsWhyAReachableLookingTargetFails) {
   EXPECT_GT(result.positionError, query.positionTolerance);
 }
 
+TEST_P(IkSolverConformance, AnAttemptCapEndsTheSearchWhateverTimeIsLeft) {
+  const RobotModel& model = test::kinematicsRobot("panda");
+  IkRequest query = request(model, "");
+  query.timeoutSeconds = 30.0;
+  query.maxAttempts = 3;
+  query.target = IkTarget::pose(Vector3(0.0, 0.0, -0.6), Quaternion::Identity());  // out of the workspace
+  const IkResult result = solver()->solve(query);
+  EXPECT_NE(result.status, IkStatus::kSuccess);
+  EXPECT_LE(result.attempts, 3);
+  EXPECT_LT(result.seconds, 5.0);
+}
+
 TEST_P(IkSolverConformance, SolvesApproachAxisTargets) {
   const RobotModel& model = test::kinematicsRobot("panda");
   const Manipulator& manipulator = arm(model, "");

@@ -34,7 +34,7 @@ const std::pair<const char*, const char*> kRegions[] = {
     {"put the eraser on the desk in its bottom right corner", "eraser on desk (near_right_corner)"},
     {"put the eraser in a corner", "eraser on desk (near_left_corner)"},
     {"put the eraser in the corner closest to the holder", "eraser on desk (far_left_corner)"},
-    {"put the eraser in the closest corner to the marker", "eraser on desk (far_right_corner)"},
+    {"put the eraser in the closest corner to the marker", "eraser on desk (near_right_corner)"},
     {"put the marker in the corner farthest from the eraser", "marker on desk (far_right_corner)"},
     {"put the marker in the left corner closest to the robot", "marker on desk (near_left_corner)"},
     {"put the eraser on the left side of the holder", "eraser left_of holder"},

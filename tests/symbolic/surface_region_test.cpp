@@ -6,6 +6,8 @@
 
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/model/kautham_problem.hpp"
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/symbolic/arm_reach.hpp"
 #include "lang2manip/symbolic/goal_statement.hpp"
 #include "lang2manip/symbolic/observation.hpp"
 #include "lang2manip/symbolic/plan_json.hpp"
@@ -98,6 +100,48 @@ TEST(SurfaceRegion, TheReachablePartOfTheDeskIsInFrontOfEveryBuiltInRobotAndInsi
     moved.setConfiguration(arm.name, arm.model->lowerLimits());
     EXPECT_TRUE(supportArea(moved, "desk", "")->reachable.isApprox(area->reachable));
   }
+}
+
+TEST(SurfaceRegion, TheReachablePartIsMeasuredFromTheArmsJointsAndLimits) {
+  // The iiwa's elbow folds at most 120 degrees: with links of 0.42 and 0.40 m its wrist stays
+  // 0.41 m from its shoulder, and its shoulder stands 0.36 m above a desk it is mounted on, so
+  // with the hand pointing down it reaches nothing nearer than about 0.3 m; the Panda does.
+  const auto iiwa = supportArea(desk("iiwa14"), "desk", "");
+  const auto panda = supportArea(desk("panda"), "desk", "");
+  ASSERT_TRUE(iiwa && panda);
+  EXPECT_GT(iiwa->reachable.min().x(), 0.28);
+  EXPECT_LT(panda->reachable.min().x(), iiwa->reachable.min().x());
+  // Along the measured rays, IK agrees: points inside reach, points beyond do not.
+  const Scene scene = desk("iiwa14");
+  const std::vector<ArmReach> arms = measuredArmReaches(scene.robots().front(), robotBaseFrame(scene, ""), iiwa->top.max().z());
+  ASSERT_EQ(arms.size(), 1u);
+  EXPECT_TRUE(arms.front().reaches(Vector3(0.55, 0.0, 0.0)));
+  EXPECT_FALSE(arms.front().reaches(Vector3(0.2, 0.0, 0.0)));
+  EXPECT_FALSE(arms.front().reaches(Vector3(1.2, 0.0, 0.0)));
+}
+
+TEST(SurfaceRegion, EachArmOfATwoArmedRobotHasItsOwnReachableRegions) {
+  const Scene scene = desk("yumi");
+  const auto right = supportArea(scene, "desk", "", nullptr, "right_arm");
+  const auto left = supportArea(scene, "desk", "", nullptr, "left_arm");
+  const auto both = supportArea(scene, "desk", "");
+  ASSERT_TRUE(right && left && both);
+  EXPECT_LT(right->reachable.center().y(), left->reachable.center().y());
+  EXPECT_GT(both->reachable.sizes().y(), right->reachable.sizes().y());
+  // The hand does not come down on the robot's own body standing on the desk.
+  EXPECT_GT(both->reachable.min().x(), 0.1);
+  // The goal check measures regions of the arm that acted.
+  EXPECT_FALSE(regionBox(right->reachable, {Kind::kCorner, 1, 1}).isApprox(regionBox(left->reachable, {Kind::kCorner, 1, 1})));
+  EXPECT_THROW(
+      {
+        try {
+          (void)supportArea(scene, "desk", "", nullptr, "third_arm");
+        } catch (const InputError& error) {
+          EXPECT_THAT(error.what(), HasSubstr("robot yumi has no arm \"third_arm\"; its arms: right_arm, left_arm"));
+          throw;
+        }
+      },
+      InputError);
 }
 
 TEST(SurfaceRegion, ASceneWithoutRobotsUsesTheWholeTopAndATopOutOfReachHasNoRegions) {

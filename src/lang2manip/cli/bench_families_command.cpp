@@ -20,6 +20,7 @@
 #include "lang2manip/cli/bench_statistics.hpp"
 #include "lang2manip/cli/instruction_families.hpp"
 #include "lang2manip/cli/problem_loading.hpp"
+#include "lang2manip/cli/tabletop_scenes.hpp"
 #include "lang2manip/cli/task_run.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/language/offline_task_planner.hpp"
@@ -147,14 +148,23 @@ std::vector<const InstructionFamily*> familiesToRun(const BenchFamiliesOptions& 
 }
 
 /// An instance of `family` on a tabletop of `desk`: draws until the family accepts the scene.
-FamilyInstance drawInstance(const InstructionFamily& family, const Scene& desk, Random& random, const std::string& problem) {
+/// Nullopt when no draw of 100 fits the part of the desk the robot's arm reaches (a short arm).
+std::optional<FamilyInstance> drawInstance(const InstructionFamily& family, const Scene& desk, Random& random) {
   for (int attempt = 0; attempt < 100; ++attempt) {
-    if (std::optional<FamilyInstance> instance = family.make(desk, random)) return std::move(*instance);
+    if (std::optional<FamilyInstance> instance = family.make(desk, random)) return instance;
   }
-  throw InputError("bench families: no scene for " + family.name + " on " + problem + " after 100 draws");
+  return std::nullopt;
 }
 
-nlohmann::json outcomesJson(const std::map<std::string, FamilyTally>& figures, const std::vector<InstanceOutcome>& outcomes) {
+/// A family no scene of which fits a robot's reach: left out of the figures, and said so.
+struct SkippedFamily {
+  std::string family;
+  std::string problem;
+  std::string why;
+};
+
+nlohmann::json outcomesJson(const std::map<std::string, FamilyTally>& figures, const std::vector<InstanceOutcome>& outcomes,
+                            const std::vector<SkippedFamily>& skipped) {
   nlohmann::json families = nlohmann::json::object();
   for (const auto& [name, f] : figures) {
     families[name] = {{"instances", f.instances}, {"understood", f.understood}, {"executed_first_round", f.firstRound},
@@ -167,7 +177,9 @@ nlohmann::json outcomesJson(const std::map<std::string, FamilyTally>& figures, c
     failures.push_back({{"family", o.family}, {"problem", o.problem}, {"instruction", o.instruction},
                         {"offline", o.afterRepair ? "" : o.why}, {"plan_given", o.givenPlan ? "" : o.givenWhy}});
   }
-  return {{"families", families}, {"failures", failures}};
+  nlohmann::json left = nlohmann::json::array();
+  for (const SkippedFamily& s : skipped) left.push_back({{"family", s.family}, {"problem", s.problem}, {"why", s.why}});
+  return {{"families", families}, {"failures", failures}, {"skipped", left}};
 }
 
 void runBench(const BenchFamiliesOptions& options, std::ostream& out) {
@@ -176,13 +188,22 @@ void runBench(const BenchFamiliesOptions& options, std::ostream& out) {
   const std::vector<const InstructionFamily*> families = familiesToRun(options);
   ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(options.seed));
   std::vector<InstanceOutcome> outcomes;
+  std::vector<SkippedFamily> skipped;
   for (const std::string& name : problemsToRun(options)) {
     const LoadedProblem loaded = loadProblem(name, "panda", SceneOptions{});
     for (const InstructionFamily* family : families) {
       Random random(static_cast<std::uint64_t>(options.seed) * 7919u + std::hash<std::string>{}(family->name) % 1000u);
       for (int i = 0; i < options.scenesPerProblem; ++i) {
-        const FamilyInstance instance = drawInstance(*family, loaded.problem.scene, random, loaded.name);
-        outcomes.push_back(runInstance(instance, loaded.name, options.seed, options.given));
+        const std::optional<FamilyInstance> instance = drawInstance(*family, loaded.problem.scene, random);
+        if (!instance) {
+          const AlignedBox3 reach = deskReach(loaded.problem.scene);
+          char size[64];
+          std::snprintf(size, sizeof size, "%.0f x %.0f cm", reach.sizes().x() * 100.0, reach.sizes().y() * 100.0);
+          skipped.push_back({family->name, loaded.name, "no scene of 100 drawn fits the " + std::string(size) + " of the desk " +
+                                                             actingArm(loaded.problem.scene) + " reaches"});
+          break;
+        }
+        outcomes.push_back(runInstance(*instance, loaded.name, options.seed, options.given));
       }
     }
   }
@@ -193,7 +214,7 @@ void runBench(const BenchFamiliesOptions& options, std::ostream& out) {
     addTo(all, o);
   }
   if (options.json) {
-    out << outcomesJson(figures, outcomes).dump(2) << '\n';
+    out << outcomesJson(figures, outcomes, skipped).dump(2) << '\n';
     return;
   }
   out << "bench families: " << families.size() << " families x " << problemsToRun(options).size() << " problem(s) x "
@@ -201,6 +222,7 @@ void runBench(const BenchFamiliesOptions& options, std::ostream& out) {
   out << "family                         cases  understood  first round  after repair  plan given  median ms\n";
   for (const InstructionFamily* family : families) out << row(family->name, figures[family->name], options.given);
   out << row("all", all, options.given);
+  for (const SkippedFamily& s : skipped) out << "  left out: " << s.family << " on " << s.problem << ": " << s.why << '\n';
   int shown = 0;
   for (const InstanceOutcome& o : outcomes) {
     if (o.afterRepair || shown++ >= options.failuresShown) continue;

@@ -82,6 +82,7 @@ Goal relationGoal(const std::string& object, SpatialRelation relation, const std
 Check allOf(std::vector<Goal> goals) {
   return [goals = std::move(goals)](const Scene& final, const Scene& initial) {
     GoalCheckOptions options;
+    options.arm = actingArm(final);
     options.initialScene = &initial;
     for (const Goal& goal : goals) {
       const GoalCheck check = checkGoalInScene(final, goal, options);
@@ -116,11 +117,13 @@ Check tower(std::vector<std::string> objects, std::optional<SurfaceRegion> regio
 
 Check differentCorners(std::vector<std::string> objects) {
   return [objects = std::move(objects)](const Scene& final, const Scene&) {
+    GoalCheckOptions options;
+    options.arm = actingArm(final);
     std::set<std::string> used;
     for (const std::string& object : objects) {
       std::string corner;
       for (const RegionWords& words : corners()) {
-        if (checkGoalInScene(final, relationGoal(object, SpatialRelation::kOn, "desk", words.region)).holds) corner = words.words;
+        if (checkGoalInScene(final, relationGoal(object, SpatialRelation::kOn, "desk", words.region), options).holds) corner = words.words;
       }
       if (corner.empty()) return fails(object + " is in no corner of the desk");
       if (!used.insert(corner).second) return fails("two objects in the " + corner);

@@ -171,13 +171,13 @@ std::optional<FamilyInstance> cornerClosestToBowl(const Scene& desk, Random& ran
   if (!scene) return std::nullopt;
   const std::string block = drawOne(objectsOfKind(*scene, "block"), random);
   const std::string bowl = objectsOfKind(*scene, "bowl").front();
-  const auto area = supportArea(*scene, "desk", "");
+  const AlignedBox3 reach = deskReach(*scene);
   const Vector3 from = centreInBase(*scene, bowl);
   double best = 1e9, second = 1e9;
   SurfaceRegion chosen;
   for (const RegionWords& corner : corners()) {
-    const Vector3 point(corner.region.depth > 0 ? area->reachable.max().x() : area->reachable.min().x(),
-                        corner.region.side > 0 ? area->reachable.max().y() : area->reachable.min().y(), 0.0);
+    const Vector3 point(corner.region.depth > 0 ? reach.max().x() : reach.min().x(),
+                        corner.region.side > 0 ? reach.max().y() : reach.min().y(), 0.0);
     const double distance = (point - from).head<2>().norm();
     if (distance < best) second = best, best = distance, chosen = corner.region;
     else second = std::min(second, distance);
@@ -276,7 +276,7 @@ std::optional<FamilyInstance> blockBesideBowl(const Scene& desk, Random& random)
   Vector3 at = robotBaseFrame(*scene, "").inverse() * scene->object(bowl).pose.translation();
   const double half = scene->object(bowl).dimensions()[side.axis] / 2.0 + scene->object(block).dimensions()[side.axis] / 2.0;
   at[side.axis] += side.sign * (half + (little ? 0.04 : 0.18));
-  const AlignedBox3 reachable = supportArea(*scene, "desk", "")->reachable;
+  const AlignedBox3 reachable = deskReach(*scene);
   if (!reachable.contains(Vector3(at.x(), at.y(), reachable.min().z()))) return std::nullopt;
   at.head<2>() -= (centreInBase(*scene, block) - robotBaseFrame(*scene, "").inverse() * scene->object(block).pose.translation()).head<2>();
   addPickPlaceAt(result.plan, block, at);
@@ -292,7 +292,7 @@ std::optional<FamilyInstance> line(const Scene& desk, Random& random) {
   // Horizontal: left to right, across the desk (base y); vertical: away from the robot (base x).
   FamilyInstance result = instance("cap_line", text, *scene, inLine(blocks, horizontal ? 3.14159265358979323846 / 2.0 : 0.0));
   // The reference line: the first of a few across the reachable desk whose spots are free.
-  const AlignedBox3 reachable = supportArea(*scene, "desk", "")->reachable;
+  const AlignedBox3 reachable = deskReach(*scene);
   const double spacing = 0.08;
   for (double fraction : {0.5, 0.3, 0.7, 0.2, 0.8}) {
     std::vector<Vector3> spots;

@@ -10,6 +10,7 @@ struct ObserveOptions {
   std::string problem;
   std::string robot = "panda";
   SceneOptions scene;
+  std::string arm;
   bool json = false;
 };
 
@@ -24,10 +25,13 @@ void addObserveCommand(CLI::App& app, std::ostream& out) {
                           defaultProblemName() + ")");
   command->add_option("--robot", options->robot, "Built-in robot for MoveIt scenes")->capture_default_str();
   addSceneOptions(*command, options->scene);
+  command->add_option("--arm", options->arm, "The arm that will act: regions are of the part of a top it reaches (default: every arm)");
   command->add_flag("--json", options->json, "Print the observation as JSON");
   command->callback([options, &out] {
     const LoadedProblem loaded = loadProblem(options->problem, options->robot, options->scene);
-    const nlohmann::json observation = observeEnvironment(loaded.problem.scene);
+    ObservationOptions observing;
+    observing.arm = options->arm;
+    const nlohmann::json observation = observeEnvironment(loaded.problem.scene, observing);
     out << (options->json ? observation.dump(2) + "\n" : observationText(observation));
   });
 }

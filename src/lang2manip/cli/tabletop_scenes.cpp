@@ -134,6 +134,18 @@ const std::vector<PaletteColour>& tabletopPalette() {
   return palette;
 }
 
+std::string actingArm(const Scene& scene) {
+  if (scene.robots().empty() || scene.robots().front().model->semantics().manipulators.empty()) return {};
+  return scene.robots().front().model->semantics().manipulators.front().name;
+}
+
+AlignedBox3 deskReach(const Scene& scene) {
+  std::string why;
+  const auto area = supportArea(scene, "desk", "", &why, actingArm(scene));
+  if (!area) throw InputError("tabletop: the scene has no desk the robot reaches: " + why);
+  return area->reachable;
+}
+
 std::optional<Scene> generateTabletop(const Scene& desk, const TabletopRequest& request, Random& random) {
   if (request.blocks < 0 || request.bowls < 0 || request.cylinders < 0) throw InputError("tabletop: object counts must be >= 0");
   Scene scene = desk;
@@ -142,12 +154,11 @@ std::optional<Scene> generateTabletop(const Scene& desk, const TabletopRequest& 
     if (object.role != ObjectRole::kSupport) removed.push_back(object.name);
   }
   for (const std::string& name : removed) scene.removeObject(name);
-  const auto area = supportArea(scene, "desk", "");
-  if (!area) throw InputError("tabletop: the scene has no desk the robot reaches");
+  const AlignedBox3 reachable = deskReach(scene);
   const Pose base = robotBaseFrame(scene, "");
   for (int attempt = 0; attempt < kTries; ++attempt) {
     std::vector<SceneObject> objects = drawObjects(request, random);
-    if (!scatter(objects, area->reachable, base, request.gap, random)) continue;
+    if (!scatter(objects, reachable, base, request.gap, random)) continue;
     Scene result = scene;
     for (SceneObject& object : objects) result.addObject(std::move(object));
     return result;

@@ -40,12 +40,20 @@ struct TabletopRequest {
 };
 
 /// `desk` (a built-in desk scene: a support named "desk" and its objects) with every movable or
-/// contained object removed and the requested ones added at random reachable places (seeded by
-/// `random`). Nullopt when the objects do not fit after 200 tries.
+/// contained object removed and the requested ones added at random places the acting arm
+/// reaches (deskReach(), seeded by `random`). Nullopt when the objects do not fit after 200 tries.
 std::optional<Scene> generateTabletop(const Scene& desk, const TabletopRequest& request, Random& random);
 
 /// The objects of `scene` whose kind is `kind` ("block", "bowl", "cylinder"), in scene order.
 std::vector<std::string> objectsOfKind(const Scene& scene, const std::string& kind);
+
+/// The arm a run on `scene` uses unless told otherwise: its first robot's first manipulator
+/// (empty without one). Tabletops are generated, and the families checked, in its reach.
+std::string actingArm(const Scene& scene);
+
+/// The part of the desk's top the acting arm reaches (base frame). Throws InputError when the
+/// scene has no desk it reaches.
+AlignedBox3 deskReach(const Scene& scene);
 
 /// The colour word an object was generated with ("red" for "red_block_2").
 std::string colourOf(const std::string& object);

@@ -31,10 +31,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-void chooseGoals(const std::string& task, const Scene& scene, const std::string& robot, TaskRun& run) {
+void chooseGoals(const std::string& task, const Scene& scene, const std::string& robot, const std::string& arm, TaskRun& run) {
   try {
     if (task.empty()) throw PlanningError("no instruction");
-    run.goals = understandInstruction(task, describeObjects(scene, robot)).goals;
+    run.goals = understandInstruction(task, describeObjects(scene, robot, arm)).goals;
     run.goalSource = "instruction";
     return;
   } catch (const PlanningError&) {
@@ -63,11 +63,12 @@ ExecutionSettings executionSettings(const RunRequest& request) {
   return settings;
 }
 
-void observe(const RunRequest& request, const Scene& scene, const std::string& robot, RunDocuments& documents,
-             double& observationSeconds) {
+void observe(const RunRequest& request, const Scene& scene, const std::string& robot, const std::string& arm,
+             RunDocuments& documents, double& observationSeconds) {
   const auto began = Clock::now();
   ObservationOptions options;
   options.robot = robot;
+  options.arm = arm;
   documents.observation = observeEnvironment(scene, options);
   observationSeconds = secondsSince(began);
   documents.observationText = observationText(documents.observation);
@@ -75,6 +76,7 @@ void observe(const RunRequest& request, const Scene& scene, const std::string& r
   planning.task = request.task;
   planning.scene = &scene;
   planning.robot = robot;
+  planning.arm = arm;
   const LlmRequest llm = buildPlanRequest(planning, defaultLlmTaskPlannerOptions());
   documents.prompt = renderPrompt(llm.system, llm.messages);
 }
@@ -89,7 +91,7 @@ std::string planSource(const RunRequest& request) {
 
 /// The plan of `request`'s plan document (the file, or the text it carries), its names checked
 /// against `scene`. The document must be JSON, nothing around it (unlike an LLM's answer).
-Plan readPlanDocument(const RunRequest& request, const Scene& scene, const std::string& robot) {
+Plan readPlanDocument(const RunRequest& request, const Scene& scene, const std::string& robot, const std::string& arm) {
   const std::string name = planSource(request);
   std::string text;
   if (request.planText) {
@@ -112,17 +114,18 @@ Plan readPlanDocument(const RunRequest& request, const Scene& scene, const std::
   } catch (const PlanParseError& error) {
     throw InputError(name + " is not a plan for this scene:\n" + error.what());
   }
-  const PlanValidation validation = validatePlan(plan, observeSymbolicState(scene, {}, robot));
+  const PlanValidation validation = validatePlan(plan, observeSymbolicState(scene, {}, robot, arm));
   if (!validation.valid()) throw InputError(name + " cannot be executed in this scene:\n" + validation.summary());
   return plan;
 }
 
 /// The task planner of `request`: the plan file's plan, or the chosen planner.
-SelectedTaskPlanner taskPlannerFor(const RunRequest& request, const Scene& scene, const std::string& robot) {
+SelectedTaskPlanner taskPlannerFor(const RunRequest& request, const Scene& scene, const std::string& robot,
+                                   const std::string& arm) {
   if (request.planFile.empty()) return makeTaskPlanner(request.planner);
   if (!request.planner.offline()) throw InputError("run: --plan executes the given plan; --llm chooses a task planner: give one of them");
   const std::string source = planSource(request);
-  return SelectedTaskPlanner(nullptr, std::make_unique<GivenPlanTaskPlanner>(readPlanDocument(request, scene, robot), source), source);
+  return SelectedTaskPlanner(nullptr, std::make_unique<GivenPlanTaskPlanner>(readPlanDocument(request, scene, robot, arm), source), source);
 }
 
 /// The accepted plan, else the last one that was parsed.
@@ -141,6 +144,7 @@ TaskRun planExecuteAndVerify(TaskPlanner& planner, TaskExecutor& executor, const
   request.task = task;
   request.scene = &scene;
   request.robot = executor.arm().robotName();
+  request.arm = executor.arm().manipulator().name;
   RepairOptions options;
   options.maxRounds = rounds;
   options.progress = control.progress;
@@ -148,7 +152,7 @@ TaskRun planExecuteAndVerify(TaskPlanner& planner, TaskExecutor& executor, const
   TaskRun run;
   run.repair = planWithRepair(planner, request, &executor, options, control.stop);
   executor.setProgressSink({});
-  chooseGoals(task, scene, request.robot, run);
+  chooseGoals(task, scene, request.robot, request.arm, run);
   if (!executor.executions().empty()) {
     report(control.progress, {ProgressStage::kVerify, 0, -1, "", ""});
     run.verification = verifyExecution(executor.arm(), scene, executor.lastExecution(), run.goals);
@@ -186,7 +190,7 @@ RunDocuments runTask(const RunRequest& request, const RunControl& control) {
   const Scene& scene = loaded.problem.scene;
   checkRunNames(request, scene);
   TaskExecutor executor(scene, executionSettings(request));
-  const SelectedTaskPlanner selected = taskPlannerFor(request, scene, executor.arm().robotName());
+  const SelectedTaskPlanner selected = taskPlannerFor(request, scene, executor.arm().robotName(), executor.arm().manipulator().name);
   if (control.seedOmpl) ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(request.seed));
 
   RunOutcome outcome;
@@ -201,7 +205,7 @@ RunDocuments runTask(const RunRequest& request, const RunControl& control) {
   outcome.accelerationScaling = request.accelerationScaling;
   RunDocuments documents;
   report(control.progress, {ProgressStage::kObserve, 0, -1, "", outcome.robot});
-  observe(request, scene, outcome.robot, documents, outcome.observationSeconds);
+  observe(request, scene, outcome.robot, outcome.manipulator, documents, outcome.observationSeconds);
 
   TaskRun run = planExecuteAndVerify(selected.planner(), executor, request.task, request.planFile.empty() ? request.rounds : 1, control);
   outcome.repair = std::move(run.repair);

@@ -74,11 +74,12 @@ GoalOutcome evaluateHandover(const ArmContext& arm, const ExecutionRecord& recor
   return outcome;
 }
 
-GoalOutcome evaluate(const Scene& initial, const ExecutionRecord& record, const Goal& goal, const std::string& robot) {
+GoalOutcome evaluate(const Scene& initial, const ExecutionRecord& record, const Goal& goal, const ArmContext& arm) {
   GoalOutcome outcome;
   outcome.goal = goal;
   GoalCheckOptions options;
-  options.robot = robot;
+  options.robot = arm.robotName();
+  options.arm = arm.manipulator().name;
   options.initialScene = &initial;
   try {
     const GoalCheck check = checkGoalInScene(record.finalScene, goal, options);
@@ -99,7 +100,7 @@ ExecutionVerification verifyExecution(const ArmContext& arm, const Scene& initia
   result.collision = firstCollision(arm, record, result);
   for (const Goal& goal : goals) {
     result.goals.push_back(goal.kind == GoalKind::kHandedOver ? evaluateHandover(arm, record, goal)
-                                                              : evaluate(initial, record, goal, arm.robotName()));
+                                                              : evaluate(initial, record, goal, arm));
   }
   result.disturbedObjects = disturbed(initial, record);
   bool goalsHold = !result.goals.empty();

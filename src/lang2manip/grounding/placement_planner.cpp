@@ -178,11 +178,11 @@ PlacementPlan noPlacement(PlacementPlan plan, const std::string& what) {
 /// that are free of the scene's other objects (the object being placed now is held, so it is
 /// not among them).
 std::vector<AlignedBox3> laterObjectRoom(const Scene& scene, const std::string& later, const PlacementRequest& request,
-                                         const SceneRobot& robot) {
+                                         const SceneRobot& robot, const std::string& arm) {
   const SceneObject* object = scene.findObject(later);
   if (object == nullptr || scene.findAttachment(later) != nullptr) return {};
   const Pose current = currentObjectPose(scene, later);
-  const PoseSamplingInput input{&scene, object, Quaternion(current.linear()), current.translation(), robot.basePose, robot.name};
+  const PoseSamplingInput input{&scene, object, Quaternion(current.linear()), current.translation(), robot.basePose, robot.name, arm};
   const PoseSampling sampling = samplePlacementPoses(input, request.target, request.settings);
   const ObjectCollisionWorld world(scene, later);
   std::vector<AlignedBox3> room;
@@ -196,10 +196,10 @@ std::vector<AlignedBox3> laterObjectRoom(const Scene& scene, const std::string& 
 /// position at the target (several objects into one container: the first must not take the
 /// middle that the next one needs). Boxes are compared, which is conservative: it only orders.
 void leaveRoomForLaterObjects(const Scene& scene, const PlacementRequest& request, const SceneObject& object,
-                              const SceneRobot& robot, std::vector<PoseCandidate>& poses) {
+                              const SceneRobot& robot, const std::string& arm, std::vector<PoseCandidate>& poses) {
   std::vector<std::vector<AlignedBox3>> rooms;
   for (const std::string& later : request.placedAfter) {
-    if (later != object.name) rooms.push_back(laterObjectRoom(scene, later, request, robot));
+    if (later != object.name) rooms.push_back(laterObjectRoom(scene, later, request, robot, arm));
   }
   if (rooms.empty()) return;
   std::stable_partition(poses.begin(), poses.end(), [&](const PoseCandidate& pose) {
@@ -245,11 +245,11 @@ PlacementPlan planPlacement(const ReachabilityChecker& reach, const PlacementReq
   const std::string what = object.name + " " + describePlacementTarget(request.target);
   const Pose current = currentObjectPose(scene, object.name);
   const PoseSamplingInput input{&scene, &object, Quaternion(object.pose.linear()), current.translation(), reach.robot().basePose,
-                                 reach.robot().name};
+                                 reach.robot().name, reach.gripper().manipulator};
   PoseSampling sampling = samplePlacementPoses(input, request.target, request.settings);
   PlacementPlan plan;
   if (sampling.poses.empty()) return failed(std::move(plan), sampling.failure, what + ": " + sampling.reason);
-  leaveRoomForLaterObjects(scene, request, object, reach.robot(), sampling.poses);
+  leaveRoomForLaterObjects(scene, request, object, reach.robot(), reach.gripper().manipulator, sampling.poses);
 
   const ObjectCollisionWorld world(scene, object.name);
   HeldObjectReach heldReach(reach, object.name, held);

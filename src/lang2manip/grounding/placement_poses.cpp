@@ -113,7 +113,7 @@ Vector3 regionAnchor(const AlignedBox3& area, const SurfaceRegion& region) {
 PoseSampling inRegion(const PoseSamplingInput& in, const SceneObject& surface, const SurfaceRegion& region, double height,
                       const PlacementSettings& s) {
   std::string why;
-  const auto area = supportArea(*in.scene, surface.name, in.robot, &why);
+  const auto area = supportArea(*in.scene, surface.name, in.robot, &why, in.arm);
   const std::string name = surfaceRegionName(region);
   if (!area) return failure(PlacementFailure::kNoSupport, in.object->name + " cannot go in the " + name + " of " + surface.name + ": " + why);
   const Vector3 anchor = regionAnchor(area->reachable, region);

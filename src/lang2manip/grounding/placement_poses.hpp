@@ -35,6 +35,8 @@ struct PoseSamplingInput {
   Pose robotBase = Pose::Identity();
   /// The robot placing it: regions are of the part of a top it reaches.
   std::string robot{};
+  /// Its arm (every arm when empty).
+  std::string arm{};
 };
 
 /// Candidate poses for `target`:

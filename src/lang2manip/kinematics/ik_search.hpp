@@ -2,6 +2,7 @@
 /// @file Book-keeping shared by the IK solvers that restart: counters, the stop condition,
 /// distinct solutions, the best failed attempt and the final status. Per call, not thread-safe.
 
+#include <algorithm>
 #include <limits>
 #include <string>
 #include <vector>
@@ -16,10 +17,12 @@ class IkSearch {
   /// Two solutions are distinct when some chain variable differs by more than this (rad or m).
   static constexpr double kDistinctTolerance = 1e-3;
 
-  explicit IkSearch(const IkProblem& problem) : problem_(problem) {}
+  explicit IkSearch(const IkProblem& problem) : problem_(problem) {
+    if (problem.maxAttempts > 0) maxAttempts_ = problem.maxAttempts;
+  }
 
   /// Ends the search after `attempts` attempts (default: only the stop condition ends it).
-  void setMaxAttempts(int attempts) noexcept { maxAttempts_ = attempts; }
+  void setMaxAttempts(int attempts) noexcept { maxAttempts_ = std::min(maxAttempts_, attempts); }
 
   /// True once the stop condition fired (checked now), and from then on.
   bool shouldStop() noexcept;

@@ -109,6 +109,7 @@ void checkScalars(const IkRequest& request) {
     throw InputError("IK tolerances must be > 0");
   }
   if (request.solutionCount < 1) throw InputError("IK solution count must be >= 1");
+  if (request.maxAttempts < 0) throw InputError("IK attempt cap must be >= 0 (0 = none), got " + std::to_string(request.maxAttempts));
 }
 
 VectorX restricted(const KinematicChain& chain, const VectorX& full) {
@@ -199,7 +200,8 @@ IkResult IkSolver::solve(const IkRequest& request) const {
                           request.positionTolerance,
                           request.orientationTolerance,
                           request.solutionCount,
-                          request.randomSeed};
+                          request.randomSeed,
+                          request.maxAttempts};
   IkResult result;
   if (problem.target.position.norm() > chain.reach() + request.positionTolerance) {
     result.status = IkStatus::kUnreachable;

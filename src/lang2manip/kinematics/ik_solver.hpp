@@ -74,6 +74,9 @@ struct IkRequest {
   int solutionCount = 1;
   /// Seed of the solver's random restarts (same seed, same sequence of restarts).
   std::uint64_t randomSeed = 1;
+  /// At most this many attempts (descents) when > 0, whatever time is left: a search whose
+  /// answer must not depend on the machine's speed (0 = only the time budget ends it).
+  int maxAttempts = 0;
 };
 
 enum class IkStatus {
@@ -123,6 +126,8 @@ struct IkProblem {
   double orientationTolerance;
   int solutionCount;
   std::uint64_t randomSeed;
+  /// 0 = no cap (see IkRequest::maxAttempts).
+  int maxAttempts = 0;
 };
 
 /// Position error (m) and orientation error (rad) of tip pose `X_BT` against `target`.

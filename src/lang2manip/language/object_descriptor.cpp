@@ -111,7 +111,7 @@ std::vector<std::string> kindSynonyms(const std::string& kind) {
   return synonyms;
 }
 
-std::vector<ObjectDescriptor> describeObjects(const Scene& scene, const std::string& robot) {
+std::vector<ObjectDescriptor> describeObjects(const Scene& scene, const std::string& robot, const std::string& arm) {
   const Pose worldToBase = robotBase(scene, robot).inverse();
   std::vector<ObjectDescriptor> descriptors;
   for (const SceneObject& object : scene.objects()) {
@@ -134,7 +134,7 @@ std::vector<ObjectDescriptor> describeObjects(const Scene& scene, const std::str
     descriptor.role = object.role;
     if (object.cavity) descriptor.cavitySize = object.cavity->sizes();
     if (object.role == ObjectRole::kSupport) {
-      if (const auto area = supportArea(scene, object.name, robot)) descriptor.reachableTop = area->reachable;
+      if (const auto area = supportArea(scene, object.name, robot, nullptr, arm)) descriptor.reachableTop = area->reachable;
     }
     descriptors.push_back(std::move(descriptor));
   }

@@ -55,9 +55,10 @@ struct ObjectDescriptor {
 };
 
 /// Descriptors of every object of `scene`, in scene order. Positions are in the base frame of
-/// `robot` (the first robot when empty; the world frame when the scene has no robot). Throws
-/// InputError when `robot` is given but not in the scene.
-std::vector<ObjectDescriptor> describeObjects(const Scene& scene, const std::string& robot = "");
+/// `robot` (the first robot when empty; the world frame when the scene has no robot); reachable
+/// tops are of the part its arm `arm` reaches (every arm when empty). Throws InputError when
+/// `robot` or `arm` is given but not in the scene.
+std::vector<ObjectDescriptor> describeObjects(const Scene& scene, const std::string& robot = "", const std::string& arm = "");
 
 
 

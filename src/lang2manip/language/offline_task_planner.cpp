@@ -278,12 +278,12 @@ Plan OfflineTaskPlanner::plan(const PlanningRequest& request, const StopConditio
   const Scene& scene = *request.scene;
   std::vector<ObjectDescriptor> objects;
   try {
-    objects = describeObjects(scene, request.robot);
+    objects = describeObjects(scene, request.robot, request.arm);
   } catch (const InputError& error) {
     throw PlanningError(std::string("offline planner: ") + error.what());
   }
   TaskSpecification specification = understandInstruction(request.task, objects);
-  const SymbolicState state = observeSymbolicState(scene);
+  const SymbolicState state = observeSymbolicState(scene, {}, request.robot, request.arm);
   SequencingOptions options = sequencingOptionsFor(scene, request.robot);
   const Answers answers = applyEarlierAttempts(request, specification);
   reverseOrderInto(answers.reversedTargets, specification);

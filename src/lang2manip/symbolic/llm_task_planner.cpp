@@ -47,6 +47,7 @@ LlmRequest buildPlanRequest(const PlanningRequest& request, const LlmTaskPlanner
   if (request.scene == nullptr) throw InputError("planning request: no scene given");
   ObservationOptions observation = options.observation;
   if (!request.robot.empty()) observation.robot = request.robot;
+  observation.arm = request.arm;
   LlmRequest llm;
   llm.system = planSystemPrompt(options.plannerNames);
   llm.messages = planMessages(request.task, observationText(observeEnvironment(*request.scene, observation)),

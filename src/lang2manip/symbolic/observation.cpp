@@ -172,11 +172,11 @@ json areaJson(const AlignedBox3& box) {
 }
 
 /// The top face and its reachable part for every object that offers a flat top (base frame).
-std::map<std::string, SupportArea> supportAreas(const Scene& scene, const std::string& robot) {
+std::map<std::string, SupportArea> supportAreas(const Scene& scene, const std::string& robot, const std::string& arm) {
   std::map<std::string, SupportArea> areas;
   for (const SceneObject& object : scene.objects()) {
     if (object.role != ObjectRole::kSupport) continue;
-    if (auto area = supportArea(scene, object.name, robot)) areas.emplace(object.name, *area);
+    if (auto area = supportArea(scene, object.name, robot, nullptr, arm)) areas.emplace(object.name, *area);
   }
   return areas;
 }
@@ -242,7 +242,7 @@ json relationsJson(const Scene& scene, const Pose& base, const SymbolicState& st
 }  // namespace
 
 nlohmann::json observeEnvironment(const Scene& scene, const ObservationOptions& options) {
-  const SymbolicState state = observeSymbolicState(scene, options.tolerances, options.robot);
+  const SymbolicState state = observeSymbolicState(scene, options.tolerances, options.robot, options.arm);
   const Pose base = robotBaseFrame(scene, options.robot);
   const std::string mainRobot = !options.robot.empty() ? options.robot
                                 : scene.robots().empty() ? std::string() : scene.robots().front().name;
@@ -252,7 +252,7 @@ nlohmann::json observeEnvironment(const Scene& scene, const ObservationOptions& 
   }
   json objects = json::array();
   for (const SceneObject& object : scene.objects()) objects.push_back(objectJson(object, base, state, options.spatial));
-  addRegions(objects, supportAreas(scene, options.robot), scene, base);
+  addRegions(objects, supportAreas(scene, options.robot, options.arm), scene, base);
   return {{"frames", "world frame z up; relations and base-frame positions use the base frame of robot " +
                          (mainRobot.empty() ? std::string("(none)") : mainRobot) +
                          ": x front, y left, z up; lengths in metres, angles in radians"},

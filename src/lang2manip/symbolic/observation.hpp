@@ -16,6 +16,8 @@ class Scene;
 struct ObservationOptions {
   /// The robot whose base frame relations are expressed in (the first robot when empty).
   std::string robot;
+  /// The arm that will act: regions are of the part of a top it reaches (every arm when empty).
+  std::string arm;
   SpatialOptions spatial;
   SymbolicStateTolerances tolerances;
 };

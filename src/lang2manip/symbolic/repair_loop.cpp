@@ -48,7 +48,7 @@ void checkPlan(const PlanningRequest& request, PlanExecutor* executor, const Rep
   round.attempt.answer = toJson(plan).dump();
   if (options.validate) {
     const PlanValidation validation =
-        validatePlan(plan, observeSymbolicState(*request.scene, options.tolerances, request.robot));
+        validatePlan(plan, observeSymbolicState(*request.scene, options.tolerances, request.robot, request.arm));
     if (!validation.valid()) {
       round.outcome = RoundOutcome::kInvalidPlan;
       round.attempt.failure = "the plan is not valid in the current state: " + validation.summary();

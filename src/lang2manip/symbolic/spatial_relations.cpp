@@ -118,7 +118,7 @@ GoalCheck checkTurned(const Scene& scene, const Goal& goal, const GoalCheckOptio
 /// up to half the distance tolerance.
 GoalCheck checkRegion(const Scene& scene, const Goal& goal, const GoalCheckOptions& options) {
   std::string why;
-  const auto box = regionOnSupport(scene, goal.target, *goal.region, options.robot, &why);
+  const auto box = regionOnSupport(scene, goal.target, *goal.region, options.robot, &why, options.arm);
   const std::string name = surfaceRegionName(*goal.region);
   if (!box) return {false, goal.target + " has no " + name + ": " + why};
   const Pose base = robotBaseFrame(scene, options.robot);
@@ -162,7 +162,7 @@ std::string locationWords(const std::string& object, const SymbolicState& state)
 }
 
 GoalCheck checkSymbolic(const Scene& scene, const Goal& goal, const GoalCheckOptions& options) {
-  const SymbolicState state = observeSymbolicState(scene, options.tolerances, options.robot);
+  const SymbolicState state = observeSymbolicState(scene, options.tolerances, options.robot, options.arm);
   const bool holds = goalHolds(state, goal).value_or(false);
   std::string explanation = describeGoal(goal) + (holds ? ": holds" : ": does not hold");
   if (!holds && goal.kind == GoalKind::kRelation) explanation += " (" + goal.object + " is " + locationWords(goal.object, state) + ")";

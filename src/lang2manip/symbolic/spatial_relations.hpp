@@ -49,6 +49,8 @@ std::vector<SpatialRelation> directionalRelations(const Vector3& offset, double 
 struct GoalCheckOptions {
   /// The robot whose base frame and gripper are meant (first robot when empty).
   std::string robot;
+  /// Its arm that acted: regions are of the part of a top it reaches (every arm when empty).
+  std::string arm;
   /// The scene before execution; needed for displacement goals.
   const Scene* initialScene = nullptr;
   SpatialOptions spatial;

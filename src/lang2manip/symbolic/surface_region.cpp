@@ -8,22 +8,15 @@
 #include <memory>
 #include <mutex>
 
-#include "lang2manip/core/random.hpp"
-
 #include "lang2manip/model/scene.hpp"
+#include "lang2manip/symbolic/arm_reach.hpp"
 #include "lang2manip/symbolic/spatial_relations.hpp"
 #include "lang2manip/symbolic/support_surface.hpp"
 
 namespace lang2manip {
 namespace {
 
-constexpr double kInnerReach = 0.2;
-constexpr double kOuterReach = 0.9;
-/// Points are reached this far above the top (where a grasped object's centre is).
-constexpr double kReachHeight = 0.05;
 constexpr double kCell = 0.02;
-constexpr int kReachSamples = 400;
-constexpr std::uint64_t kReachSamplesSeed = 7;
 
 std::string depthWord(int depth) { return depth > 0 ? "far" : "near"; }
 std::string sideWord(int side) { return side > 0 ? "left" : "right"; }
@@ -36,93 +29,24 @@ std::pair<double, double> span(double low, double high, int part, bool halves) {
   return part < 0 ? std::pair{low, low + share} : std::pair{high - share, high};
 }
 
-/// Where an arm starts (its first joint, base frame), how far it stretches to its last joint,
-/// and how far its tool frame is from that joint (the hand, held vertical above a point).
-struct ArmReach {
-  Vector3 shoulder = Vector3::Zero();
-  double length = 0.0;
-  double hand = 0.0;
-};
-
-/// The farthest the arm's last joint gets from its first joint over seeded random configurations
-/// within the limits (the arm's reach, measured); cached per model and manipulator.
-double measuredArmLength(const RobotModelPtr& model, const Manipulator& manipulator, int first, int last) {
-  static std::mutex mutex;
-  static std::map<std::pair<const RobotModel*, std::string>, std::pair<std::weak_ptr<const RobotModel>, double>> cache;
-  const std::lock_guard<std::mutex> lock(mutex);
-  const auto key = std::make_pair(model.get(), manipulator.name);
-  if (const auto found = cache.find(key); found != cache.end() && !found->second.first.expired()) return found->second.second;
-  Random random(kReachSamplesSeed);
-  double longest = 0.0;
-  const std::size_t shoulder = static_cast<std::size_t>(model->childLinkOf(first));
-  const std::size_t wrist = static_cast<std::size_t>(model->childLinkOf(last));
-  for (int i = 0; i < kReachSamples; ++i) {
-    const std::vector<Pose> links = model->linkPoses(random.uniformVector(model->lowerLimits(), model->upperLimits()));
-    longest = std::max(longest, (links[wrist].translation() - links[shoulder].translation()).norm());
-  }
-  cache[key] = {model, longest};
-  return longest;
-}
-
-/// The arm joint reach is measured from: the first whose axis is not vertical (a shoulder that
-/// lifts the arm), else the first.
-std::optional<int> shoulderJoint(const RobotModel& model, const Manipulator& manipulator, const std::vector<Pose>& links) {
-  std::optional<int> first;
-  for (const std::string& name : manipulator.armJoints) {
-    const auto joint = model.findJoint(name);
-    if (!joint) continue;
-    if (!first) first = joint;
-    const Joint& data = model.joints()[static_cast<std::size_t>(*joint)];
-    const Matrix3 frame = links[static_cast<std::size_t>(model.parentLinkOf(*joint))].linear() * data.origin.linear();
-    if (std::abs((frame * data.axis).z()) < 0.7) return joint;
-  }
-  return first;
-}
-
-/// Measured at the middle of the joint limits, so that the reachable part of a top does not move
-/// with the arm.
-std::vector<ArmReach> armReaches(const SceneRobot& robot, const Pose& base) {
-  std::vector<ArmReach> arms;
-  const RobotModel& model = *robot.model;
-  const std::vector<Pose> links = model.linkPoses(model.middleConfiguration());
-  for (const Manipulator& manipulator : model.semantics().manipulators) {
-    if (manipulator.armJoints.empty()) continue;
-    const auto first = shoulderJoint(model, manipulator, links);
-    const auto last = model.findJoint(manipulator.armJoints.back());
-    const auto tool = model.findLink(manipulator.toolFrame);
-    if (!first || !last || !tool) continue;
-    const double length = measuredArmLength(robot.model, manipulator, *first, *last);
-    if (length <= 0.0) continue;
-    const auto at = [&](int link) { return base.inverse() * (robot.basePose * links[static_cast<std::size_t>(link)].translation()); };
-    Vector3 shoulder = at(model.childLinkOf(*first));
-    if (const auto pan = model.findJoint(manipulator.armJoints.front()); pan && *pan != *first) {
-      shoulder.head<2>() = at(model.childLinkOf(*pan)).head<2>();  // a turning base: reach is about its axis
-    }
-    arms.push_back({shoulder, length, (at(*tool) - at(model.childLinkOf(*last))).norm()});
-  }
-  return arms;
-}
-
-/// In front of the robot (base x >= 0), outside the arm's inner column and within reach of its
-/// last joint with the hand vertical above `point`.
+/// In front of the robot (base x >= 0) and within the measured reach of some arm.
 bool reached(const std::vector<ArmReach>& arms, const Vector3& point) {
   if (point.x() < 0.0) return false;
-  return std::any_of(arms.begin(), arms.end(), [&](const ArmReach& arm) {
-    const Vector3 d = point - arm.shoulder;
-    const Vector3 wrist = d + Vector3::UnitZ() * arm.hand;
-    return d.head<2>().norm() >= kInnerReach * (arm.length + arm.hand) && wrist.norm() <= kOuterReach * arm.length;
-  });
+  return std::any_of(arms.begin(), arms.end(), [&](const ArmReach& arm) { return arm.reaches(point); });
 }
 
-/// The largest rectangle of whole cells of `top` whose cell corners are all reached.
+/// The rectangle of whole cells of `top` whose cell corners are all reached with the largest
+/// area weighted by the square root of its aspect ratio (<= 1): regions split in thirds need
+/// some depth, and a band across the front of an annulus would have little. The weighted area
+/// grows with either side, so the best is among the maximal rectangles enumerated here.
 std::optional<AlignedBox3> largestReachedRectangle(const AlignedBox3& top, const std::vector<ArmReach>& arms) {
   const int rows = std::max(1, static_cast<int>(std::floor(top.sizes().x() / kCell)));
   const int columns = std::max(1, static_cast<int>(std::floor(top.sizes().y() / kCell)));
   const double dx = top.sizes().x() / rows, dy = top.sizes().y() / columns;
-  const double z = top.max().z() + kReachHeight;
+  const double z = top.max().z();
   const auto corner = [&](int i, int j) { return Vector3(top.min().x() + i * dx, top.min().y() + j * dy, z); };
   std::vector<int> heights(static_cast<std::size_t>(columns), 0);
-  double bestArea = 0.0;
+  double bestScore = 0.0;
   AlignedBox3 best;
   for (int i = 0; i < rows; ++i) {
     for (int j = 0; j < columns; ++j) {
@@ -136,14 +60,15 @@ std::optional<AlignedBox3> largestReachedRectangle(const AlignedBox3& top, const
       int left = j, right = j;
       while (left > 0 && heights[static_cast<std::size_t>(left - 1)] >= h) --left;
       while (right + 1 < columns && heights[static_cast<std::size_t>(right + 1)] >= h) ++right;
-      const double area = h * dx * (right - left + 1) * dy;
-      if (area <= bestArea) continue;
-      bestArea = area;
+      const double depth = h * dx, width = (right - left + 1) * dy;
+      const double score = depth * width * std::sqrt(std::min(depth, width) / std::max(depth, width));
+      if (score <= bestScore) continue;
+      bestScore = score;
       best = AlignedBox3(Vector3(top.min().x() + (i + 1 - h) * dx, top.min().y() + left * dy, top.max().z()),
                          Vector3(top.min().x() + (i + 1) * dx, top.min().y() + (right + 1) * dy, top.max().z()));
     }
   }
-  if (bestArea <= 0.0) return std::nullopt;
+  if (bestScore <= 0.0) return std::nullopt;
   return best;
 }
 
@@ -247,7 +172,7 @@ SurfaceRegion cellOfPoint(const AlignedBox3& area, const Vector3& point) {
 }
 
 std::optional<SupportArea> supportArea(const Scene& scene, const std::string& support, const std::string& robot,
-                                       std::string* why) {
+                                       std::string* why, const std::string& arm) {
   const SceneObject& object = scene.object(support);
   const SupportSurface surface = supportSurface(object);
   const auto fail = [&](const std::string& reason) -> std::optional<SupportArea> {
@@ -259,19 +184,19 @@ std::optional<SupportArea> supportArea(const Scene& scene, const std::string& su
   SupportArea area{support, inBaseFrame(*surface.top, base), {}, false};
   area.reachable = area.top;
   if (scene.robots().empty()) return area;
-  const SceneRobot& arm = robot.empty() ? scene.robots().front() : scene.robot(robot);
-  const std::vector<ArmReach> arms = armReaches(arm, base);
+  const SceneRobot& reacher = robot.empty() ? scene.robots().front() : scene.robot(robot);
+  const std::vector<ArmReach> arms = measuredArmReaches(reacher, base, area.top.max().z(), arm);
   if (arms.empty()) return area;
   const auto reachable = largestReachedRectangle(area.top, arms);
-  if (!reachable) return fail("no part of the top of " + support + " is within reach of " + arm.name);
+  if (!reachable) return fail("no part of the top of " + support + " is within reach of " + reacher.name + (arm.empty() ? "" : " " + arm));
   area.reachable = *reachable;
   area.clipped = reachable->sizes().head<2>().prod() < area.top.sizes().head<2>().prod() - 1e-9;
   return area;
 }
 
 std::optional<AlignedBox3> regionOnSupport(const Scene& scene, const std::string& support, const SurfaceRegion& region,
-                                           const std::string& robot, std::string* why) {
-  const auto area = supportArea(scene, support, robot, why);
+                                           const std::string& robot, std::string* why, const std::string& arm) {
+  const auto area = supportArea(scene, support, robot, why, arm);
   if (!area) return std::nullopt;
   return regionBox(area->reachable, region);
 }

@@ -60,24 +60,26 @@ struct SupportArea {
   std::string support;
   /// The whole flat top (x, y; min z = max z = its height), base frame.
   AlignedBox3 top;
-  /// The largest axis-aligned rectangle of `top` in front of the robot (base x >= 0) whose every
-  /// point, 5 cm above the top, some arm reaches from above: its last joint, with the hand
-  /// vertical above the point, within 0.9 of the farthest its last joint gets from its first one (over seeded samples),
-  /// and the point at least 0.2 of the arm and hand's length from that joint horizontally.
+  /// The largest (area weighted by the square root of the aspect ratio) axis-aligned rectangle of
+  /// `top` in front of the robot (base x >= 0) whose every
+  /// point the arm (any arm, when none is named) reaches with the hand pointing down (within 30
+  /// degrees of vertical),
+  /// 2 and 12 cm above the top, 3 cm inside the boundary measured by IK (see arm_reach.hpp).
   /// `top` itself for a scene without robots.
   AlignedBox3 reachable;
   /// True when `reachable` is smaller than `top`.
   bool clipped = false;
 };
 
-/// The SupportArea of `support` for `robot` (the first robot when empty); nullopt with `why`
-/// when it has no flat top (see supportSurface()) or the robot reaches none of it. Throws
-/// InputError for an unknown object or robot.
+/// The SupportArea of `support` for `robot` (the first robot when empty) and its arm `arm` (every
+/// arm when empty); nullopt with `why` when it has no flat top (see supportSurface()) or the arm
+/// reaches none of it. Throws InputError for an unknown object, robot or arm.
 std::optional<SupportArea> supportArea(const Scene& scene, const std::string& support, const std::string& robot,
-                                       std::string* why = nullptr);
+                                       std::string* why = nullptr, const std::string& arm = {});
 
 /// The region's rectangle on `support` (base frame), or nullopt with `why` as supportArea().
 std::optional<AlignedBox3> regionOnSupport(const Scene& scene, const std::string& support, const SurfaceRegion& region,
-                                           const std::string& robot, std::string* why = nullptr);
+                                           const std::string& robot, std::string* why = nullptr,
+                                           const std::string& arm = {});
 
 }  // namespace lang2manip

@@ -72,8 +72,9 @@ struct SymbolicStateTolerances {
 /// group state of that name must match, so "home" of a two-armed robot covers both arms);
 /// named states that set only gripper joints ("open", "close") are not configurations. The
 /// robot is `robot`, or the scene's first robot when empty; a scene without robots leaves
-/// atConfiguration empty. Throws InputError for an unknown robot name.
+/// atConfiguration empty. reachableTops are of the part its arm `arm` reaches (every arm when
+/// empty). Throws InputError for an unknown robot or arm name.
 SymbolicState observeSymbolicState(const Scene& scene, const SymbolicStateTolerances& tolerances = {},
-                                   const std::string& robot = {});
+                                   const std::string& robot = {}, const std::string& arm = {});
 
 }  // namespace lang2manip

@@ -102,7 +102,7 @@ void observeConfiguration(const SceneRobot& robot, const SymbolicStateTolerances
 }  // namespace
 
 SymbolicState observeSymbolicState(const Scene& scene, const SymbolicStateTolerances& tolerances,
-                                   const std::string& robot) {
+                                   const std::string& robot, const std::string& arm) {
   SymbolicState state;
   for (const SceneObject& object : scene.objects()) {
     state.objects.push_back(object.name);
@@ -117,7 +117,7 @@ SymbolicState observeSymbolicState(const Scene& scene, const SymbolicStateTolera
     if (surface.top) state.flatTops[object.name] = *surface.top;
     else state.noFlatTop[object.name] = surface.why;
     if (object.role == ObjectRole::kSupport && surface.top) {
-      if (const auto area = supportArea(scene, object.name, robot)) state.reachableTops[object.name] = area->reachable;
+      if (const auto area = supportArea(scene, object.name, robot, nullptr, arm)) state.reachableTops[object.name] = area->reachable;
     }
   }
   if (!robot.empty()) {

@@ -45,8 +45,9 @@ struct PlanningRequest {
   std::string task;
   /// The world the task is about; not owned, must outlive the call.
   const Scene* scene = nullptr;
-  /// The robot that will execute the plan.
+  /// The robot that will execute the plan, and its arm (every arm may act when empty).
   std::string robot;
+  std::string arm;
   /// Earlier rounds of this task, oldest first (empty on the first round).
   std::vector<PlanAttempt> earlierAttempts;
 };
