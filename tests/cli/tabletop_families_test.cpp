@@ -13,7 +13,11 @@
 #include "test_paths.hpp"
 #include "lang2manip/cli/instruction_families.hpp"
 #include "lang2manip/cli/problem_loading.hpp"
+#include "lang2manip/cli/family_support.hpp"
 #include "lang2manip/cli/tabletop_scenes.hpp"
+#include "lang2manip/cli/task_run.hpp"
+#include "lang2manip/execution/task_executor.hpp"
+#include "lang2manip/language/offline_task_planner.hpp"
 #include "lang2manip/symbolic/surface_region.hpp"
 #include "lang2manip/symbolic/symbolic_state.hpp"
 
@@ -59,6 +63,37 @@ TEST(Tabletop, HoldsTheRequestedObjectsApartOnTheReachablePartOfTheDesk) {
     }
     EXPECT_EQ(colourOf("red_block_2"), "red");
   }
+}
+
+TEST(Tabletop, RoundBowlsAreMeshesWhoseCavityIsMeasuredAndHoldsABlock) {
+  Random random(4);
+  TabletopRequest request;
+  request.blocks = 1;
+  request.bowls = 2;
+  request.roundBowlShare = 1.0;
+  const std::optional<Scene> scene = generateTabletop(desk("panda_desk"), request, random);
+  ASSERT_TRUE(scene);
+  for (const std::string& name : objectsOfKind(*scene, "bowl")) {
+    SCOPED_TRACE(name);
+    const SceneObject& bowl = scene->object(name);
+    ASSERT_EQ(bowl.collisions.size(), 1u);
+    EXPECT_TRUE(std::holds_alternative<MeshGeometry>(bowl.collisions.front().geometry));
+    ASSERT_TRUE(bowl.cavity);
+    // Square in plan, as wide as the tapered wall allows over the raised floor, below the rim.
+    EXPECT_NEAR(bowl.cavity->sizes().x(), bowl.cavity->sizes().y(), 1e-3);
+    EXPECT_GT(bowl.cavity->sizes().x(), 0.055);
+    EXPECT_GT(bowl.cavity->sizes().z(), 0.025);
+    EXPECT_NEAR(bowl.cavity->max().z(), bowl.dimensions().z(), 1e-3);
+  }
+  // The offline planner puts the block in it, and the run verifies it there.
+  const std::string bowl = objectsOfKind(*scene, "bowl").front();
+  const std::string block = objectsOfKind(*scene, "block").front();
+  OfflineTaskPlanner planner;
+  TaskExecutor executor(*scene, ExecutionSettings{});
+  const TaskRun run = planExecuteAndVerify(planner, executor, "put the " + families::spoken(block) + " in the " + families::spoken(bowl), 3);
+  ASSERT_TRUE(run.repair.succeeded()) << run.repair.failure;
+  EXPECT_TRUE(run.verification.success);
+  EXPECT_EQ(observeSymbolicState(executor.executions().back().finalScene).inside.at(block), bowl);
 }
 
 TEST(Tabletop, TheSameSeedGivesTheSameScene) {

@@ -1,9 +1,14 @@
 #include "lang2manip/cli/tabletop_scenes.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
+#include <memory>
+#include <numbers>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/grounding/object_semantics.hpp"
+#include "lang2manip/model/triangle_mesh.hpp"
 #include "lang2manip/symbolic/spatial_relations.hpp"
 #include "lang2manip/symbolic/surface_region.hpp"
 
@@ -57,6 +62,52 @@ SceneObject bowl(const PaletteColour& colour, double width) {
   return object;
 }
 
+/// The surface of revolution about z of the closed polyline `profile` (r, z), r >= 0, outward
+/// normals for a counter-clockwise profile; points on the axis close the surface there.
+std::shared_ptr<const TriangleMesh> revolved(const std::vector<std::pair<double, double>>& profile, int segments) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  mesh->source = "generated round bowl";
+  std::vector<std::vector<int>> rings;
+  for (const auto& [r, z] : profile) {
+    std::vector<int> ring;
+    for (int k = 0; k < (r > 0.0 ? segments : 1); ++k) {
+      const double angle = 2.0 * std::numbers::pi * k / segments;
+      ring.push_back(static_cast<int>(mesh->vertices.size()));
+      mesh->vertices.emplace_back(r * std::cos(angle), r * std::sin(angle), z);
+    }
+    rings.push_back(std::move(ring));
+  }
+  const auto at = [&](const std::vector<int>& ring, int k) { return ring[static_cast<std::size_t>(k % static_cast<int>(ring.size()))]; };
+  for (std::size_t i = 0; i + 1 < rings.size(); ++i) {
+    const std::vector<int>& a = rings[i];
+    const std::vector<int>& b = rings[i + 1];
+    for (int k = 0; k < segments; ++k) {
+      if (a.size() > 1) mesh->triangles.push_back({at(a, k), at(a, k + 1), at(b, k)});
+      if (b.size() > 1) mesh->triangles.push_back({at(a, k + 1), at(b, k + 1), at(b, k)});
+    }
+  }
+  return mesh;
+}
+
+/// A round bowl as the benchmarks draw it: a tapered wall on a flat foot, `width` across the rim,
+/// its cavity not declared but measured from its shape (measuredCavity()).
+SceneObject roundBowl(const PaletteColour& colour, double width) {
+  const double rim = width / 2.0, foot = 0.6 * rim;
+  const std::vector<std::pair<double, double>> profile{{0.0, 0.0},
+                                                       {foot, 0.0},
+                                                       {rim, kBowlHeight},
+                                                       {rim - kBowlWall, kBowlHeight},
+                                                       {foot - kBowlWall, kBowlWall},
+                                                       {0.0, kBowlWall}};
+  SceneObject object;
+  object.kind = "bowl";
+  object.role = ObjectRole::kContainer;
+  object.collisions.push_back(coloured(MeshGeometry{revolved(profile, 32), Vector3::Ones(), "generated:round_bowl"}, Vector3::Zero(), colour));
+  object.cavity = measuredCavity(object);
+  if (!object.cavity) throw InputError("tabletop: the generated round bowl has no measurable cavity");
+  return object;
+}
+
 /// Colours for `count` objects of one kind: distinct while the palette lasts.
 std::vector<PaletteColour> drawColours(int count, bool distinct, Random& random) {
   std::vector<PaletteColour> palette = tabletopPalette();
@@ -79,7 +130,8 @@ std::vector<SceneObject> drawObjects(const TabletopRequest& request, Random& ran
   std::vector<SceneObject> objects;
   std::map<std::string, int> used;
   for (const PaletteColour& colour : drawColours(request.bowls, request.distinctColours, random)) {
-    objects.push_back(bowl(colour, random.uniform(0.12, 0.15)));
+    const double width = random.uniform(0.12, 0.15);
+    objects.push_back(random.uniform(0.0, 1.0) < request.roundBowlShare ? roundBowl(colour, width) : bowl(colour, width));
     objects.back().name = uniqueName(std::string(colour.name) + "_bowl", used);
   }
   std::vector<PaletteColour> blockColours = drawColours(request.oneBlockColour ? 1 : request.blocks, request.distinctColours, random);

@@ -27,6 +27,9 @@ const std::vector<PaletteColour>& tabletopPalette();
 struct TabletopRequest {
   int blocks = 3;
   int bowls = 0;
+  /// The share of bowls drawn round and tapered (a mesh whose cavity is measured, as a user's
+  /// bowl model is) rather than square (primitives with a declared cavity).
+  double roundBowlShare = 0.5;
   int cylinders = 0;
   /// Colours are drawn without repetition per kind unless a kind needs more than the palette.
   bool distinctColours = true;

@@ -60,34 +60,30 @@ double largestFree(double limit, Predicate free) {
 
 AlignedBox3 box(const Vector3& low, const Vector3& high) { return AlignedBox3(low, high); }
 
-/// The hollow of an open-topped body, in the object frame, or nullopt.
-std::optional<AlignedBox3> openHollow(const SceneObject& object) {
-  const AlignedBox3 bounds = object.worldBounds();
-  const Vector3 size = bounds.sizes();
-  if (size.z() < kMinimumContainerSize || std::min(size.x(), size.y()) < kMinimumContainerSize) return std::nullopt;
-  const ShapeProbe probe(object);
-  const Vector3 c = bounds.center();
-  const double top = bounds.max().z();
-  const double r = std::max(0.002, 0.1 * std::min(size.x(), size.y()));
-  const double depth = largestFree(size.z(), [&](double d) {
-    return !probe.hits(box({c.x() - r, c.y() - r, top - d}, {c.x() + r, c.y() + r, top + 0.01}));
-  });
-  if (depth < kMinimumHollowFraction * size.z() || depth >= size.z() - 1e-6) return std::nullopt;
-  const double z = top - 0.5 * depth;
-  const bool walled = probe.hits(box({c.x() + r, c.y() - r, z}, {bounds.max().x() + 0.01, c.y() + r, z + 1e-3})) &&
-                      probe.hits(box({bounds.min().x() - 0.01, c.y() - r, z}, {c.x() - r, c.y() + r, z + 1e-3})) &&
-                      probe.hits(box({c.x() - r, c.y() + r, z}, {c.x() + r, bounds.max().y() + 0.01, z + 1e-3})) &&
-                      probe.hits(box({c.x() - r, bounds.min().y() - 0.01, z}, {c.x() + r, c.y() - r, z + 1e-3}));
-  if (!walled) return std::nullopt;
-  const double floor = top - depth;
-  const double halfX = largestFree(0.5 * size.x(), [&](double e) {
-    return !probe.hits(box({c.x() - e, c.y() - r, floor + 1e-3}, {c.x() + e, c.y() + r, top}));
-  });
-  const double halfY = largestFree(0.5 * size.y(), [&](double e) {
-    return !probe.hits(box({c.x() - halfX, c.y() - e, floor + 1e-3}, {c.x() + halfX, c.y() + e, top}));
-  });
-  const AlignedBox3 world = box({c.x() - halfX, c.y() - halfY, floor}, {c.x() + halfX, c.y() + halfY, top});
-  return transformedBox(world, object.pose.inverse());
+/// The box of the hollow above `floor` with its footprint grown from the centre: a square first
+/// (a round or tapered hollow has room along its diagonals too), then along x, then along y.
+AlignedBox3 cavityBoxAbove(const ShapeProbe& probe, const Vector3& c, const Vector3& size, double floor, double top) {
+  const auto free = [&](double halfX, double halfY) {
+    return !probe.hits(box({c.x() - halfX, c.y() - halfY, floor + 1e-3}, {c.x() + halfX, c.y() + halfY, top}));
+  };
+  const double square = largestFree(0.5 * std::min(size.x(), size.y()), [&](double e) { return free(e, e); });
+  const double halfX = std::max(square, largestFree(0.5 * size.x(), [&](double e) { return free(e, square); }));
+  const double halfY = std::max(square, largestFree(0.5 * size.y(), [&](double e) { return free(halfX, e); }));
+  return box({c.x() - halfX, c.y() - halfY, floor}, {c.x() + halfX, c.y() + halfY, top});
+}
+
+/// The cavity box of the hollow whose floor is at `floor` (its lowest point under the centre):
+/// among floors raised by tenths of the depth up to half of it, the one whose box holds the most
+/// (footprint area times height). Vertical walls keep the floor; a round or tapered bowl raises
+/// it to where its walls are wide enough (about 0.42 of the depth for a hemisphere).
+AlignedBox3 largestCavityBox(const ShapeProbe& probe, const Vector3& c, const Vector3& size, double floor, double top) {
+  AlignedBox3 best = cavityBoxAbove(probe, c, size, floor, top);
+  const auto volume = [](const AlignedBox3& b) { return b.sizes().prod(); };
+  for (int tenth = 1; tenth <= 5; ++tenth) {
+    const AlignedBox3 raised = cavityBoxAbove(probe, c, size, floor + 0.1 * tenth * (top - floor), top);
+    if (volume(raised) > volume(best) * (1.0 + 1e-6)) best = raised;
+  }
+  return best;
 }
 
 bool isWideAndFlat(const SceneObject& object) {
@@ -113,7 +109,7 @@ double widestGripper(const Scene& scene) {
 ObjectSemanticsDecision infer(const Scene& scene, SceneObject& object, double widest) {
   ObjectSemanticsDecision decision{object.name, false, ObjectRole::kNone, SemanticsSource::kInferred, {}};
   object.movable = false;
-  if (const std::optional<AlignedBox3> hollow = openHollow(object)) {
+  if (const std::optional<AlignedBox3> hollow = measuredCavity(object)) {
     object.role = ObjectRole::kContainer;
     object.cavity = *hollow;
     decision.reason = "container: open hollow " + metresText(hollow->sizes().z()) + " deep";
@@ -170,6 +166,29 @@ void applyOverrides(Scene& scene, const ObjectSemanticsOverrides& overrides, std
 }
 
 }  // namespace
+
+std::optional<AlignedBox3> measuredCavity(const SceneObject& object) {
+  const AlignedBox3 bounds = object.worldBounds();
+  const Vector3 size = bounds.sizes();
+  if (size.z() < kMinimumContainerSize || std::min(size.x(), size.y()) < kMinimumContainerSize) return std::nullopt;
+  const ShapeProbe probe(object);
+  const Vector3 c = bounds.center();
+  const double top = bounds.max().z();
+  const double r = std::max(0.002, 0.1 * std::min(size.x(), size.y()));
+  const double depth = largestFree(size.z(), [&](double d) {
+    return !probe.hits(box({c.x() - r, c.y() - r, top - d}, {c.x() + r, c.y() + r, top + 0.01}));
+  });
+  if (depth < kMinimumHollowFraction * size.z() || depth >= size.z() - 1e-6) return std::nullopt;
+  const double z = top - 0.5 * depth;
+  const bool walled = probe.hits(box({c.x() + r, c.y() - r, z}, {bounds.max().x() + 0.01, c.y() + r, z + 1e-3})) &&
+                      probe.hits(box({bounds.min().x() - 0.01, c.y() - r, z}, {c.x() - r, c.y() + r, z + 1e-3})) &&
+                      probe.hits(box({c.x() - r, c.y() + r, z}, {c.x() + r, bounds.max().y() + 0.01, z + 1e-3})) &&
+                      probe.hits(box({c.x() - r, bounds.min().y() - 0.01, z}, {c.x() + r, c.y() - r, z + 1e-3}));
+  if (!walled) return std::nullopt;
+  const AlignedBox3 world = largestCavityBox(probe, c, size, top - depth, top);
+  return transformedBox(world, object.pose.inverse());
+}
+
 
 std::vector<ObjectSemanticsDecision> inferObjectSemantics(Scene& scene, const ObjectSemanticsOverrides& overrides) {
   const double widest = widestGripper(scene);

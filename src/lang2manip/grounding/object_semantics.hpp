@@ -4,6 +4,7 @@
 /// objects from where they rest and whether a gripper of the scene could hold them; and the
 /// user's overrides (--movable, --fixed).
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,12 @@ struct ObjectSemanticsDecision {
 ///   without a gripper).
 /// Then `overrides` mark objects movable or fixed (source kUser). Throws InputError for a name
 /// the scene does not have (listing them) and for a name in both lists.
+/// The hollow of an open-topped body, measured by probing its collision geometry (object frame):
+/// as deep as the free column under the middle of its top, walled on all four sides, and the box
+/// of it that holds the most (a round or tapered bowl's floor raised to where its walls are wide
+/// enough; see object_semantics.cpp). Nullopt when the body has no such hollow.
+std::optional<AlignedBox3> measuredCavity(const SceneObject& object);
+
 std::vector<ObjectSemanticsDecision> inferObjectSemantics(Scene& scene, const ObjectSemanticsOverrides& overrides = {});
 
 }  // namespace lang2manip

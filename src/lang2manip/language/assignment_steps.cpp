@@ -158,9 +158,12 @@ void StepParser::assignCorners(Step& step, const std::string& support) {
   for (int depth : {1, -1}) {
     for (int side : {1, -1}) corners.push_back({SurfaceRegion::Kind::kCorner, depth, side});
   }
+  // A corner without room for an object (taken by something that stays) costs more than any move.
+  constexpr double kNoRoom = 100.0;
   const auto cost = [&](const std::string& object, const SurfaceRegion& corner) {
     const Vector3 point(corner.depth > 0 ? area.max().x() : area.min().x(), corner.side > 0 ? area.max().y() : area.min().y(), 0.0);
-    return (reader_.descriptor(object).position - point).head<2>().norm();
+    const double move = (reader_.descriptor(object).position - point).head<2>().norm();
+    return regionHasRoom(object, support, corner, step.objects) ? move : move + kNoRoom;
   };
   // The assignment that moves the objects least, over every order of the corners (4! at most).
   std::vector<std::size_t> order(kCorners);

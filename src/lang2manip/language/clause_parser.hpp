@@ -137,10 +137,15 @@ class StepParser {
   /// the far left corner"); false when it has none.
   bool refineGoalsOnSupport(Step& step, const RelationSpec& spec);
   /// A corner the phrase left open ("a corner", "the left corner", "the corner closest to X"):
-  /// among the corners it allows, the one nearest to (or farthest from) `reference`'s centre (the
-  /// robot's base when `fromRobot`), or nearest to the step's first object.
+  /// among the corners it allows that have room for the step's first object (all of them when
+  /// none has), the one nearest to (or farthest from) `reference`'s centre (the robot's base when
+  /// `fromRobot`), or nearest to the step's first object.
   [[nodiscard]] SurfaceRegion chooseCorner(const Step& step, SurfaceRegion corner, const std::string& support,
                                            const std::string& reference, bool fromRobot, bool farthest) const;
+  /// True when `object`'s footprint fits somewhere in `region` of `support`'s reachable top clear
+  /// of the objects standing there (but `object` itself and those in `leaving`, which move).
+  [[nodiscard]] bool regionHasRoom(const std::string& object, const std::string& support, const SurfaceRegion& region,
+                                   const std::vector<std::string>& leaving) const;
   /// True when `object` rests on top of `support` (their boxes, within 1.5 cm).
   [[nodiscard]] bool standsOn(const std::string& object, const std::string& support) const;
   bool parseDisplacement(Step& step);

@@ -5,6 +5,7 @@
 
 #include "lang2manip/language/clause_parser.hpp"
 #include "lang2manip/language/clause_step.hpp"
+#include "lang2manip/language/layout_geometry.hpp"
 #include "lang2manip/language/region_phrases.hpp"
 
 namespace lang2manip::language_detail {
@@ -43,6 +44,24 @@ std::string StepParser::defaultRegionSupport(const Step& step) const {
                                         supports.front() + "\"");
 }
 
+bool StepParser::regionHasRoom(const std::string& object, const std::string& support, const SurfaceRegion& region,
+                               const std::vector<std::string>& leaving) const {
+  constexpr double kClearance = 0.01;
+  const ObjectDescriptor& top = reader_.descriptor(support);
+  const AlignedBox3 area = top.reachableTop.value_or(top.bounds);
+  const Vector3 size = reader_.descriptor(object).bounds.sizes();
+  const auto centres = regionCentres(area, region, size);
+  if (!centres) return false;
+  const Vector3 half(size.x() / 2.0 + kClearance, size.y() / 2.0 + kClearance, 0.0);
+  const AlignedBox3 room(centres->min() - half, centres->max() + half);
+  std::vector<AlignedBox3> occupied;
+  for (const ObjectDescriptor& other : reader_.objects()) {
+    if (other.name == object || other.name == support || containsWord(leaving, other.name)) continue;
+    if (other.bounds.min().z() < area.max().z() + 0.05 && other.bounds.max().z() > area.max().z()) occupied.push_back(other.bounds);
+  }
+  return !freeSpots(size, room, occupied, centres->center(), kClearance, 1).empty();
+}
+
 SurfaceRegion StepParser::chooseCorner(const Step& step, SurfaceRegion corner, const std::string& support,
                                        const std::string& reference, bool fromRobot, bool farthest) const {
   const ObjectDescriptor& descriptor = reader_.descriptor(support);
@@ -51,9 +70,17 @@ SurfaceRegion StepParser::chooseCorner(const Step& step, SurfaceRegion corner, c
   if (reference.empty() && !fromRobot && !step.objects.empty()) from = reader_.descriptor(step.objects.front()).position;
   double best = farthest ? -1.0 : std::numeric_limits<double>::infinity();
   SurfaceRegion chosen = corner;
+  const auto hasRoom = [&](int depth, int side) {
+    return step.objects.empty() || regionHasRoom(step.objects.front(), support, {SurfaceRegion::Kind::kCorner, depth, side}, step.objects);
+  };
+  bool anyRoom = false;
+  for (int depth : {1, -1}) {
+    for (int side : {1, -1}) anyRoom = anyRoom || hasRoom(depth, side);
+  }
   for (int depth : {1, -1}) {
     for (int side : {1, -1}) {
       if ((corner.depth != 0 && corner.depth != depth) || (corner.side != 0 && corner.side != side)) continue;
+      if (anyRoom && !hasRoom(depth, side)) continue;
       const double distance = (cornerPoint(top, depth, side) - from).head<2>().norm();
       if (farthest ? distance > best : distance < best) {
         best = distance;

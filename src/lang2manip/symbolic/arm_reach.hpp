@@ -40,9 +40,9 @@ struct ArmReach {
 
 /// Horizontal clearance kept inside the measured boundary (m): grasps at a fixed yaw and object
 /// sizes need a little more than the bare tool frame does.
-inline constexpr double kReachBoundaryMargin = 0.03;
+inline constexpr double kReachBoundaryMargin = 0.02;
 /// How far the hand keeps from the robot's own body standing on a top (m).
-inline constexpr double kBodyClearance = 0.08;
+inline constexpr double kBodyClearance = 0.05;
 
 /// The reach of the arms of `robot` (only `manipulator` when not empty) over a top whose surface
 /// is at height `topZ` of the base frame `base` (a world pose). Arms without joints or tool frame
