@@ -2,6 +2,9 @@
 // <lang2manip_object>): supports, containers with their hollow, movable objects, and the user's
 // --movable / --fixed.
 
+#include <cmath>
+#include <memory>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -9,6 +12,7 @@
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/grounding/object_semantics.hpp"
 #include "lang2manip/model/kautham_problem.hpp"
+#include "lang2manip/model/triangle_mesh.hpp"
 #include "test_paths.hpp"
 
 namespace lang2manip::test {
@@ -76,6 +80,56 @@ TEST(ObjectSemantics, SupportsContainersAndMovableObjectsAreInferredWithTheReaso
   EXPECT_FALSE(scene.object("ball").movable);
   EXPECT_THAT(decisionFor(decisions, "ball").reason, HasSubstr("rests on nothing"));
   EXPECT_EQ(decisionFor(decisions, "block").source, SemanticsSource::kInferred);
+}
+
+/// A closed bowl surface: a spherical wall of radius `radius` (outer) and `radius - wall` (inner)
+/// from the bottom up to the rim at height `radius`, a flat ring at the rim; frame at the bottom.
+Shape hemisphericalBowl(double radius, double wall) {
+  constexpr int kSegments = 32, kRings = 8;
+  auto mesh = std::make_shared<TriangleMesh>();
+  const auto ringAt = [&](double r, double z) {
+    const int first = static_cast<int>(mesh->vertices.size());
+    for (int k = 0; k < kSegments; ++k) {
+      const double angle = 2.0 * 3.14159265358979323846 * k / kSegments;
+      mesh->vertices.emplace_back(r * std::cos(angle), r * std::sin(angle), z);
+    }
+    return first;
+  };
+  const auto band = [&](int a, int b) {
+    for (int k = 0; k < kSegments; ++k) {
+      const int next = (k + 1) % kSegments;
+      mesh->triangles.push_back({a + k, a + next, b + k});
+      mesh->triangles.push_back({a + next, b + next, b + k});
+    }
+  };
+  std::vector<int> outer, inner;
+  for (int ring = 1; ring <= kRings; ++ring) {  // from near the bottom to the rim
+    const double polar = 0.5 * 3.14159265358979323846 * ring / kRings;
+    outer.push_back(ringAt(radius * std::sin(polar), radius - radius * std::cos(polar)));
+    inner.push_back(ringAt((radius - wall) * std::sin(polar), radius - (radius - wall) * std::cos(polar)));
+  }
+  for (std::size_t i = 0; i + 1 < outer.size(); ++i) band(outer[i], outer[i + 1]), band(inner[i + 1], inner[i]);
+  band(outer.back(), inner.back());  // the rim
+  band(inner.front(), outer.front());  // a small foot ring closes the bottom
+  Shape shape;
+  shape.geometry = MeshGeometry{mesh, Vector3::Ones(), "test:hemispherical_bowl"};
+  return shape;
+}
+
+TEST(ObjectSemantics, ARoundBowlsCavityIsMeasuredAsItIsNotAsASlab) {
+  Scene scene = inferenceScene();
+  scene.addObject(untagged("round_bowl", {hemisphericalBowl(0.07, 0.004)}, {0.1, 0.0, 0.75}));
+  (void)inferObjectSemantics(scene);
+  const SceneObject& bowl = scene.object("round_bowl");
+  EXPECT_EQ(bowl.role, ObjectRole::kContainer);
+  ASSERT_TRUE(bowl.cavity);
+  // A hemisphere of inner radius 6.6 cm holds the most in a box whose floor is raised about 0.42
+  // of its depth: some 8 x 8 cm and 3.5 cm high, square in plan (it was a thin slab).
+  EXPECT_NEAR(bowl.cavity->sizes().x(), bowl.cavity->sizes().y(), 2e-3);
+  EXPECT_GT(bowl.cavity->sizes().x(), 0.07);
+  EXPECT_GT(bowl.cavity->sizes().z(), 0.03);
+  EXPECT_GT(bowl.cavity->min().z(), 0.015);
+  EXPECT_NEAR(bowl.cavity->max().z(), 0.07, 2e-3);
 }
 
 TEST(ObjectSemantics, ObjectsTheirModelsDescribeAreLeftAsGiven) {
