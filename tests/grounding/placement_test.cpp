@@ -91,7 +91,13 @@ TEST(Placement, GivenDistanceIsKept) {
   const PlacementPlan plan = place(reach, "eraser", relation(SpatialRelation::kLeftOf, "marker", 0.12));
   ASSERT_TRUE(plan.success()) << plan.reason;
   Goal goal{GoalKind::kRelation, "eraser", SpatialRelation::kLeftOf, "marker", 0.12, Vector3::Zero(), {}, {}, 0.0};
-  EXPECT_TRUE(checkGoalInScene(placed(reach, plan), goal).holds);
+  Scene world = placed(reach, plan);
+  EXPECT_TRUE(checkGoalInScene(world, goal).holds);
+  // "12 cm to the left of" is the whole offset: 12 cm left but 10 cm further forward is not it.
+  world.object("eraser").pose.translation() += robotBaseFrame(world, "").linear() * Vector3(0.10, 0.0, 0.0);
+  const GoalCheck forward = checkGoalInScene(world, goal);
+  EXPECT_FALSE(forward.holds);
+  EXPECT_THAT(forward.explanation, HasSubstr("0.100 m off the line through it"));
 }
 
 /// An open box (floor and four walls) of inner size `inner` and wall height `height`, its floor's

@@ -2,11 +2,14 @@
 // green_block at y = 0.2, 0, -0.2; a white and a yellow cup; a box; two markers): ordinals, per-object
 // assignments by colour and by corner, stacks "on top of each other", open dishes, and refusals.
 
+#include <algorithm>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "lang2manip/language/instruction.hpp"
 #include "lang2manip/language/object_descriptor.hpp"
+#include "lang2manip/symbolic/surface_region.hpp"
 #include "lang2manip/symbolic/task_planner.hpp"
 #include "language/language_test_scenes.hpp"
 #include "language/language_test_support.hpp"
@@ -15,6 +18,7 @@ namespace lang2manip {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 std::string meaning(const std::string& instruction) {
   try {
@@ -53,6 +57,42 @@ TEST(TabletopLanguage, DifferentCornersGiveEachObjectACornerOfItsOwn) {
   EXPECT_EQ(meaning("put the blocks in separate corners"),
             "red_block on table (far_left_corner); blue_block on table (near_left_corner); green_block on table (far_right_corner)");
   EXPECT_THAT(meaning("put all the movable objects in different corners"), HasSubstr("objects cannot each have a corner of their own: table has 4"));
+}
+
+TEST(TabletopLanguage, ACornerLeftOpenIsOneWithRoomForTheObject) {
+  // The holder stands in the desk's far left corner and fills it.
+  std::vector<ObjectDescriptor> objects = describeObjects(test::deskScene());
+  const auto named = [&](const std::string& name) -> ObjectDescriptor& {
+    return *std::find_if(objects.begin(), objects.end(), [&](const ObjectDescriptor& o) { return o.name == name; });
+  };
+  const AlignedBox3 corner = regionBox(*named("desk").reachableTop, {SurfaceRegion::Kind::kCorner, 1, 1});
+  ObjectDescriptor& holder = named("holder");
+  const Vector3 shift(corner.center().x() - holder.position.x(), corner.center().y() - holder.position.y(), 0.0);
+  holder.position += shift;
+  holder.origin += shift;
+  holder.bounds = AlignedBox3(holder.bounds.min() + shift, holder.bounds.max() + shift);
+  holder.bounds.extend(Vector3(corner.min().x(), corner.min().y(), holder.bounds.min().z()));
+  holder.bounds.extend(Vector3(corner.max().x(), corner.max().y(), holder.bounds.max().z()));
+  const auto summary = [&](const std::string& instruction) { return test::summarize(understandInstruction(instruction, objects)); };
+  EXPECT_THAT(summary("put the eraser in the corner closest to the holder"), Not(HasSubstr("far_left_corner")));
+  EXPECT_THAT(summary("put the eraser in a corner"), Not(HasSubstr("far_left_corner")));
+  EXPECT_THAT(summary("put the marker and the eraser in different corners"), Not(HasSubstr("far_left_corner")));
+  // Asked for by name, it is that corner (grounding then says it is taken).
+  EXPECT_EQ(summary("put the eraser in the far left corner"), "eraser on desk (far_left_corner)");
+}
+
+TEST(TabletopLanguage, HalfwayToAnObjectIsTheMiddleOfWhereItStandsAndTheObject) {
+  const std::vector<ObjectDescriptor> objects = describeObjects(test::deskScene());
+  const TaskSpecification halfway = understandInstruction("move the eraser halfway to the holder", objects);
+  ASSERT_EQ(halfway.goals.size(), 1u);
+  ASSERT_EQ(halfway.goals.front().kind, GoalKind::kAtPosition);
+  const auto centre = [&](const std::string& name) {
+    return std::find_if(objects.begin(), objects.end(), [&](const ObjectDescriptor& o) { return o.name == name; })->position;
+  };
+  const Vector3 middle = (centre("eraser") + centre("holder")) / 2.0;
+  EXPECT_NEAR(halfway.goals.front().position->x(), middle.x(), 1e-6);
+  EXPECT_NEAR(halfway.goals.front().position->y(), middle.y(), 1e-6);
+  EXPECT_THROW((void)understandInstruction("move the eraser and the marker halfway to the holder", objects), PlanningError);
 }
 
 TEST(TabletopLanguage, StacksOnTopOfEachOtherAndOpenDishes) {

@@ -207,7 +207,8 @@ PoseSampling besideObject(const PoseSamplingInput& in, const SceneObject& refere
   const Vector3 centre = reference.worldBounds().center();
   const bool nextTo = relation == SpatialRelation::kNextTo;
   PoseSampling sampling;
-  for (double shift : nextTo ? std::vector<double>{0.0} : s.lateralShifts) {
+  // A distance is a whole offset ("10 cm to the right of"): no shifts across it.
+  for (double shift : (nextTo || distance) ? std::vector<double>{0.0} : s.lateralShifts) {
     for (const Vector3& d : sideDirections(relation, in.robotBase)) {
       for (const Quaternion& q : uprightYaws(in.orientation)) {
         Pose probe = Pose::Identity();

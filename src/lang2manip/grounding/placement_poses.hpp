@@ -49,7 +49,7 @@ struct PoseSamplingInput {
 ///   point first (a corner's corner, an edge's midpoint, the centre);
 /// - left_of / right_of / in_front_of / behind: beside the target along that robot-base axis,
 ///   at the given centre offset or with sideGap between the boxes, shifted sideways by
-///   lateralShifts, on the target's support;
+///   lateralShifts (none with a distance: it is the whole offset), on the target's support;
 /// - next_to: all four sides with the given or the nextToGap gap;
 /// - explicit position: that pose, set onto the support under it.
 PoseSampling samplePlacementPoses(const PoseSamplingInput& input, const PlacementTarget& target,

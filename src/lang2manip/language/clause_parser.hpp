@@ -92,7 +92,8 @@ class StepParser {
   /// "put it back", "put it back down where it was" (ending the step): at_position goals at
   /// where the objects stand now; false when absent.
   bool parsePutBack(Step& step);
-  /// "... between X and Y": an at_position goal halfway between their centres; false when absent.
+  /// "... between X and Y": an at_position goal halfway between their centres; "... halfway to X":
+  /// halfway between where the object stands and X, on its support; false when absent.
   bool parseBetween(Step& step);
   /// "... to the eraser's place": an at_position goal; false when absent.
   bool parsePossessivePlace(Step& step);

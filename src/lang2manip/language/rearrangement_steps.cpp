@@ -329,7 +329,10 @@ bool StepParser::parsePutBack(Step& step) {
 
 bool StepParser::parseBetween(Step& step) {
   static const std::vector<Words> between = phrasesOf({"between", "in between", "halfway between", "midway between", "in the middle between"});
-  const std::size_t length = longestPhraseAt(step.words, step.at, between);
+  static const std::vector<Words> halfway = phrasesOf({"halfway to", "halfway towards", "halfway toward", "half way to", "half way towards",
+                                                       "midway to", "midway towards", "half the way to"});
+  const std::size_t towards = longestPhraseAt(step.words, step.at, halfway);
+  const std::size_t length = towards > 0 ? towards : longestPhraseAt(step.words, step.at, between);
   if (length == 0) return false;
   const std::vector<NounPhrase> list = reader_.readList(step.words, step.at + length);
   std::vector<std::string> ends;
@@ -338,19 +341,27 @@ bool StepParser::parseBetween(Step& step) {
       if (!containsWord(ends, name)) ends.push_back(name);
     }
   }
-  if (ends.size() != 2) failStep(step, "\"between\" needs two objects, got " + std::to_string(ends.size()));
-  if (containsWord(step.objects, ends[0]) || containsWord(step.objects, ends[1])) failStep(step, "an object cannot go between itself and another");
-  if (step.objects.size() != 1) failStep(step, "only one object fits between " + ends[0] + " and " + ends[1]);
+  const char* what = towards > 0 ? "\"halfway to\" needs one object" : "\"between\" needs two objects";
+  if (ends.size() != (towards > 0 ? 1u : 2u)) failStep(step, std::string(what) + ", got " + std::to_string(ends.size()));
+  if (std::any_of(ends.begin(), ends.end(), [&](const std::string& end) { return containsWord(step.objects, end); })) {
+    failStep(step, towards > 0 ? "an object cannot go halfway to itself" : "an object cannot go between itself and another");
+  }
+  if (step.objects.size() != 1) {
+    failStep(step, towards > 0 ? "one object at a time goes halfway to " + ends[0] : "only one object fits between " + ends[0] + " and " + ends[1]);
+  }
   step.at = list.back().end;
+  // "halfway to X": the middle of where the object stands and X, on the support it stands on.
+  if (towards > 0) ends.insert(ends.begin(), step.objects.front());
   const ObjectDescriptor& mover = reader_.descriptor(step.objects.front());
   const ObjectDescriptor& a = reader_.descriptor(ends[0]);
   const ObjectDescriptor& b = reader_.descriptor(ends[1]);
   const Vector3 middle = (a.bounds.center() + b.bounds.center()) / 2.0;
+  const double floor = towards > 0 ? mover.bounds.min().z() : std::min(a.bounds.min().z(), b.bounds.min().z());
   Goal goal;
   goal.kind = GoalKind::kAtPosition;
   goal.object = step.objects.front();
   goal.position = Vector3(mover.origin.x() + middle.x() - mover.bounds.center().x(), mover.origin.y() + middle.y() - mover.bounds.center().y(),
-                          mover.origin.z() + std::min(a.bounds.min().z(), b.bounds.min().z()) - mover.bounds.min().z());
+                          mover.origin.z() + floor - mover.bounds.min().z());
   specification_.goals.push_back(goal);
   return true;
 }

@@ -40,6 +40,13 @@ double offsetAlong(SpatialRelation relation, const Vector3& offset) {
   }
 }
 
+/// The offset across that side (horizontal, unsigned): how far the object stands off the line
+/// through the reference along the side.
+double offsetAcross(SpatialRelation relation, const Vector3& offset) {
+  const bool sideways = relation == SpatialRelation::kLeftOf || relation == SpatialRelation::kRightOf;
+  return std::abs(sideways ? offset.x() : offset.y());
+}
+
 std::string sideWords(SpatialRelation relation) {
   switch (relation) {
     case SpatialRelation::kLeftOf: return "left of";
@@ -53,9 +60,10 @@ std::string sideWords(SpatialRelation relation) {
 GoalCheck checkSide(const Goal& goal, const Vector3& offset, const SpatialOptions& options) {
   const double along = offsetAlong(*goal.relation, offset);
   const std::string words = goal.object + " is " + metresText(along) + " " + sideWords(*goal.relation) + " " + goal.target;
-  if (goal.distance) {
-    const bool holds = std::abs(along - *goal.distance) <= options.distanceTolerance;
-    return {holds, words + " (wanted " + metresText(*goal.distance) + ")"};
+  if (goal.distance) {  // "10 cm to the right of X": the whole offset, not its component alone
+    const double across = offsetAcross(*goal.relation, offset);
+    const bool holds = std::abs(along - *goal.distance) <= options.distanceTolerance && across <= options.distanceTolerance;
+    return {holds, words + " and " + metresText(across) + " off the line through it (wanted " + metresText(*goal.distance) + " and 0)"};
   }
   return {along > options.directionMargin, words};
 }

@@ -65,7 +65,8 @@ struct GoalCheck {
 
 /// Whether `goal` holds in `scene`: in/on/holding/at-configuration from observeSymbolicState();
 /// side relations from the bounding-box centres in the robot base frame (with an explicit
-/// distance, the offset along that side must match it within tolerance); next_to when the boxes
+/// distance, the whole offset: along that side it matches the distance and across it is 0, each
+/// within distanceTolerance); next_to when the boxes
 /// are within nearDistance (or the explicit distance); displaced by comparing with
 /// options.initialScene; at_position when the object frame's origin is within distanceTolerance
 /// of the position (x, y in the base frame); turned when the turn about the vertical from
