@@ -212,7 +212,12 @@ TEST_F(GeometricGoalTest, ExplicitDistancesAndNextTo) {
   Goal left = relationGoal("eraser", SpatialRelation::kLeftOf, "marker");
   const double offset = scene().object("eraser").worldBounds().center().y() - scene().object("marker").worldBounds().center().y();
   left.distance = offset;
-  EXPECT_TRUE(checkGoalInScene(scene(), left).holds);
+  // A distance is the whole offset: left of the marker by it, and not in front of or behind it.
+  const double across = scene().object("eraser").worldBounds().center().x() - scene().object("marker").worldBounds().center().x();
+  EXPECT_GT(std::abs(across), 0.02);
+  EXPECT_FALSE(checkGoalInScene(scene(), left).holds);
+  scene().object("eraser").pose.translation().x() -= across;
+  EXPECT_TRUE(checkGoalInScene(scene(), left).holds) << checkGoalInScene(scene(), left).explanation;
   left.distance = offset + 0.1;
   EXPECT_FALSE(checkGoalInScene(scene(), left).holds);
   const Goal nextTo = relationGoal("eraser", SpatialRelation::kNextTo, "marker");

@@ -62,6 +62,26 @@ Vector3 centreInBase(const Scene& scene, const std::string& object) {
   return robotBaseFrame(scene, "").inverse() * scene.object(object).worldBounds().center();
 }
 
+int blocksHeld(const Scene& scene, const std::string& bowl, double edge) {
+  constexpr double kGap = 0.01;
+  const auto& cavity = scene.object(bowl).cavity;
+  if (!cavity) return 0;
+  const auto along = [&](double length) { return static_cast<int>(std::floor((length + kGap) / (edge + kGap))); };
+  return along(cavity->sizes().x()) * along(cavity->sizes().y());
+}
+
+bool bowlsClearOf(const Scene& scene, const SurfaceRegion& region) {
+  const AlignedBox3 box = regionBox(deskReach(scene), region);
+  const Pose toBase = robotBaseFrame(scene, "").inverse();
+  for (const std::string& bowl : objectsOfKind(scene, "bowl")) {
+    const AlignedBox3 footprint = scene.object(bowl).worldBounds().transformed(toBase);
+    const bool overlaps = footprint.min().x() < box.max().x() && footprint.max().x() > box.min().x() &&
+                          footprint.min().y() < box.max().y() && footprint.max().y() > box.min().y();
+    if (overlaps) return false;
+  }
+  return true;
+}
+
 std::string spoken(const std::string& object) {
   std::string words = object;
   std::replace(words.begin(), words.end(), '_', ' ');

@@ -34,6 +34,13 @@ Vector3 centreInBase(const Scene& scene, const std::string& object);
 /// "red" -> "red block" words of an object's name ("red_block_2" -> "red block").
 std::string spoken(const std::string& object);
 
+/// How many blocks of edge `edge` stand side by side, 1 cm apart, on the floor of `bowl`'s cavity.
+int blocksHeld(const Scene& scene, const std::string& bowl, double edge);
+
+/// True when no bowl of `scene` stands in `region` of the desk's reachable part (a region a bowl
+/// takes has no room for a block, and an instance asking for it is no test of understanding).
+bool bowlsClearOf(const Scene& scene, const SurfaceRegion& region);
+
 using Check = std::function<GoalCheck(const Scene& final, const Scene& initial)>;
 
 /// Every goal holds (checkGoalInScene with the initial scene).

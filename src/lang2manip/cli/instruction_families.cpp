@@ -68,6 +68,7 @@ std::optional<FamilyInstance> blocksToRegion(const Scene& desk, Random& random) 
   if (!scene) return std::nullopt;
   const auto blocks = objectsOfKind(*scene, "block");
   const RegionWords& where = drawOne(cornersAndSides(), random);
+  if (!bowlsClearOf(*scene, where.region)) return std::nullopt;
   const std::vector<std::string> wordings = {"put all the blocks in the ", "move all the blocks to the ", "put all the blocks on the "};
   std::vector<Goal> goals;
   Plan plan;
@@ -85,6 +86,7 @@ std::optional<FamilyInstance> blocksInBowl(const Scene& desk, Random& random) {
   if (!scene) return std::nullopt;
   const auto blocks = objectsOfKind(*scene, "block");
   const std::string bowl = drawOne(objectsOfKind(*scene, "bowl"), random);
+  if (static_cast<int>(blocks.size()) > blocksHeld(*scene, bowl, 0.04)) return std::nullopt;  // more than the bowl holds
   const std::vector<std::string> wordings = {"put the blocks in the ", "put all the blocks in the ", "place every block in the "};
   std::vector<Goal> goals;
   Plan plan;
@@ -159,6 +161,7 @@ std::optional<FamilyInstance> stackOnRegion(const Scene& desk, Random& random) {
   if (!scene) return std::nullopt;
   const auto blocks = objectsOfKind(*scene, "block");
   const RegionWords& where = drawOne(cornersAndSides(), random);
+  if (!bowlsClearOf(*scene, where.region)) return std::nullopt;
   FamilyInstance result = instance("cap_stack_on_region", std::string("stack all the blocks on the ") + where.words, *scene,
                                    tower(blocks, where.region));
   addPickPlace(result.plan, blocks[0], R::kOn, "desk", where.region);
@@ -183,6 +186,7 @@ std::optional<FamilyInstance> cornerClosestToBowl(const Scene& desk, Random& ran
     else second = std::min(second, distance);
   }
   if (second - best < 0.03) return std::nullopt;  // no clear closest corner
+  if (!bowlsClearOf(*scene, chosen)) return std::nullopt;  // the bowl stands in it
   FamilyInstance result = instance("cap_corner_closest_to_bowl", "put the " + spoken(block) + " in the corner closest to the " + spoken(bowl),
                                    *scene, allOf({relationGoal(block, R::kOn, "desk", chosen)}));
   addPickPlace(result.plan, block, R::kOn, "desk", chosen);
@@ -201,6 +205,7 @@ std::optional<FamilyInstance> blockNearBowl(const Scene& desk, Random& random) {
   if (!closest) std::reverse(byDistance.begin(), byDistance.end());
   if (std::abs(byDistance[0].first - byDistance[1].first) < 0.03) return std::nullopt;
   const RegionWords& where = drawOne(cornersAndSides(), random);
+  if (!bowlsClearOf(*scene, where.region)) return std::nullopt;
   const std::string block = byDistance[0].second;
   const std::string text = std::string("pick up the block ") + (closest ? "closest to" : "farthest from") + " the " + spoken(bowl) +
                            " and place it on the " + where.words;
@@ -235,6 +240,7 @@ std::optional<FamilyInstance> nthBlock(const Scene& desk, Random& random) {
   const std::size_t n = static_cast<std::size_t>(drawCount(0, 2, random));
   const char* ordinals[] = {"first", "second", "third"};
   const RegionWords& where = drawOne(cornersAndSides(), random);
+  if (!bowlsClearOf(*scene, where.region)) return std::nullopt;
   const std::string block = order[n].second;
   const std::string text = std::string("pick up the ") + ordinals[n] + " block from the " + from.word + " and place it on the " + where.words;
   FamilyInstance result = instance("cap_nth_block", text, *scene, allOf({relationGoal(block, R::kOn, "desk", where.region)}));
@@ -256,6 +262,7 @@ std::optional<FamilyInstance> blockToSideOfBowl(const Scene& desk, Random& rando
   }
   if (onSide.size() != 1) return std::nullopt;
   const RegionWords& where = drawOne(cornersAndSides(), random);
+  if (!bowlsClearOf(*scene, where.region)) return std::nullopt;
   const std::string text = std::string("pick up the block to the ") + side.word + " of the " + spoken(bowl) + " and place it on the " + where.words;
   FamilyInstance result = instance("cap_block_to_side_of_bowl", text, *scene, allOf({relationGoal(onSide.front(), R::kOn, "desk", where.region)}));
   addPickPlace(result.plan, onSide.front(), R::kOn, "desk", where.region);
@@ -331,7 +338,7 @@ std::optional<FamilyInstance> ravensColourBlocksInBowl(const Scene& desk, Random
     moved.push_back(block);
     addPickPlace(plan, block, R::kIn, bowl);
   }
-  if (moved.size() > 3) return std::nullopt;  // more than the bowl holds
+  if (static_cast<int>(moved.size()) > blocksHeld(*scene, bowl, 0.04)) return std::nullopt;  // more than the bowl holds
   // "a green bowl": any bowl of that colour.
   std::vector<std::string> ofColour;
   for (const std::string& other : objectsOfKind(*scene, "bowl")) {

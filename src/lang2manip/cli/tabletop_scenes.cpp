@@ -92,7 +92,7 @@ std::shared_ptr<const TriangleMesh> revolved(const std::vector<std::pair<double,
 /// A round bowl as the benchmarks draw it: a tapered wall on a flat foot, `width` across the rim,
 /// its cavity not declared but measured from its shape (measuredCavity()).
 SceneObject roundBowl(const PaletteColour& colour, double width) {
-  const double rim = width / 2.0, foot = 0.6 * rim;
+  const double rim = width / 2.0, foot = 0.75 * rim;
   const std::vector<std::pair<double, double>> profile{{0.0, 0.0},
                                                        {foot, 0.0},
                                                        {rim, kBowlHeight},
@@ -130,8 +130,9 @@ std::vector<SceneObject> drawObjects(const TabletopRequest& request, Random& ran
   std::vector<SceneObject> objects;
   std::map<std::string, int> used;
   for (const PaletteColour& colour : drawColours(request.bowls, request.distinctColours, random)) {
-    const double width = random.uniform(0.12, 0.15);
-    objects.push_back(random.uniform(0.0, 1.0) < request.roundBowlShare ? roundBowl(colour, width) : bowl(colour, width));
+    // Round bowls are drawn wider: their sloping wall leaves less room at the floor.
+    const bool round = random.uniform(0.0, 1.0) < request.roundBowlShare;
+    objects.push_back(round ? roundBowl(colour, random.uniform(0.15, 0.18)) : bowl(colour, random.uniform(0.12, 0.15)));
     objects.back().name = uniqueName(std::string(colour.name) + "_bowl", used);
   }
   std::vector<PaletteColour> blockColours = drawColours(request.oneBlockColour ? 1 : request.blocks, request.distinctColours, random);
