@@ -76,7 +76,7 @@ class Sequencer {
       requireObject(goal.object);
       if (goal.kind == GoalKind::kRelation) requireObject(goal.target);
       if (!initial_.movable.count(goal.object) && !initiallyTrue(goal)) {
-        throw PlanningError("offline planner: cannot " + describeGoal(goal) + ": " + goal.object +
+        throw PlanningError("offline planner: cannot achieve " + describeGoal(goal) + ": " + goal.object +
                             " is not movable");
       }
       if (goal.kind == GoalKind::kDisplaced && goal.displacement.norm() <= 0.0) {
