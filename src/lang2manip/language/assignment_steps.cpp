@@ -158,13 +158,18 @@ void StepParser::assignCorners(Step& step, const std::string& support) {
   for (int depth : {1, -1}) {
     for (int side : {1, -1}) corners.push_back({SurfaceRegion::Kind::kCorner, depth, side});
   }
-  // A corner without room for an object (taken by something that stays) costs more than any move.
+  // A corner without room for an object (taken by something that stays) costs more than any move;
+  // the costs are measured once, before the orders are tried.
   constexpr double kNoRoom = 100.0;
-  const auto cost = [&](const std::string& object, const SurfaceRegion& corner) {
-    const Vector3 point(corner.depth > 0 ? area.max().x() : area.min().x(), corner.side > 0 ? area.max().y() : area.min().y(), 0.0);
-    const double move = (reader_.descriptor(object).position - point).head<2>().norm();
-    return regionHasRoom(object, support, corner, step.objects) ? move : move + kNoRoom;
-  };
+  std::vector<std::vector<double>> costs(step.objects.size(), std::vector<double>(kCorners));
+  for (std::size_t i = 0; i < step.objects.size(); ++i) {
+    for (std::size_t c = 0; c < kCorners; ++c) {
+      const SurfaceRegion& corner = corners[c];
+      const Vector3 point(corner.depth > 0 ? area.max().x() : area.min().x(), corner.side > 0 ? area.max().y() : area.min().y(), 0.0);
+      const double move = (reader_.descriptor(step.objects[i]).position - point).head<2>().norm();
+      costs[i][c] = regionHasRoom(step.objects[i], support, corner, step.objects) ? move : move + kNoRoom;
+    }
+  }
   // The assignment that moves the objects least, over every order of the corners (4! at most).
   std::vector<std::size_t> order(kCorners);
   std::iota(order.begin(), order.end(), 0);
@@ -172,7 +177,7 @@ void StepParser::assignCorners(Step& step, const std::string& support) {
   double bestCost = std::numeric_limits<double>::infinity();
   do {
     double total = 0.0;
-    for (std::size_t i = 0; i < step.objects.size(); ++i) total += cost(step.objects[i], corners[order[i]]);
+    for (std::size_t i = 0; i < step.objects.size(); ++i) total += costs[i][order[i]];
     if (total < bestCost - 1e-12) bestCost = total, best = order;
   } while (std::next_permutation(order.begin(), order.end()));
   for (std::size_t i = 0; i < step.objects.size(); ++i) {

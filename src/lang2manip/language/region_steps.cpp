@@ -1,7 +1,9 @@
 // Region phrases of a step: "put the red block in the top left corner of the table".
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "lang2manip/language/clause_parser.hpp"
 #include "lang2manip/language/clause_step.hpp"
@@ -70,13 +72,15 @@ SurfaceRegion StepParser::chooseCorner(const Step& step, SurfaceRegion corner, c
   if (reference.empty() && !fromRobot && !step.objects.empty()) from = reader_.descriptor(step.objects.front()).position;
   double best = farthest ? -1.0 : std::numeric_limits<double>::infinity();
   SurfaceRegion chosen = corner;
-  const auto hasRoom = [&](int depth, int side) {
-    return step.objects.empty() || regionHasRoom(step.objects.front(), support, {SurfaceRegion::Kind::kCorner, depth, side}, step.objects);
-  };
-  bool anyRoom = false;
+  std::map<std::pair<int, int>, bool> room;  // per (depth, side), measured once
   for (int depth : {1, -1}) {
-    for (int side : {1, -1}) anyRoom = anyRoom || hasRoom(depth, side);
+    for (int side : {1, -1}) {
+      room[{depth, side}] = step.objects.empty() ||
+                            regionHasRoom(step.objects.front(), support, {SurfaceRegion::Kind::kCorner, depth, side}, step.objects);
+    }
   }
+  const bool anyRoom = std::any_of(room.begin(), room.end(), [](const auto& entry) { return entry.second; });
+  const auto hasRoom = [&](int depth, int side) { return room.at({depth, side}); };
   for (int depth : {1, -1}) {
     for (int side : {1, -1}) {
       if ((corner.depth != 0 && corner.depth != depth) || (corner.side != 0 && corner.side != side)) continue;

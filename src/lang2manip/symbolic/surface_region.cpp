@@ -3,10 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdint>
-#include <map>
-#include <memory>
-#include <mutex>
 
 #include "lang2manip/model/scene.hpp"
 #include "lang2manip/symbolic/arm_reach.hpp"
