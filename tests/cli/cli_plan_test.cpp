@@ -94,7 +94,8 @@ TEST(CliPlan, OfflineJsonIsThePlanDocument) {
   ASSERT_EQ(plan["goals"].size(), 2U);
   EXPECT_EQ(plan["goals"][0], json({{"kind", "relation"}, {"object", "marker"}, {"relation", "in"}, {"target", "holder"},
                                     {"distance", nullptr}, {"displacement", nullptr}, {"configuration", nullptr},
-                                    {"position", nullptr}, {"angle", nullptr}, {"region", nullptr}}));
+                                    {"position", nullptr}, {"angle", nullptr}, {"region", nullptr}, {"members", nullptr},
+                                    {"shape", nullptr}, {"heading", nullptr}, {"evenly_spaced", nullptr}}));
 }
 
 TEST(CliPlan, OfflinePlansOnOtherBuiltInProblems) {

@@ -112,20 +112,25 @@ TEST(TabletopLanguage, VagueAmountsAreGapsBetweenTheBoxes) {
 }
 
 TEST(TabletopLanguage, LinesAreEvenlySpacedPlacesInTheOrderTheObjectsStand) {
+  // The blocks stand in a horizontal line already (y 0.2, 0, -0.2 at x 0.3): they stay.
   const TaskSpecification line = understandInstruction("put the blocks in a horizontal line", describeObjects(test::workbenchScene()));
-  ASSERT_EQ(line.goals.size(), 3u) << test::summarize(line);
-  // Along y (left), in the order they stand: green (y -0.2), blue, red; spaced by the widest (6 cm) + 4 cm.
-  EXPECT_EQ(line.goals[0].object, "green_block");
-  EXPECT_EQ(line.goals[2].object, "red_block");
+  EXPECT_EQ(test::summarize(line), "red_block, blue_block, green_block in a line along yaw 90 deg on table");
+  ASSERT_EQ(line.steps.size(), 3u) << test::summarize(line);
+  EXPECT_NEAR(line.steps[0].position->y(), 0.2, 1e-9);
+  EXPECT_NEAR(line.steps[2].position->y(), -0.2, 1e-9);
+  // Along x: spaced by the widest (6 cm) + 4 cm, in the order they stand (ties: as named).
+  const TaskSpecification vertical = understandInstruction("put the blocks in a vertical line", describeObjects(test::workbenchScene()));
+  ASSERT_EQ(vertical.steps.size(), 3u) << test::summarize(vertical);
   for (std::size_t i = 0; i < 3; ++i) {
-    ASSERT_EQ(line.goals[i].kind, GoalKind::kAtPosition);
-    EXPECT_NEAR(line.goals[i].position->x(), line.goals[0].position->x(), 1e-9);
+    ASSERT_EQ(vertical.steps[i].kind, GoalKind::kAtPosition);
+    EXPECT_NEAR(vertical.steps[i].position->y(), vertical.steps[0].position->y(), 1e-9);
   }
-  EXPECT_NEAR(line.goals[1].position->y() - line.goals[0].position->y(), 0.10, 1e-9);
-  EXPECT_NEAR(line.goals[2].position->y() - line.goals[1].position->y(), 0.10, 1e-9);
+  EXPECT_NEAR(vertical.steps[1].position->x() - vertical.steps[0].position->x(), 0.10, 1e-9);
+  EXPECT_NEAR(vertical.steps[2].position->x() - vertical.steps[1].position->x(), 0.10, 1e-9);
   const TaskSpecification column = understandInstruction("put the markers in a column", describeObjects(test::workbenchScene()));
-  ASSERT_EQ(column.goals.size(), 2u);
-  EXPECT_NEAR(column.goals[0].position->y(), column.goals[1].position->y(), 1e-9);
+  ASSERT_EQ(column.steps.size(), 2u);
+  EXPECT_NEAR(column.steps[0].position->y(), column.steps[1].position->y(), 1e-9);
+  EXPECT_NEAR(*column.goals.at(0).heading, 0.0, 1e-9);
   // On a desk whose reachable part is 30 cm deep, three objects spaced by the 13 cm marker do not fit.
   std::vector<ObjectDescriptor> objects = describeObjects(test::deskScene());
   for (ObjectDescriptor& object : objects) {
@@ -137,7 +142,7 @@ TEST(TabletopLanguage, LinesAreEvenlySpacedPlacesInTheOrderTheObjectsStand) {
     (void)understandInstruction("put the marker, the eraser and the holder in a vertical line", objects);
     ADD_FAILURE() << "not refused";
   } catch (const PlanningError& error) {
-    EXPECT_THAT(error.what(), HasSubstr("3 objects in a line need 34 cm clear on desk"));
+    EXPECT_THAT(error.what(), HasSubstr("3 objects in a line need 47 cm clear, and the reachable top has no such line free on desk"));
   }
 }
 

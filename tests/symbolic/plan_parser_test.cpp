@@ -150,7 +150,7 @@ TEST(PlanParserTest, PlaceTurnAndPointingGoalsRoundTrip) {
                        {{"kind", "facing"}, {"object", "marker"}},
                        {{"kind", "facing"}, {"object", "marker"}, {"target", "holder"}, {"angle", 1.0}}};
   const auto problems = problemsOf(document);
-  EXPECT_THAT(problems, Contains(HasSubstr("goals[0].position: missing; a at_position goal needs it")));
+  EXPECT_THAT(problems, Contains(HasSubstr("goals[0].position: missing; an at_position goal needs it")));
   EXPECT_THAT(problems, Contains(HasSubstr("goals[1].angle: expected a non-zero turn in radians within [-2 pi, 2 pi]")));
   EXPECT_THAT(problems, Contains(HasSubstr("goals[2].angle: expected a non-zero turn")));
   EXPECT_THAT(problems, Contains(HasSubstr("goals[3]: a facing goal needs a target to point at or an angle")));
@@ -205,7 +205,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"UnknownTopField", [](json& d) { d["notes"] = "x"; }, "notes: unknown field (valid fields: actions, reasoning, goals)"},
         BadCase{"GoalsNotArray", [](json& d) { d["goals"] = "marker in holder"; }, "goals: expected an array of goals, got string"},
         BadCase{"GoalNotObject", [](json& d) { d["goals"] = {1}; }, "goals[0]: expected a goal object, got number 1"},
-        BadCase{"GoalUnknownKind", [](json& d) { d["goals"] = {{{"kind", "tidy"}}}; }, "goals[0].kind: unknown kind string \"tidy\" (kinds: relation, holding, displaced, at_configuration, handed_over, at_position, turned, facing)"},
+        BadCase{"GoalUnknownKind", [](json& d) { d["goals"] = {{{"kind", "tidy"}}}; }, "goals[0].kind: unknown kind string \"tidy\" (kinds: relation, holding, displaced, at_configuration, handed_over, at_position, turned, facing, arranged)"},
         BadCase{"GoalMissingKind", [](json& d) { d["goals"] = {{{"object", "marker"}}}; }, "goals[0].kind: missing"},
         BadCase{"GoalUnknownObject", [](json& d) { d["goals"] = {{{"kind", "holding"}, {"object", "cup"}}}; }, "goals[0].object: unknown object \"cup\" (objects: "},
         BadCase{"GoalRelationWithoutTarget", [](json& d) { d["goals"] = {{{"kind", "relation"}, {"object", "marker"}, {"relation", "in"}}}; }, "goals[0].target: missing; a relation goal needs it"},

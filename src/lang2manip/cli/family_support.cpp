@@ -235,4 +235,12 @@ void addPickPlaceAt(Plan& plan, const std::string& object, const Vector3& positi
   plan.actions.push_back(place);
 }
 
+std::function<std::optional<FamilyInstance>(const Scene&, Random&)> notYetDone(std::optional<FamilyInstance> (*make)(const Scene&, Random&)) {
+  return [make](const Scene& desk, Random& random) -> std::optional<FamilyInstance> {
+    std::optional<FamilyInstance> instance = make(desk, random);
+    if (instance && instance->check(instance->scene, instance->scene).holds) return std::nullopt;
+    return instance;
+  };
+}
+
 }  // namespace lang2manip::families

@@ -70,4 +70,11 @@ void addPickPlace(Plan& plan, const std::string& object, SpatialRelation relatio
 /// pick `object`, place it with its frame's origin at `position` (base frame).
 void addPickPlaceAt(Plan& plan, const std::string& object, const Vector3& position);
 
+/// `make`, refusing instances whose check already holds on the scene as drawn.
+std::function<std::optional<FamilyInstance>(const Scene&, Random&)> notYetDone(std::optional<FamilyInstance> (*make)(const Scene&, Random&));
+
+/// The arrangement families (arrangement_families.cpp): lines along an edge, circles,
+/// triangles and squares, blocks spread out.
+std::vector<InstructionFamily> arrangementFamilies();
+
 }  // namespace lang2manip::families

@@ -376,16 +376,6 @@ std::optional<FamilyInstance> ravensSpatialBlock(const Scene& desk, Random& rand
   return std::nullopt;
 }
 
-/// `make`, refusing instances whose check already holds on the scene as drawn.
-std::function<std::optional<FamilyInstance>(const Scene&, Random&)> notYetDone(
-    std::optional<FamilyInstance> (*make)(const Scene&, Random&)) {
-  return [make](const Scene& desk, Random& random) -> std::optional<FamilyInstance> {
-    std::optional<FamilyInstance> instance = make(desk, random);
-    if (instance && instance->check(instance->scene, instance->scene).holds) return std::nullopt;
-    return instance;
-  };
-}
-
 }  // namespace
 
 const std::vector<InstructionFamily>& instructionFamilies() {
@@ -407,7 +397,12 @@ const std::vector<InstructionFamily>& instructionFamilies() {
       {"ravens_colour_blocks_in_bowl", "Ravens", notYetDone(ravensColourBlocksInBowl)},
       {"ravens_spatial_block", "Ravens", notYetDone(ravensSpatialBlock)},
   };
-  return families;
+  static const std::vector<InstructionFamily> all = [] {
+    std::vector<InstructionFamily> list = families;
+    for (InstructionFamily& family : arrangementFamilies()) list.push_back(std::move(family));
+    return list;
+  }();
+  return all;
 }
 
 }  // namespace lang2manip

@@ -1,125 +1,232 @@
-// Arrangements of a step: "put the blocks in a horizontal line", "in a row", "in a vertical
-// column", "in a diagonal line", "in a line along the top edge": a place per object on one line
-// of the support's reachable top, evenly spaced, clear of the other objects, in the order the
-// objects already have along it.
+// Arrangements of a step: "put the blocks in a horizontal line", "in a row along the top edge",
+// "in an evenly spaced column", "in a line 10 cm apart", "in a circle (around the bowl)", "in a
+// triangle", "in the shape of a square", "in a circular formation in the middle of the table",
+// "spread out": an arranged goal (what is checked) and an at_position goal per member (where the
+// offline planner puts it, arrangement_layout.cpp).
 
 #include <algorithm>
 #include <cmath>
 
+#include "lang2manip/core/text_parsing.hpp"
+#include "lang2manip/language/arrangement_layout.hpp"
 #include "lang2manip/language/clause_parser.hpp"
 #include "lang2manip/language/clause_step.hpp"
 #include "lang2manip/language/region_phrases.hpp"
+#include "lang2manip/symbolic/arrangement_check.hpp"
 
 namespace lang2manip::language_detail {
 namespace {
 
-constexpr double kSpacingGap = 0.04;
-constexpr double kClearance = 0.03;
+const std::vector<Words> kEvenly{{"evenly", "spaced"}, {"equally", "spaced"}, {"spaced", "evenly"}, {"spaced", "equally"},
+                                 {"evenly", "distributed"}, {"at", "equal", "distances"}, {"with", "equal", "gaps"},
+                                 {"with", "equal", "spacing"}, {"evenly"}, {"equidistant"}};
+const std::vector<Words> kSpreadOut{{"spread", "out"}, {"spaced", "out"}, {"far", "apart"}, {"well", "apart"},
+                                    {"apart", "from", "each", "other"}, {"away", "from", "each", "other"},
+                                    {"far", "apart", "from", "each", "other"}, {"well", "apart", "from", "each", "other"},
+                                    {"far", "from", "each", "other"}, {"far", "away", "from", "each", "other"},
+                                    {"apart", "from", "one", "another"}, {"apart"}, {"scattered"}};
+const std::vector<Words> kShapeNouns{{"shape"}, {"formation"}, {"pattern"}, {"arrangement"}, {"layout"}};
+const std::vector<Words> kSkippedAdjectives{{"single"}, {"straight"}, {"neat"}, {"nice"}, {"perfect"}, {"tidy"},
+                                            {"big"}, {"large"}, {"small"}, {"little"}, {"regular"}, {"equilateral"}};
 
-/// The line's direction (base frame, unit, x-y) a phrase names at words[at]: its length, 0 when none.
-std::size_t lineWords(const Words& words, std::size_t at, Vector3& direction, bool& diagonal) {
-  std::size_t i = at;
-  if (i < words.size() && (words[i] == "a" || words[i] == "one" || words[i] == "the")) ++i;
-  if (i < words.size() && (words[i] == "single" || words[i] == "straight" || words[i] == "neat" || words[i] == "nice")) ++i;
-  std::optional<Vector3> named;
-  diagonal = false;
-  if (i < words.size()) {
-    const std::string& word = words[i];
-    if (word == "horizontal" || word == "sideways") named = Vector3::UnitY(), ++i;
-    else if (word == "vertical") named = Vector3::UnitX(), ++i;
-    else if (word == "diagonal") named = Vector3::UnitX(), diagonal = true, ++i;
-  }
+/// The shape noun at words[i] ("line", "circle", "triangular formation"): its length, 0 when none.
+std::size_t shapeNoun(const Words& words, std::size_t i, ShapePhrase& phrase) {
   if (i >= words.size()) return 0;
-  const std::string& noun = words[i];
-  if (noun == "row") direction = named.value_or(Vector3::UnitY());
-  else if (noun == "column") direction = named.value_or(Vector3::UnitX());
-  else if (noun == "line") direction = named.value_or(Vector3::UnitY());
-  else return 0;
-  return i + 1 - at;
+  const std::string& word = words[i];
+  std::size_t length = 1;
+  if (word == "row" || word == "line") phrase.shape = ArrangementShape::kLine;
+  else if (word == "column") phrase.shape = ArrangementShape::kLine, phrase.direction = phrase.direction.value_or(Vector3::UnitX());
+  else if (word == "circle" || word == "ring") phrase.shape = ArrangementShape::kCircle;
+  else if (word == "triangle") phrase.shape = ArrangementShape::kTriangle;
+  else if (word == "square") phrase.shape = ArrangementShape::kSquare;
+  else if ((word == "circular" || word == "round" || word == "triangular") && longestPhraseAt(words, i + 1, kShapeNouns) > 0) {
+    phrase.shape = word == "triangular" ? ArrangementShape::kTriangle : ArrangementShape::kCircle;
+    length = 2;
+  } else {
+    return 0;
+  }
+  if (length == 1) length += longestPhraseAt(words, i + 1, kShapeNouns);  // "a square shape"
+  if (phrase.shape == ArrangementShape::kLine && word == "row") phrase.direction = phrase.direction.value_or(Vector3::UnitY());
+  return length;
+}
+
+Goal arrangedGoal(const std::vector<std::string>& members, const ShapePhrase& phrase, const std::string& support, const Vector3& direction) {
+  Goal arranged;
+  arranged.kind = GoalKind::kArranged;
+  arranged.members = members;
+  arranged.shape = phrase.shape;
+  arranged.target = support;
+  arranged.evenlySpaced = phrase.evenly || phrase.spacing.has_value();
+  arranged.distance = phrase.spacing;
+  if (phrase.direction || phrase.diagonal) arranged.heading = std::atan2(direction.y(), direction.x());
+  return arranged;
+}
+
+/// True when the members stand on the support in the arrangement already (outside any region
+/// asked for it is not).
+bool alreadyArranged(const Goal& arranged, const ArrangementLayoutRequest& request) {
+  if (request.centreArea || request.around) return false;
+  if (!std::all_of(request.onSupport.begin(), request.onSupport.end(), [](bool on) { return on; })) return false;
+  return checkArrangedBoxes(arranged, request.members, SpatialOptions{}).holds;
+}
+
+std::vector<Vector3> standingCentres(const ArrangementLayoutRequest& request) {
+  std::vector<Vector3> centres;
+  for (const AlignedBox3& box : request.members) centres.emplace_back(box.center().x(), box.center().y(), 0.0);
+  return centres;
 }
 
 }  // namespace
 
-bool StepParser::parseArrangement(Step& step) {
-  if (step.objects.size() < 2) return false;
-  const Words& words = step.words;
-  const std::size_t preposition = longestPhraseAt(words, step.at, {{"in"}, {"into"}, {"to"}, {"as"}, {"on"}});
-  Vector3 direction = Vector3::UnitY();
-  bool diagonal = false;
-  const std::size_t line = preposition > 0 ? lineWords(words, step.at + preposition, direction, diagonal) : 0;
-  if (line == 0) return false;
-  std::size_t at = step.at + preposition + line;
-  std::optional<SurfaceRegion> along;
-  if (matchesAt(words, at, {"along"})) {  // "in a line along the top edge"
-    const std::optional<RegionPhrase> edge = matchRegionPhrase(words, at + 1);
-    if (!edge || edge->region.kind != SurfaceRegion::Kind::kEdge) failStep(step, "a line goes along an edge: the top, bottom, left or right one");
-    along = edge->region;
-    direction = edge->region.depth != 0 ? Vector3::UnitY() : Vector3::UnitX();
-    at += 1 + edge->length;
+std::optional<ShapePhrase> matchShapePhrase(const Words& words, std::size_t at) {
+  ShapePhrase phrase;
+  std::size_t i = at;
+  const auto determiner = [&] {
+    if (i < words.size() && (words[i] == "a" || words[i] == "an" || words[i] == "one" || words[i] == "the")) ++i;
+  };
+  determiner();
+  if (matchesAt(words, i, {"shape", "of"}) || matchesAt(words, i, {"form", "of"})) i += 2, determiner();
+  for (bool more = true; more && i < words.size();) {
+    const std::string& word = words[i];
+    if (const std::size_t evenly = longestPhraseAt(words, i, kEvenly)) phrase.evenly = true, i += evenly;
+    else if (const std::size_t skipped = longestPhraseAt(words, i, kSkippedAdjectives)) i += skipped;
+    else if (word == "horizontal" || word == "sideways") phrase.direction = Vector3::UnitY(), ++i;
+    else if (word == "vertical") phrase.direction = Vector3::UnitX(), ++i;
+    else if (word == "diagonal") phrase.diagonal = true, ++i;
+    else more = false;
   }
-  const std::string support = defaultRegionSupport(step);
-  if (at < words.size() && words[at] == "of") {
-    const std::optional<NounPhrase> of = reader_.read(words, at + 1);
-    if (of) at = of->end;
+  const std::size_t noun = shapeNoun(words, i, phrase);
+  if (noun == 0) return std::nullopt;
+  i += noun;
+  if (phrase.shape != ArrangementShape::kLine && (phrase.direction || phrase.diagonal)) return std::nullopt;
+  if (const std::size_t evenly = longestPhraseAt(words, i, kEvenly)) phrase.evenly = true, i += evenly;
+  if (const auto length = vocabulary::matchLength(words, i); length && matchesAt(words, i + length->length, {"apart"})) {
+    phrase.spacing = length->metres;  // "in a line 10 cm apart"
+    i += length->length + 1;
+  }
+  phrase.length = i - at;
+  return phrase;
+}
+
+bool StepParser::parseArrangement(Step& step) {
+  const Words& words = step.words;
+  std::size_t at = step.at;
+  if (step.objects.size() < 2) {
+    const std::size_t preposition = longestPhraseAt(words, at, {{"in"}, {"into"}, {"as"}});
+    if (preposition > 0 && matchShapePhrase(words, at + preposition)) failStep(step, "an arrangement needs at least two objects");
+    return false;
+  }
+  ShapePhrase phrase;
+  if (const std::size_t spread = longestPhraseAt(words, at, kSpreadOut)) {
+    phrase.shape = ArrangementShape::kSpreadOut;
+    at += spread;
+  } else {
+    const std::size_t preposition =
+        longestPhraseAt(words, at, {{"in"}, {"into"}, {"to"}, {"as"}, {"on"}, {"forming"}, {"to", "form"}, {"so", "they", "form"}});
+    const std::optional<ShapePhrase> shape = preposition > 0 ? matchShapePhrase(words, at + preposition) : std::nullopt;
+    if (!shape) return false;
+    phrase = *shape;
+    at += preposition + shape->length;
   }
   step.at = at;
-  arrangeInLine(step, support, direction, diagonal, along);
+  parseArrangementPlace(step, phrase);
+  arrange(step, phrase);
   return true;
 }
 
-void StepParser::arrangeInLine(Step& step, const std::string& support, Vector3 direction, bool diagonal,
-                               const std::optional<SurfaceRegion>& along) {
-  const ObjectDescriptor& top = reader_.descriptor(support);
-  const AlignedBox3 area = top.reachableTop.value_or(top.bounds);
-  if (diagonal) direction = Vector3(area.sizes().x(), area.sizes().y(), 0.0).normalized();
-  const Vector3 normal(-direction.y(), direction.x(), 0.0);
-  double widest = 0.0;
-  for (const std::string& object : step.objects) widest = std::max(widest, reader_.descriptor(object).bounds.sizes().head<2>().maxCoeff());
-  const double spacing = widest + kSpacingGap;
-  const double length = spacing * static_cast<double>(step.objects.size() - 1);
-  // The order along the line is the order they stand in now.
-  std::vector<std::string> order = step.objects;
-  std::stable_sort(order.begin(), order.end(), [&](const std::string& a, const std::string& b) {
-    return reader_.descriptor(a).position.dot(direction) < reader_.descriptor(b).position.dot(direction);
-  });
-  const auto inside = [&](const Vector3& p) {
-    const double margin = widest / 2.0 + 0.02;
-    return p.x() >= area.min().x() + margin && p.x() <= area.max().x() - margin && p.y() >= area.min().y() + margin &&
-           p.y() <= area.max().y() - margin;
-  };
-  const auto clear = [&](const Vector3& p, bool ofOwn) {
-    for (const ObjectDescriptor& other : reader_.objects()) {
-      if (other.name == support || (!ofOwn && containsWord(step.objects, other.name))) continue;
-      const AlignedBox3& box = other.bounds;
-      const double half = widest / 2.0 + kClearance;
-      if (p.x() > box.min().x() - half && p.x() < box.max().x() + half && p.y() > box.min().y() - half && p.y() < box.max().y() + half) return false;
-    }
-    return true;
-  };
-  Vector3 middle = along ? regionBox(area, *along).center() : area.center();
-  middle.z() = 0.0;
-  for (bool ofOwn : {true, false}) {
-    for (double shift : {0.0, 0.25, -0.25, 0.5, -0.5, 0.75, -0.75}) {
-      const double reach = std::abs(normal.x()) * area.sizes().x() / 2.0 + std::abs(normal.y()) * area.sizes().y() / 2.0;
-      const Vector3 centre = middle + normal * (along ? 0.0 : shift * reach);
-      std::vector<Vector3> spots;
-      for (std::size_t i = 0; i < order.size(); ++i) spots.push_back(centre + direction * (-length / 2.0 + spacing * static_cast<double>(i)));
-      if (!std::all_of(spots.begin(), spots.end(), [&](const Vector3& p) { return inside(p) && clear(p, ofOwn); })) continue;
-      for (std::size_t i = 0; i < order.size(); ++i) {
-        const ObjectDescriptor& object = reader_.descriptor(order[i]);
-        Goal goal;
-        goal.kind = GoalKind::kAtPosition;
-        goal.object = order[i];
-        goal.position = Vector3(spots[i].x() + object.origin.x() - object.position.x(), spots[i].y() + object.origin.y() - object.position.y(),
-                                object.origin.z());
-        specification_.goals.push_back(goal);
+void StepParser::parseArrangementPlace(Step& step, ShapePhrase& phrase) {
+  const Words& words = step.words;
+  for (bool more = true; more && !step.atEnd();) {
+    std::size_t& at = step.at;
+    const std::size_t preposition = regionPreposition(words, at);
+    const std::optional<RegionPhrase> region = matchRegionPhrase(words, at + (matchesAt(words, at, {"along"}) ? 1 : preposition));
+    if (region && (matchesAt(words, at, {"along"}) || preposition > 0)) {  // "along the top edge", "in the middle"
+      if (matchesAt(words, at, {"along"}) && region->region.kind != SurfaceRegion::Kind::kEdge) failStep(step, "a line goes along an edge: the top, bottom, left or right one");
+      if (region->nearestCorner || region->farthestCorner || (region->region.depth == 0 && region->region.side == 0 && region->region.kind == SurfaceRegion::Kind::kCorner)) {
+        failStep(step, "say which corner the arrangement goes in (\"the far left corner\")");
       }
-      step.target = support;
-      return;
+      phrase.region = region->region;
+      if (matchesAt(words, at, {"along"})) phrase.direction = region->region.depth != 0 ? Vector3::UnitY() : Vector3::UnitX();
+      at += (matchesAt(words, at, {"along"}) ? 1 : preposition) + region->length;
+      continue;
     }
+    if (matchesAt(words, at, {"around"}) || matchesAt(words, at, {"round"}) || matchesAt(words, at, {"surrounding"})) {
+      const std::optional<NounPhrase> centre = reader_.read(words, at + 1);
+      if (!centre) failStep(step, "expected an object after \"" + words[at] + "\"");
+      if (phrase.shape == ArrangementShape::kLine || phrase.shape == ArrangementShape::kSpreadOut) failStep(step, "only a circle, triangle or square goes around something");
+      phrase.around = groundTarget(step, *centre, false);
+      at = centre->end;
+      continue;
+    }
+    const std::size_t on = longestPhraseAt(words, at, {{"on"}, {"of"}, {"across"}, {"over"}, {"on", "top", "of"}});
+    const std::optional<NounPhrase> support = on > 0 ? reader_.read(words, at + on) : std::nullopt;
+    if (support) {  // "on the table", "across the desk"
+      phrase.support = groundTarget(step, *support, false);
+      at = support->end;
+      continue;
+    }
+    // ", evenly spaced" or "10 cm apart" after the places
+    const std::size_t comma = matchesAt(words, at, {","}) ? 1 : 0;
+    if (const std::size_t evenly = phrase.shape == ArrangementShape::kLine ? longestPhraseAt(words, at + comma, kEvenly) : 0) {
+      phrase.evenly = true;
+      at += comma + evenly;
+      continue;
+    }
+    more = false;
   }
-  failStep(step, std::to_string(step.objects.size()) + " objects in a line need " + std::to_string(static_cast<int>(std::round(length * 100.0))) +
-                     " cm clear on " + support + ", and its reachable top has no such line free");
+}
+
+void StepParser::arrange(Step& step, const ShapePhrase& phrase) {
+  const std::string support = phrase.support.empty() ? defaultRegionSupport(step) : phrase.support;
+  const ObjectDescriptor& top = reader_.descriptor(support);
+  if (top.role != ObjectRole::kSupport) failStep(step, support + " is not a support to arrange things on");
+  const std::size_t members = step.objects.size();
+  const std::size_t corners = phrase.shape == ArrangementShape::kTriangle ? 3 : phrase.shape == ArrangementShape::kSquare ? 4 : 0;
+  if (corners != 0 && members != corners) {
+    failStep(step, "a " + arrangementShapeName(phrase.shape) + " has " + std::to_string(corners) + " members, not " + std::to_string(members) +
+                       (members > corners ? "; say which of them, or a circle or line" : ""));
+  }
+  if (phrase.shape == ArrangementShape::kCircle && members < 3) failStep(step, "a circle needs at least three objects");
+  ArrangementLayoutRequest request;
+  request.shape = phrase.shape;
+  request.area = top.reachableTop.value_or(top.bounds);
+  if (phrase.region) request.centreArea = regionBox(request.area, *phrase.region);
+  request.direction = phrase.direction.value_or(Vector3::UnitY());
+  if (phrase.diagonal) request.direction = Vector3(request.area.sizes().x(), request.area.sizes().y(), 0.0).normalized();
+  request.spacing = phrase.spacing;
+  for (const std::string& member : step.objects) {
+    request.members.push_back(reader_.descriptor(member).bounds);
+    request.onSupport.push_back(standsOn(member, support));
+  }
+  if (!phrase.around.empty()) request.around = reader_.descriptor(phrase.around).bounds;
+  for (const ObjectDescriptor& other : reader_.objects()) {
+    const bool below = other.bounds.max().z() < top.bounds.max().z() - 0.01;  // what the support stands on
+    if (other.name != support && !below && !containsWord(step.objects, other.name)) request.others.push_back(other.bounds);
+  }
+  if (phrase.spacing && *phrase.spacing < std::max_element(request.members.begin(), request.members.end(), [](const AlignedBox3& a, const AlignedBox3& b) {
+                                                return a.sizes().head<2>().maxCoeff() < b.sizes().head<2>().maxCoeff();
+                                              })->sizes().head<2>().maxCoeff()) {
+    failStep(step, "objects " + metresText(*phrase.spacing) + " apart would overlap: the widest is wider than that");
+  }
+  Goal arranged = arrangedGoal(step.objects, phrase, support, request.direction);
+  std::string why;
+  const std::optional<std::vector<Vector3>> spots = alreadyArranged(arranged, request) ? standingCentres(request) : layOutArrangement(request, why);
+  if (!spots) failStep(step, why + " on " + support);
+
+  bool inRegion = phrase.region.has_value();
+  for (std::size_t i = 0; i < step.objects.size(); ++i) {
+    const ObjectDescriptor& object = reader_.descriptor(step.objects[i]);
+    const Vector3& spot = (*spots)[i];
+    inRegion = inRegion && request.centreArea->contains(Vector3(spot.x(), spot.y(), request.centreArea->center().z()));
+    Goal goal;
+    goal.kind = GoalKind::kAtPosition;
+    goal.object = step.objects[i];
+    goal.position = Vector3(spot.x() + object.origin.x() - object.position.x(), spot.y() + object.origin.y() - object.position.y(), object.origin.z());
+    specification_.goals.push_back(goal);
+  }
+  if (inRegion) arranged.region = phrase.region;
+  specification_.goals.push_back(arranged);
+  step.target = support;
 }
 
 }  // namespace lang2manip::language_detail

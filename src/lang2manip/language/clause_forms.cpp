@@ -31,6 +31,7 @@ std::optional<Words> StepParser::inVerbFirstOrder(const Words& words) const {
       if (vocabulary::matchVerb(Words{stem}, 0)) return join(Words{stem}, by + 2, by + 2, by + 2);
     }
   }
+  if (std::optional<Words> shape = inArrangementOrder(words)) return shape;
   std::size_t subject = longestPhraseAt(words, 0, causatives);  // "make the marker point at the holder"
   const std::size_t wish = subject == 0 ? longestPhraseAt(words, 0, wishes) : 0;  // "I want the marker in the holder"
   subject += wish;
@@ -44,6 +45,51 @@ std::optional<Words> StepParser::inVerbFirstOrder(const Words& words) const {
     const Words verbWords(words.begin() + static_cast<std::ptrdiff_t>(end), words.begin() + static_cast<std::ptrdiff_t>(end + verb->length));
     return join(verbWords, subject, end, end + verb->length);
   }
+  return std::nullopt;
+}
+
+std::optional<Words> StepParser::inArrangementOrder(const Words& words) const {
+  static const std::vector<Words> verbs{{"make"}, {"form"}, {"build"}, {"create"}, {"arrange"}, {"lay", "out"}, {"set", "up"}, {"put"}};
+  static const std::vector<Words> materials{{"with"}, {"of"}, {"from"}, {"out", "of"}, {"using"}};
+  if (std::optional<Words> spread = spreadOrLinedUp(words)) return spread;
+  const std::size_t verb = longestPhraseAt(words, 0, verbs);
+  const std::size_t into = verb > 0 && matchesAt(words, verb, {"into"}) ? 1 : 0;  // "arrange into a circle the blocks"
+  const std::optional<ShapePhrase> shape = verb > 0 ? matchShapePhrase(words, verb + into) : std::nullopt;
+  if (!shape) return std::nullopt;
+  const std::size_t shapeEnd = verb + into + shape->length;
+  const std::size_t material = longestPhraseAt(words, shapeEnd, materials);
+  const std::vector<NounPhrase> list = material > 0 ? reader_.readList(words, shapeEnd + material) : std::vector<NounPhrase>{};
+  if (list.empty()) return std::nullopt;
+  Words rewritten{"put"};
+  rewritten.insert(rewritten.end(), words.begin() + static_cast<std::ptrdiff_t>(shapeEnd + material), words.begin() + static_cast<std::ptrdiff_t>(list.back().end));
+  rewritten.emplace_back("in");
+  rewritten.insert(rewritten.end(), words.begin() + static_cast<std::ptrdiff_t>(verb + into), words.begin() + static_cast<std::ptrdiff_t>(shapeEnd));
+  rewritten.insert(rewritten.end(), words.begin() + static_cast<std::ptrdiff_t>(list.back().end), words.end());
+  return rewritten;
+}
+
+std::optional<Words> StepParser::spreadOrLinedUp(const Words& words) const {
+  static const std::vector<Words> spreadVerbs{{"spread"}, {"spread", "out"}, {"space"}, {"space", "out"}, {"scatter"}, {"distribute"}};
+  static const std::vector<Words> lineVerbs{{"line"}, {"line", "up"}};
+  const std::size_t spread = longestPhraseAt(words, 0, spreadVerbs);
+  const std::size_t verb = spread > 0 ? spread : longestPhraseAt(words, 0, lineVerbs);
+  const std::vector<NounPhrase> list = verb > 0 ? reader_.readList(words, verb) : std::vector<NounPhrase>{};
+  if (list.empty()) return std::nullopt;
+  std::size_t rest = list.back().end;
+  if (matchesAt(words, rest, {"out"}) || matchesAt(words, rest, {"up"})) ++rest;  // "spread the blocks out", "line them up"
+  Words rewritten{"put"};
+  rewritten.insert(rewritten.end(), words.begin() + static_cast<std::ptrdiff_t>(verb), words.begin() + static_cast<std::ptrdiff_t>(list.back().end));
+  const auto append = [&](std::initializer_list<const char*> added, std::size_t from) {
+    for (const char* word : added) rewritten.emplace_back(word);
+    rewritten.insert(rewritten.end(), words.begin() + static_cast<std::ptrdiff_t>(from), words.end());
+    return rewritten;
+  };
+  if (spread > 0) return append({"spread", "out"}, rest);
+  // "line up the blocks (along the front edge, horizontally, in a column)"; "line up X with Y" points.
+  if (rest == words.size() || matchesAt(words, rest, {"along"})) return append({"in", "a", "line"}, rest);
+  if (matchesAt(words, rest, {"horizontally"})) return append({"in", "a", "horizontal", "line"}, rest + 1);
+  if (matchesAt(words, rest, {"vertically"})) return append({"in", "a", "vertical", "line"}, rest + 1);
+  if ((matchesAt(words, rest, {"in"}) || matchesAt(words, rest, {"into"})) && matchShapePhrase(words, rest + 1)) return append({}, rest);
   return std::nullopt;
 }
 

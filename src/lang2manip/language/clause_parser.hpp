@@ -33,6 +33,26 @@ struct RelationSpec {
   std::optional<SurfaceRegion> region{};
 };
 
+/// An arrangement phrase ("in an evenly spaced horizontal line", "in a triangle") and the places
+/// read after it.
+struct ShapePhrase {
+  ArrangementShape shape = ArrangementShape::kLine;
+  /// A line's named direction (base frame): "horizontal" and "row" +y, "vertical" and "column" +x.
+  std::optional<Vector3> direction;
+  bool diagonal = false;
+  bool evenly = false;
+  /// "10 cm apart": the spacing of neighbouring centres, metres.
+  std::optional<double> spacing;
+  std::size_t length = 0;
+  /// Read after the shape: the region its centre is in, what it goes around, its support.
+  std::optional<SurfaceRegion> region{};
+  std::string around{};
+  std::string support{};
+};
+
+/// The shape phrase at words[at] (after "in", "into", "as", "forming"), or nullopt.
+std::optional<ShapePhrase> matchShapePhrase(const Words& words, std::size_t at);
+
 /// Parses the steps of one instruction in order, adding goals to a TaskSpecification.
 class StepParser {
  public:
@@ -43,6 +63,12 @@ class StepParser {
   /// Y trade places" (causatives), "I want X in Y" (a wish; "I want X" alone: a handover), "X and
   /// Y go in Z", "X should be on Y" (subject first); nullopt otherwise.
   [[nodiscard]] std::optional<Words> inVerbFirstOrder(const Words& words) const;
+  /// "make a circle with the blocks", "form a triangle out of X, Y and Z": "put <objects> in a
+  /// <shape>"; nullopt when the step is not said so.
+  [[nodiscard]] std::optional<Words> inArrangementOrder(const Words& words) const;
+  /// "spread (out) the blocks (out)", "scatter X": "put X spread out"; "line up the blocks
+  /// (along the near edge, horizontally, in a column)": "put X in a line ..."; nullopt otherwise.
+  [[nodiscard]] std::optional<Words> spreadOrLinedUp(const Words& words) const;
   /// Parses one step (words without fillers, sequencing words and modifiers).
   void parse(const Words& words, const StepModifiers& modifiers);
 
@@ -121,14 +147,16 @@ class StepParser {
   /// Each object of the step in a corner of its own of `support`'s top: the assignment that moves
   /// them least. Refused for more than four objects.
   void assignCorners(Step& step, const std::string& support);
-  /// "in a horizontal line", "in a row", "in a vertical column", "in a diagonal line", "in a line
-  /// along the top edge": an at_position goal per object of the step (arrangement_steps.cpp).
+  /// "in a horizontal line", "in a circle around the bowl", "in a triangle", "spread out", with
+  /// where ("along the top edge", "in the middle", "on the table"): an arranged goal and an
+  /// at_position goal per object of the step (arrangement_steps.cpp). False when none follows.
   bool parseArrangement(Step& step);
-  /// The step's objects evenly spaced on one line of `support`'s reachable top along `direction`
-  /// (base frame; the top's diagonal when `diagonal`; in the middle of the `along` edge when
-  /// given), clear of the other objects; refused when no such line is free.
-  void arrangeInLine(Step& step, const std::string& support, Vector3 direction, bool diagonal,
-                     const std::optional<SurfaceRegion>& along);
+  /// The places of an arrangement after its shape: a region, "along" an edge, "around" an
+  /// object, the support.
+  void parseArrangementPlace(Step& step, ShapePhrase& phrase);
+  /// The arranged goal of the step's objects and where each goes (arrangement_layout.hpp) on the
+  /// support's reachable top; refused, naming what it needs, when no layout fits.
+  void arrange(Step& step, const ShapePhrase& phrase);
   /// Adds the goal `object` `relation`.
   void addGoal(const std::string& object, const RelationSpec& relation);
   /// The support a region phrase without "of ..." is of: the one the step's first object stands

@@ -1,6 +1,7 @@
 #include "lang2manip/language/instruction.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <map>
 
 #include "lang2manip/language/clause_parser.hpp"
@@ -106,7 +107,13 @@ std::vector<Words> splitSteps(const Words& words, bool& ordered) {
 }
 
 bool involves(const Goal& goal, const std::string& object) {
-  return !object.empty() && goal.object == object;
+  return !object.empty() && (goal.object == object || containsWord(goal.members, object));
+}
+
+/// Whether `later` is about any object `earlier` is about.
+bool involvesAnyOf(const Goal& later, const Goal& earlier) {
+  if (involves(later, earlier.object)) return true;
+  return std::any_of(earlier.members.begin(), earlier.members.end(), [&](const std::string& member) { return involves(later, member); });
 }
 
 void checkHoldingGoals(const TaskSpecification& specification) {
@@ -139,7 +146,8 @@ bool supersedes(const Goal& later, const Goal& earlier) {
     case GoalKind::kHandedOver: return involves(later, earlier.object);
     case GoalKind::kRelation:
     case GoalKind::kAtPosition:  // a turn in place keeps where it stands
-      return involves(later, earlier.object) && later.kind != GoalKind::kDisplaced && later.kind != GoalKind::kAtConfiguration &&
+    case GoalKind::kArranged:    // and the places of an arrangement are its members' goals
+      return involvesAnyOf(later, earlier) && later.kind != GoalKind::kDisplaced && later.kind != GoalKind::kAtConfiguration &&
              later.kind != GoalKind::kTurned && later.kind != GoalKind::kFacing;
     case GoalKind::kTurned:
     case GoalKind::kFacing:
@@ -205,8 +213,11 @@ TaskSpecification understandInstruction(const std::string& text,
       break;
     }
   }
-  specification.steps = specification.goals;
-  specification.goals = finalStateGoals(specification.steps);
+  // The steps go through the members' places; the final state is the arrangement.
+  const std::vector<Goal> all = specification.goals;
+  specification.steps.clear();
+  std::copy_if(all.begin(), all.end(), std::back_inserter(specification.steps), [](const Goal& goal) { return goal.kind != GoalKind::kArranged; });
+  specification.goals = finalStateGoals(all);
   return specification;
 }
 

@@ -75,7 +75,8 @@ std::vector<std::string> objectsSetAside(const Plan& plan, std::size_t last, con
   for (std::size_t i = 0; i <= last && i < plan.actions.size(); ++i) {
     const SymbolicAction& action = plan.actions[i];
     if (action.type != ActionType::kPlace || !action.params.position || action.params.orientation) continue;
-    const bool wanted = std::any_of(specification.goals.begin(), specification.goals.end(), [&](const Goal& goal) {
+    const std::vector<Goal>& steps = specification.steps.empty() ? specification.goals : specification.steps;
+    const bool wanted = std::any_of(steps.begin(), steps.end(), [&](const Goal& goal) {
       return goal.kind == GoalKind::kAtPosition && goal.object == action.object && goal.position &&
              (*goal.position - *action.params.position).head<2>().norm() < 0.01;
     });

@@ -183,6 +183,7 @@ class Sequencer {
         const std::optional<double> turn = facingTurn(world.layout, goal);
         return turn && std::abs(*turn) < kTurnTolerance / 2.0;
       }
+      case GoalKind::kArranged: return false;  // reached through its members' places
     }
     return false;
   }
@@ -216,6 +217,8 @@ class Sequencer {
       case GoalKind::kAtPosition: moveToPosition(goal, world); return;
       case GoalKind::kTurned: turn(goal.object, goal.angle, world); world.achieved.insert(index); return;
       case GoalKind::kFacing: turn(goal.object, turnToFace(world, goal), world); return;
+      case GoalKind::kArranged:
+        throw SequencingFailure("an arrangement is planned through its members' places (the specification's steps), not by itself");
     }
   }
 

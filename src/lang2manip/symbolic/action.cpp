@@ -35,6 +35,14 @@ constexpr NameTable<GraspDirection, 4> kGraspNames{{
     {GraspDirection::kFront, "front"},
 }};
 
+constexpr NameTable<ArrangementShape, 5> kShapeNames{{
+    {ArrangementShape::kLine, "line"},
+    {ArrangementShape::kCircle, "circle"},
+    {ArrangementShape::kTriangle, "triangle"},
+    {ArrangementShape::kSquare, "square"},
+    {ArrangementShape::kSpreadOut, "spread_out"},
+}};
+
 template <typename Enum, std::size_t N>
 std::string nameOf(const NameTable<Enum, N>& table, Enum value) {
   for (const auto& [entry, name] : table) {
@@ -78,6 +86,10 @@ std::vector<std::string> actionTypeNames() { return namesOf(kActionNames); }
 std::vector<std::string> spatialRelationNames() { return namesOf(kRelationNames); }
 std::vector<std::string> graspDirectionNames() { return namesOf(kGraspNames); }
 
+std::string arrangementShapeName(ArrangementShape shape) { return nameOf(kShapeNames, shape); }
+std::optional<ArrangementShape> arrangementShapeFromName(const std::string& name) { return valueOf(kShapeNames, name); }
+std::vector<std::string> arrangementShapeNames() { return namesOf(kShapeNames); }
+
 std::string describeGoal(const Goal& goal) {
   std::ostringstream text;
   switch (goal.kind) {
@@ -116,6 +128,16 @@ std::string describeGoal(const Goal& goal) {
       } else {
         text << goal.object << " pointing at " << goal.target;
       }
+      break;
+    case GoalKind::kArranged:
+      for (std::size_t i = 0; i < goal.members.size(); ++i) text << (i == 0 ? "" : ", ") << goal.members[i];
+      if (goal.shape == ArrangementShape::kSpreadOut) text << " spread out";
+      else text << " in a " << (goal.shape ? arrangementShapeName(*goal.shape) : std::string("?"));
+      if (goal.heading) text << " along yaw " << std::round(*goal.heading * 1800.0 / 3.14159265358979323846) / 10.0 << " deg";
+      if (goal.evenlySpaced) text << ", evenly spaced";
+      if (goal.distance) text << ", " << *goal.distance << " m apart";
+      if (!goal.target.empty()) text << " on " << goal.target;
+      if (goal.region) text << " (" << surfaceRegionName(*goal.region) << ")";
       break;
   }
   return text.str();

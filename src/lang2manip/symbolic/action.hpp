@@ -98,7 +98,29 @@ enum class GoalKind {
   /// The long side of `object` points at `target` (either end; seen from above), or, when
   /// `target` is empty, lies along the base-frame yaw `angle` ("point it forward": 0).
   kFacing,
+  /// The `members` stand together in `shape` (seen from above), each on `target` when set (and
+  /// in its `region`); see checkArrangedBoxes() for what each shape means in metres.
+  kArranged,
 };
+
+/// How the members of an arranged goal stand, seen from above (centres of their bounds).
+enum class ArrangementShape {
+  /// On one straight line (along `heading` when given), evenly spaced when asked.
+  kLine,
+  /// On one circle, spread around it.
+  kCircle,
+  /// At the corners of an equilateral triangle (three members).
+  kTriangle,
+  /// At the corners of a square (four members).
+  kSquare,
+  /// No two of them next to each other.
+  kSpreadOut,
+};
+
+/// "line", "circle", "triangle", "square", "spread_out".
+std::string arrangementShapeName(ArrangementShape shape);
+std::optional<ArrangementShape> arrangementShapeFromName(const std::string& name);
+std::vector<std::string> arrangementShapeNames();
 
 /// Where the robot holds an object out to a person: the tool 0.40 m in front of the robot's base
 /// and 0.25 m above it (robot base frame, metres), its orientation kept.
@@ -121,6 +143,13 @@ struct Goal {
   double angle = 0.0;
   /// For an on relation: the region of the target's top face the object's centre must be in.
   std::optional<SurfaceRegion> region{};
+  /// kArranged: the objects arranged (at least two), their shape, the line's base-frame heading
+  /// (rad, either way along it; none = any), and whether a line is evenly spaced (`distance`,
+  /// when set, is then the spacing of neighbouring centres).
+  std::vector<std::string> members{};
+  std::optional<ArrangementShape> shape{};
+  std::optional<double> heading{};
+  bool evenlySpaced = false;
 };
 
 struct Plan {

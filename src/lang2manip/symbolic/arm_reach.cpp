@@ -32,8 +32,6 @@ constexpr double kHeights[] = {0.02, 0.12};
 constexpr int kFirstAttempts = 24;
 constexpr int kNextAttempts = 3;
 constexpr std::uint64_t kIkSeed = 11;
-/// How far from vertical the hand may lean (top grasps lean up to 40 degrees).
-constexpr double kTilt = 30.0 * kDegree;
 
 /// What the measurement needs of one arm: chain frames, the hand's axis and the shoulder.
 struct ArmFrames {
@@ -87,11 +85,10 @@ std::optional<ArmFrames> armFrames(const SceneRobot& robot, const Pose& base, co
   return frames;
 }
 
-/// Solves IK for the tool frame at `point` (base frame), the hand pointing down or tilted by
-/// kTilt towards or away from the shoulder along `radial` (as top grasps tilt); updates `seed` to
-/// the solution when there is one.
-bool reachDown(const IkSolver& solver, const SceneRobot& robot, const ArmFrames& arm, const Vector3& point,
-               const Vector3& radial, VectorX& seed, int attempts) {
+/// Solves IK for the tool frame at `point` (base frame) with the hand pointing straight down, as
+/// it places what a top grasp holds (a grasp that leans at the pick keeps its lean, so a lean is
+/// no reach the place can count on); updates `seed` to the solution when there is one.
+bool reachDown(const IkSolver& solver, const SceneRobot& robot, const ArmFrames& arm, const Vector3& point, VectorX& seed, int attempts) {
   IkRequest request;
   request.model = robot.model.get();
   request.manipulator = arm.manipulator->name;
@@ -102,16 +99,11 @@ bool reachDown(const IkSolver& solver, const SceneRobot& robot, const ArmFrames&
   request.positionTolerance = 1e-3;
   request.orientationTolerance = 1e-2;
   request.randomSeed = kIkSeed;
-  const double down = std::cos(kTilt), aside = std::sin(kTilt);
-  for (const Vector3& axis : {Vector3(-Vector3::UnitZ()), Vector3(-down * Vector3::UnitZ() + aside * radial),
-                              Vector3(-down * Vector3::UnitZ() - aside * radial)}) {
-    request.target = IkTarget::positionAndAxis(chainToBase * point, chainToBase.linear() * axis, arm.handAxis);
-    const IkResult result = solver.solve(request);
-    if (result.status != IkStatus::kSuccess) continue;
-    seed = result.solutions.front();
-    return true;
-  }
-  return false;
+  request.target = IkTarget::positionAndAxis(chainToBase * point, chainToBase.linear() * -Vector3::UnitZ(), arm.handAxis);
+  const IkResult result = solver.solve(request);
+  if (result.status != IkStatus::kSuccess) return false;
+  seed = result.solutions.front();
+  return true;
 }
 
 /// [inner, outer] reached along one ray at one height (inner > outer when nothing is).
@@ -125,7 +117,7 @@ std::pair<double, double> measureRay(const IkSolver& solver, const SceneRobot& r
   std::optional<int> start;
   for (const double share : {0.5, 0.35, 0.65, 0.2, 0.8}) {  // a first reached point, near the middle first
     const int step = static_cast<int>(std::lround(share * steps));
-    if (reachDown(solver, robot, arm, point(kNearestRadius + step * kRadiusStep), direction, seed, kFirstAttempts)) {
+    if (reachDown(solver, robot, arm, point(kNearestRadius + step * kRadiusStep), seed, kFirstAttempts)) {
       start = step;
       break;
     }
@@ -136,9 +128,9 @@ std::pair<double, double> measureRay(const IkSolver& solver, const SceneRobot& r
   // middle with restarts, so that the boundary is where the arm stops, not where one descent did.
   const auto reachedAt = [&](int step) {
     const Vector3 target = point(kNearestRadius + step * kRadiusStep);
-    if (reachDown(solver, robot, arm, target, direction, seed, kNextAttempts)) return true;
+    if (reachDown(solver, robot, arm, target, seed, kNextAttempts)) return true;
     seed = robot.model->middleConfiguration();
-    return reachDown(solver, robot, arm, target, direction, seed, kFirstAttempts);
+    return reachDown(solver, robot, arm, target, seed, kFirstAttempts);
   };
   int outer = *start, inner = *start;
   while (outer + 1 <= steps && reachedAt(outer + 1)) ++outer;

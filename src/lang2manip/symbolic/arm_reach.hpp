@@ -1,8 +1,8 @@
 #pragma once
 /// @file How far an arm reaches over a horizontal top, measured with the arm's own inverse
 /// kinematics: along rays from its shoulder, the nearest and the farthest horizontal distance at
-/// which the tool frame gets to a point with the hand pointing down (straight, or leaning 30
-/// degrees towards or away from the shoulder, as top grasps lean), at two heights
+/// which the tool frame gets to a point with the hand pointing straight down (as an object held
+/// by a top grasp is placed), at two heights
 /// above the top (where a small grasped object's centre is when it stands on the top, and where
 /// the approach above it passes). The answer depends only on the model's joints and limits, the
 /// arm and the top's height in the base frame, so it is measured once per process for each of

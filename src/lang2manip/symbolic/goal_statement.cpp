@@ -13,9 +13,9 @@ using nlohmann::json;
 
 constexpr GoalKind kGoalKinds[] = {GoalKind::kRelation, GoalKind::kHolding, GoalKind::kDisplaced,
                                    GoalKind::kAtConfiguration, GoalKind::kHandedOver, GoalKind::kAtPosition,
-                                   GoalKind::kTurned, GoalKind::kFacing};
-const std::vector<std::string> kGoalFields{"kind",          "object",   "relation", "target", "distance", "displacement",
-                                           "configuration", "position", "angle",    "region"};
+                                   GoalKind::kTurned, GoalKind::kFacing, GoalKind::kArranged};
+const std::vector<std::string> kGoalFields{"kind",     "object", "relation", "target",  "distance", "displacement",  "configuration",
+                                           "position", "angle",  "region",   "members", "shape",    "heading", "evenly_spaced"};
 
 json nullableOf(const json& type, const std::string& description) {
   return {{"anyOf", {type, {{"type", "null"}}}}, {"description", description}};
@@ -33,7 +33,7 @@ class GoalReader {
     if (!item.is_object()) return fail(path, "expected a goal object, got " + shown(item));
     for (const auto& [name, value] : item.items()) {
       if (std::find(kGoalFields.begin(), kGoalFields.end(), name) == kGoalFields.end()) {
-        report(path + "." + name, "unknown field (valid fields: kind, object, relation, target, distance, displacement, configuration, position, angle, region)");
+        report(path + "." + name, "unknown field (valid fields: kind, object, relation, target, distance, displacement, configuration, position, angle, region, members, shape, heading, evenly_spaced)");
       }
     }
     const std::optional<GoalKind> kind = readKind(item, path);
@@ -54,6 +54,7 @@ class GoalReader {
     if (const json* position = given(item, "position")) goal.position = readVector(*position, path + ".position");
     if (const json* angle = given(item, "angle")) goal.angle = readAngle(*angle, path + ".angle", goal.kind == GoalKind::kFacing);
     if (const json* region = given(item, "region")) goal.region = readRegion(*region, path + ".region");
+    if (goal.kind == GoalKind::kArranged) readArrangement(item, path, goal);
     if (goal.region && goal.relation && *goal.relation != SpatialRelation::kOn) {
       report(path + ".region", "only used with relation \"on\" (a region of the target's top face)");
     }
@@ -71,6 +72,46 @@ class GoalReader {
   }
   void report(const std::string& path, const std::string& message) { problems_.push_back(path + ": " + message); }
 
+  /// The members, shape, heading and spacing of an arranged goal.
+  void readArrangement(const json& item, const std::string& path, Goal& goal) {
+    if (const json* members = given(item, "members")) {
+      if (!members->is_array()) report(path + ".members", "expected an array of object names, got " + shown(*members));
+      for (std::size_t i = 0; members->is_array() && i < members->size(); ++i) {
+        const std::string where = path + ".members[" + std::to_string(i) + "]";
+        const json& member = (*members)[i];
+        if (!member.is_string()) {
+          report(where, "expected an object name, got " + shown(member));
+          continue;
+        }
+        const std::string name = member.get<std::string>();
+        checkKnown(name, where);
+        if (std::find(goal.members.begin(), goal.members.end(), name) != goal.members.end()) report(where, "\"" + name + "\" is named twice");
+        goal.members.push_back(name);
+      }
+    }
+    if (const json* shape = given(item, "shape")) {
+      if (shape->is_string()) goal.shape = arrangementShapeFromName(shape->get<std::string>());
+      std::string names;
+      for (const std::string& name : arrangementShapeNames()) names += (names.empty() ? "" : ", ") + name;
+      if (!goal.shape) report(path + ".shape", "unknown shape " + shown(*shape) + " (shapes: " + names + ")");
+    }
+    if (const json* heading = given(item, "heading")) goal.heading = readAngle(*heading, path + ".heading", true);
+    if (const json* evenly = given(item, "evenly_spaced")) {
+      if (!evenly->is_boolean()) report(path + ".evenly_spaced", "expected true or false, got " + shown(*evenly));
+      goal.evenlySpaced = evenly->is_boolean() && evenly->get<bool>();
+    }
+    if (!goal.shape) return;
+    const std::size_t wanted = *goal.shape == ArrangementShape::kTriangle ? 3 : *goal.shape == ArrangementShape::kSquare ? 4 : 0;
+    const std::size_t least = *goal.shape == ArrangementShape::kCircle ? 3 : 2;
+    if (wanted != 0 && goal.members.size() != wanted) {
+      report(path + ".members", "a " + arrangementShapeName(*goal.shape) + " has " + std::to_string(wanted) + " members, not " + std::to_string(goal.members.size()));
+    } else if (goal.members.size() < least) {
+      report(path + ".members", "a " + arrangementShapeName(*goal.shape) + " needs at least " + std::to_string(least) + " members");
+    }
+    const bool line = *goal.shape == ArrangementShape::kLine;
+    if (!line && (goal.heading || goal.evenlySpaced || goal.distance)) report(path, "heading, evenly_spaced and distance are of a line only");
+  }
+
   static const json* given(const json& item, const std::string& field) {
     const auto it = item.find(field);
     return (it == item.end() || it->is_null()) ? nullptr : &*it;
@@ -86,6 +127,7 @@ class GoalReader {
       case GoalKind::kAtPosition: return {"object", "position"};
       case GoalKind::kTurned: return {"object", "angle"};
       case GoalKind::kFacing: return {"object"};
+      case GoalKind::kArranged: return {"members", "shape"};
     }
     return {};
   }
@@ -94,19 +136,21 @@ class GoalReader {
     if (kind == GoalKind::kAtPosition) return {"target"};
     if (kind == GoalKind::kFacing) return {"target", "angle"};
     if (kind == GoalKind::kTurned) return {"position"};
+    if (kind == GoalKind::kArranged) return {"target", "region", "heading", "evenly_spaced", "distance"};
     return {};
   }
 
   void checkGiven(const json& item, const std::string& path, const std::vector<std::string>& required,
                   const std::vector<std::string>& optional) {
     const std::string kind = item.at("kind").get<std::string>();
+    const std::string article = std::string("aeiou").find(kind.front()) == std::string::npos ? "a " : "an ";
     for (const std::string& field : required) {
-      if (given(item, field) == nullptr) report(path + "." + field, "missing; a " + kind + " goal needs it");
+      if (given(item, field) == nullptr) report(path + "." + field, "missing; " + article + kind + " goal needs it");
     }
     for (const std::string& field : kGoalFields) {
       const bool allowed = field == "kind" || std::count(required.begin(), required.end(), field) != 0 ||
                            std::count(optional.begin(), optional.end(), field) != 0;
-      if (!allowed && given(item, field) != nullptr) report(path + "." + field, "must be null for a " + kind + " goal");
+      if (!allowed && given(item, field) != nullptr) report(path + "." + field, "must be null for " + article + kind + " goal");
     }
   }
 
@@ -132,13 +176,17 @@ class GoalReader {
   }
 
   std::string objectName(const json& item, const std::string& field, const std::string& path) {
-    std::string name = stringField(item, field, path);
+    const std::string name = stringField(item, field, path);
+    checkKnown(name, path + "." + field);
+    return name;
+  }
+
+  void checkKnown(const std::string& name, const std::string& where) {
     if (!name.empty() && !objects_.empty() && std::find(objects_.begin(), objects_.end(), name) == objects_.end()) {
       std::string names;
       for (const std::string& object : objects_) names += (names.empty() ? "" : ", ") + object;
-      report(path + "." + field, "unknown object " + boundedJsonDump(json(name), 60) + " (objects: " + names + ")");
+      report(where, "unknown object " + boundedJsonDump(json(name), 60) + " (objects: " + names + ")");
     }
-    return name;
   }
 
   std::optional<SpatialRelation> readRelation(const json& value, const std::string& path) {
@@ -213,6 +261,7 @@ std::string goalKindName(GoalKind kind) {
     case GoalKind::kAtPosition: return "at_position";
     case GoalKind::kTurned: return "turned";
     case GoalKind::kFacing: return "facing";
+    case GoalKind::kArranged: return "arranged";
   }
   return "unknown";
 }
@@ -230,15 +279,19 @@ nlohmann::json goalStatementSchema() {
       {"type", "object"},
       {"description", "One condition of the final state"},
       {"properties",
-       {{"kind", {{"type", "string"}, {"enum", kinds}, {"description", "relation, holding, displaced, at_configuration, handed_over, at_position, turned or facing"}}},
+       {{"kind", {{"type", "string"}, {"enum", kinds}, {"description", "relation, holding, displaced, at_configuration, handed_over, at_position, turned, facing or arranged"}}},
         {"object", nullableOf({{"type", "string"}}, "The object the goal is about (null for at_configuration)")},
         {"relation", nullableOf({{"type", "string"}, {"enum", relations}}, "relation: where the object ends up relative to target")},
-        {"target", nullableOf({{"type", "string"}}, "relation: the reference object; facing: what the object's long side points at; at_position: whose place it was (optional)")},
-        {"distance", nullableOf(number, "relation: offset from target in metres, when the task gives one")},
+        {"target", nullableOf({{"type", "string"}}, "relation: the reference object; facing: what the object's long side points at; at_position: whose place it was (optional); arranged: the support they all stand on (optional)")},
+        {"distance", nullableOf(number, "relation: offset from target in metres, when the task gives one; arranged line: the spacing of neighbouring centres")},
         {"displacement", nullableOf(vector, "displaced: how far the object moves, metres, robot base frame")},
         {"configuration", nullableOf({{"type", "string"}}, "at_configuration: the named configuration, e.g. home")},
         {"position", nullableOf(vector, "at_position: where the object frame's origin ends up, metres, robot base frame (x and y are checked); turned: where it stands turned when the plan moved it first (null: where it stood)")},
-        {"region", nullableOf({{"type", "string"}, {"enum", surfaceRegionNames()}}, "relation on a support: the region of its top face the object's centre ends up in (corners, edges, centre, halves, quadrants of the reachable part)")},
+        {"region", nullableOf({{"type", "string"}, {"enum", surfaceRegionNames()}}, "relation on a support, or arranged on a target: the region of its top face the object's centre ends up in (corners, edges, centre, halves, quadrants of the reachable part)")},
+        {"members", nullableOf({{"type", "array"}, {"items", {{"type", "string"}}}}, "arranged: the objects arranged together")},
+        {"shape", nullableOf({{"type", "string"}, {"enum", arrangementShapeNames()}}, "arranged: line, circle, triangle (3 members), square (4 members) or spread_out (no two next_to)")},
+        {"heading", nullableOf(number, "arranged line: its direction, radians, base frame (0 = front, pi/2 = left), when the task names one")},
+        {"evenly_spaced", nullableOf({{"type", "boolean"}}, "arranged line: neighbours equally far apart")},
         {"angle", nullableOf(number, "turned: the turn about the vertical from where it started, radians, counter-clockwise seen from above; facing without a target: the heading of the long side, radians, base frame (0 = front)")}}},
       {"required", kGoalFields},
       {"additionalProperties", false}};
@@ -251,17 +304,22 @@ nlohmann::json goalStatementJson(const std::vector<Goal>& goals) {
   for (const Goal& goal : goals) {
     const bool relation = goal.kind == GoalKind::kRelation;
     const bool displaced = goal.kind == GoalKind::kDisplaced;
+    const bool arranged = goal.kind == GoalKind::kArranged;
     const auto vectorJson = [](const Vector3& v) { return json{{"x", v.x()}, {"y", v.y()}, {"z", v.z()}}; };
     list.push_back({{"kind", goalKindName(goal.kind)},
                     {"object", goal.object.empty() ? json(nullptr) : json(goal.object)},
                     {"relation", relation && goal.relation ? json(spatialRelationName(*goal.relation)) : json(nullptr)},
                     {"target", goal.target.empty() ? json(nullptr) : json(goal.target)},
-                    {"distance", relation && goal.distance ? json(*goal.distance) : json(nullptr)},
+                    {"distance", (relation || arranged) && goal.distance ? json(*goal.distance) : json(nullptr)},
                     {"displacement", displaced ? vectorJson(goal.displacement) : json(nullptr)},
                     {"configuration", goal.configuration.empty() ? json(nullptr) : json(goal.configuration)},
                     {"position", (goal.kind == GoalKind::kAtPosition || goal.kind == GoalKind::kTurned) && goal.position ? vectorJson(*goal.position) : json(nullptr)},
                     {"angle", goal.kind == GoalKind::kTurned || (goal.kind == GoalKind::kFacing && goal.target.empty()) ? json(goal.angle) : json(nullptr)},
-                    {"region", relation && goal.region ? json(surfaceRegionName(*goal.region)) : json(nullptr)}});
+                    {"region", (relation || arranged) && goal.region ? json(surfaceRegionName(*goal.region)) : json(nullptr)},
+                    {"members", arranged ? json(goal.members) : json(nullptr)},
+                    {"shape", arranged && goal.shape ? json(arrangementShapeName(*goal.shape)) : json(nullptr)},
+                    {"heading", arranged && goal.heading ? json(*goal.heading) : json(nullptr)},
+                    {"evenly_spaced", arranged && goal.evenlySpaced ? json(true) : json(nullptr)}});
   }
   return list;
 }

@@ -240,6 +240,7 @@ std::optional<bool> goalHolds(const SymbolicState& state, const Goal& goal) {
     case GoalKind::kAtPosition:
     case GoalKind::kTurned:
     case GoalKind::kFacing:
+    case GoalKind::kArranged:
       return std::nullopt;  // geometric
     case GoalKind::kRelation:
       break;

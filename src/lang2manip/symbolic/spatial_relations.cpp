@@ -7,6 +7,7 @@
 #include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/model/scene.hpp"
+#include "lang2manip/symbolic/arrangement_check.hpp"
 #include "lang2manip/symbolic/object_heading.hpp"
 #include "lang2manip/symbolic/plan_validation.hpp"
 #include "lang2manip/symbolic/surface_region.hpp"
@@ -223,6 +224,7 @@ GoalCheck checkGoalInScene(const Scene& scene, const Goal& goal, const GoalCheck
   if (goal.kind == GoalKind::kAtPosition) return checkAtPosition(scene, goal, options);
   if (goal.kind == GoalKind::kTurned) return checkTurned(scene, goal, options);
   if (goal.kind == GoalKind::kFacing) return checkFacing(scene, goal, options);
+  if (goal.kind == GoalKind::kArranged) return checkArranged(scene, goal, options);
   if (goal.kind == GoalKind::kHandedOver) {
     throw InputError("goal \"" + describeGoal(goal) + "\": where the tool is needs the robot's kinematics (verifyExecution checks it)");
   }

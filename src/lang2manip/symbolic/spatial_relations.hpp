@@ -74,7 +74,7 @@ struct GoalCheck {
 /// kTurnTolerance, without tilt, the origin staying within distanceTolerance; facing when the
 /// long side's line points at the target's centre within kTurnTolerance; on with a region when the
 /// object's centre is also within that region of the target's reachable top (surface_region.hpp),
-/// up to half distanceTolerance. Throws InputError for
+/// up to half distanceTolerance; arranged as checkArranged() measures it. Throws InputError for
 /// unknown objects, or a displacement or turn goal without an initial scene.
 GoalCheck checkGoalInScene(const Scene& scene, const Goal& goal, const GoalCheckOptions& options = {});
 

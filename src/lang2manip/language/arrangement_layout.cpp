@@ -1,0 +1,262 @@
+#include "lang2manip/language/arrangement_layout.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+
+namespace lang2manip::language_detail {
+namespace {
+
+/// Between neighbours, beyond the widest member (room for the fingers), metres.
+constexpr double kSpacingGap = 0.04;
+/// From the other objects, metres.
+constexpr double kOtherClearance = 0.03;
+/// Inside the area beyond half the widest member, metres (the area keeps its own margin).
+constexpr double kEdgeMargin = 0.005;
+/// What spread-out members keep beyond the least gap, metres (for where a place lands).
+constexpr double kSpreadSlack = 0.01;
+/// The least gap between neighbours of a line or ring that does not fit with kSpacingGap.
+constexpr double kTightSpacingGap = 0.025;
+constexpr double kGridStep = 0.02;
+/// Rotations of a circle or polygon tried, over one corner's share of the turn.
+constexpr int kRotations = 6;
+
+Vector3 flattened(const Vector3& p) { return {p.x(), p.y(), 0.0}; }
+
+double widestOf(const std::vector<AlignedBox3>& boxes) {
+  double widest = 0.0;
+  for (const AlignedBox3& box : boxes) widest = std::max(widest, box.sizes().head<2>().maxCoeff());
+  return widest;
+}
+
+/// Grid points over `box` (x, y), nearest to `near` first.
+std::vector<Vector3> gridOver(const AlignedBox3& box, const Vector3& near) {
+  std::vector<Vector3> points;
+  for (double x = box.min().x(); x <= box.max().x() + 1e-9; x += kGridStep) {
+    for (double y = box.min().y(); y <= box.max().y() + 1e-9; y += kGridStep) points.emplace_back(x, y, 0.0);
+  }
+  std::stable_sort(points.begin(), points.end(),
+                   [&](const Vector3& a, const Vector3& b) { return (a - flattened(near)).squaredNorm() < (b - flattened(near)).squaredNorm(); });
+  return points;
+}
+
+/// The x-y gap between two boxes.
+double footprintGap(const AlignedBox3& a, const AlignedBox3& b) {
+  const Eigen::Vector2d separation = (a.min().head<2>() - b.max().head<2>()).cwiseMax(b.min().head<2>() - a.max().head<2>()).cwiseMax(0.0);
+  return separation.norm();
+}
+
+AlignedBox3 movedTo(const AlignedBox3& box, const Vector3& centre) {
+  const Vector3 by(centre.x() - box.center().x(), centre.y() - box.center().y(), 0.0);
+  return AlignedBox3(box.min() + by, box.max() + by);
+}
+
+class Layout {
+ public:
+  explicit Layout(const ArrangementLayoutRequest& request) : request_(request), widest_(widestOf(request.members)) {}
+
+  [[nodiscard]] double widest() const { return widest_; }
+  [[nodiscard]] double pitch() const { return request_.spacing.value_or(widest_ + kSpacingGap); }
+  /// The spacings tried: the one asked for, else the roomy one and then tighter ones.
+  [[nodiscard]] std::vector<double> pitches() const {
+    if (request_.spacing) return {*request_.spacing};
+    return {widest_ + kSpacingGap, widest_ + (kSpacingGap + kTightSpacingGap) / 2.0, widest_ + kTightSpacingGap};
+  }
+
+  [[nodiscard]] bool inside(const Vector3& p) const {
+    const double margin = widest_ / 2.0 + kEdgeMargin;
+    const AlignedBox3& area = request_.area;
+    return p.x() >= area.min().x() + margin && p.x() <= area.max().x() - margin && p.y() >= area.min().y() + margin &&
+           p.y() <= area.max().y() - margin;
+  }
+
+  /// Clear of the other objects, and of where the members stand now when `ofMembers`.
+  [[nodiscard]] bool clear(const Vector3& p, bool ofMembers) const {
+    const double half = widest_ / 2.0 + kOtherClearance;
+    const auto blocks = [&](const AlignedBox3& box) {
+      return p.x() > box.min().x() - half && p.x() < box.max().x() + half && p.y() > box.min().y() - half && p.y() < box.max().y() + half;
+    };
+    if (std::any_of(request_.others.begin(), request_.others.end(), blocks)) return false;
+    return !ofMembers || std::none_of(request_.members.begin(), request_.members.end(), blocks);
+  }
+
+  [[nodiscard]] bool fits(const std::vector<Vector3>& spots, bool ofMembers) const {
+    return std::all_of(spots.begin(), spots.end(), [&](const Vector3& p) { return inside(p) && clear(p, ofMembers); });
+  }
+
+  /// Where the shape's centre is tried, nearest to the middle of where it may be first.
+  [[nodiscard]] std::vector<Vector3> centres() const {
+    if (request_.around) return {flattened(request_.around->center())};
+    const AlignedBox3& box = request_.centreArea.value_or(request_.area);
+    return gridOver(box, box.center());
+  }
+
+ private:
+  const ArrangementLayoutRequest& request_;
+  double widest_;
+};
+
+/// spots[i] for member order[i]: the spots in the members' order.
+std::vector<Vector3> inMemberOrder(const std::vector<Vector3>& spots, const std::vector<std::size_t>& order) {
+  std::vector<Vector3> result(spots.size());
+  for (std::size_t i = 0; i < order.size(); ++i) result[order[i]] = spots[i];
+  return result;
+}
+
+/// The assignment of members to spots that moves them least in total (every order for up to seven,
+/// else each member in turn to its nearest free spot).
+std::vector<Vector3> leastTravel(const std::vector<AlignedBox3>& members, const std::vector<Vector3>& spots) {
+  std::vector<std::size_t> order(members.size());
+  std::iota(order.begin(), order.end(), 0);
+  const auto travel = [&](const std::vector<std::size_t>& candidate) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < candidate.size(); ++i) sum += (flattened(members[candidate[i]].center()) - spots[i]).norm();
+    return sum;
+  };
+  if (members.size() <= 7) {
+    std::vector<std::size_t> best = order;
+    double least = travel(order);
+    while (std::next_permutation(order.begin(), order.end())) {
+      if (const double t = travel(order); t < least - 1e-12) least = t, best = order;
+    }
+    return inMemberOrder(spots, best);
+  }
+  std::vector<Vector3> result(members.size());
+  std::vector<bool> used(spots.size(), false);
+  for (std::size_t m = 0; m < members.size(); ++m) {
+    std::size_t nearest = 0;
+    double distance = 1e9;
+    for (std::size_t s = 0; s < spots.size(); ++s) {
+      const double d = (flattened(members[m].center()) - spots[s]).norm();
+      if (!used[s] && d < distance) nearest = s, distance = d;
+    }
+    used[nearest] = true;
+    result[m] = spots[nearest];
+  }
+  return result;
+}
+
+std::optional<std::vector<Vector3>> layOutLine(const ArrangementLayoutRequest& request, const Layout& layout, std::string& why) {
+  const Vector3 direction = flattened(request.direction).normalized();
+  const std::size_t n = request.members.size();
+  const double length = layout.pitch() * static_cast<double>(n - 1);
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return request.members[a].center().dot(direction) < request.members[b].center().dot(direction);
+  });
+  const std::vector<Vector3> centres = layout.centres();
+  for (const double pitch : layout.pitches()) {
+    const double span = pitch * static_cast<double>(n - 1);
+    for (const bool ofMembers : {true, false}) {
+      for (const Vector3& centre : centres) {
+        std::vector<Vector3> spots;
+        for (std::size_t i = 0; i < n; ++i) spots.push_back(centre + direction * (-span / 2.0 + pitch * static_cast<double>(i)));
+        if (layout.fits(spots, ofMembers)) return inMemberOrder(spots, order);
+      }
+    }
+  }
+  why = std::to_string(n) + " objects in a line need " + std::to_string(static_cast<int>(std::round((length + layout.widest()) * 100.0))) +
+        " cm clear, and the reachable top has no such line free";
+  return std::nullopt;
+}
+
+std::optional<std::vector<Vector3>> layOutRing(const ArrangementLayoutRequest& request, const Layout& layout, std::string& why) {
+  const std::size_t n = request.members.size();
+  const double share = 2.0 * std::numbers::pi / static_cast<double>(n);
+  double radius = layout.pitch() / (2.0 * std::sin(std::numbers::pi / static_cast<double>(n)));
+  if (request.around) {  // clear of the box it goes around, grown as clear() grows it, at any angle
+    const Eigen::Vector2d corner = request.around->sizes().head<2>() / 2.0 + Eigen::Vector2d::Constant(layout.widest() / 2.0 + kOtherClearance);
+    radius = std::max(radius, corner.norm() + 1e-3);
+  }
+  const double first = request.shape == ArrangementShape::kSquare ? std::numbers::pi / 4.0 : 0.0;  // a square's sides along x and y
+  const std::vector<Vector3> centres = layout.centres();
+  for (const bool ofMembers : {true, false}) {
+    for (const Vector3& centre : centres) {
+      for (int r = 0; r < kRotations; ++r) {
+        const double rotation = first + share * static_cast<double>(r) / kRotations;
+        std::vector<Vector3> spots;
+        for (std::size_t k = 0; k < n; ++k) {
+          const double angle = rotation + share * static_cast<double>(k);
+          spots.push_back(centre + radius * Vector3(std::cos(angle), std::sin(angle), 0.0));
+        }
+        if (layout.fits(spots, ofMembers)) return leastTravel(request.members, spots);
+      }
+    }
+  }
+  why = std::to_string(n) + " objects in a " + arrangementShapeName(request.shape) + " need a free circle " +
+        std::to_string(static_cast<int>(std::round((2.0 * radius + layout.widest()) * 100.0))) + " cm across" +
+        (request.around ? " around it" : "") + ", and the reachable top has none";
+  return std::nullopt;
+}
+
+/// Members far enough from the others stay; each other one goes to the free spot nearest to it
+/// that is far enough from every member placed.
+std::optional<std::vector<Vector3>> layOutSpread(const ArrangementLayoutRequest& request, const Layout& layout, std::string& why) {
+  const std::vector<AlignedBox3>& members = request.members;
+  const double gap = request.spreadGap + kSpreadSlack;
+  std::vector<std::size_t> crowd(members.size(), 0);
+  for (std::size_t i = 0; i < members.size(); ++i) {
+    for (std::size_t j = 0; j < members.size(); ++j) crowd[i] += i != j && footprintGap(members[i], members[j]) < gap ? 1 : 0;
+  }
+  std::vector<std::size_t> order(members.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return crowd[a] < crowd[b]; });
+  std::vector<std::optional<AlignedBox3>> placed(members.size());
+  const auto farFromPlaced = [&](const AlignedBox3& box) {
+    return std::all_of(placed.begin(), placed.end(), [&](const std::optional<AlignedBox3>& other) { return !other || footprintGap(box, *other) >= gap; });
+  };
+  // First those far enough from the rest stay and the others go to the nearest room; when that
+  // leaves one without room, all of them go, the farthest room from the middle first.
+  for (const bool keep : {true, false}) {
+    std::fill(placed.begin(), placed.end(), std::nullopt);
+    for (const std::size_t i : order) {
+      if (keep && request.onSupport[i] && layout.inside(flattened(members[i].center())) && farFromPlaced(members[i])) placed[i] = members[i];
+    }
+    bool room = true;
+    for (const std::size_t i : order) {
+      if (placed[i]) continue;
+      std::vector<Vector3> candidates = gridOver(request.area, members[i].center());
+      if (!keep) {  // farthest from the middle first
+        candidates = gridOver(request.area, request.area.center());
+        std::reverse(candidates.begin(), candidates.end());
+      }
+      for (const Vector3& spot : candidates) {
+        const AlignedBox3 box = movedTo(members[i], spot);
+        if (layout.inside(spot) && layout.clear(spot, false) && farFromPlaced(box)) {
+          placed[i] = box;
+          break;
+        }
+      }
+      room = room && placed[i].has_value();
+      if (!room) break;
+    }
+    if (room) break;
+    if (!keep) {
+      why = std::to_string(members.size()) + " objects spread out need " + std::to_string(static_cast<int>(std::round(gap * 100.0))) +
+            " cm between each two, and the reachable top has no room for that";
+      return std::nullopt;
+    }
+  }
+  std::vector<Vector3> spots;
+  for (const std::optional<AlignedBox3>& box : placed) spots.push_back(flattened(box->center()));
+  return spots;
+}
+
+}  // namespace
+
+std::optional<std::vector<Vector3>> layOutArrangement(const ArrangementLayoutRequest& request, std::string& why) {
+  const Layout layout(request);
+  switch (request.shape) {
+    case ArrangementShape::kLine: return layOutLine(request, layout, why);
+    case ArrangementShape::kCircle:
+    case ArrangementShape::kTriangle:
+    case ArrangementShape::kSquare: return layOutRing(request, layout, why);
+    case ArrangementShape::kSpreadOut: return layOutSpread(request, layout, why);
+  }
+  why = "unknown shape";
+  return std::nullopt;
+}
+
+}  // namespace lang2manip::language_detail

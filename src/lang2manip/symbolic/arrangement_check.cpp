@@ -1,0 +1,198 @@
+#include "lang2manip/symbolic/arrangement_check.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <numeric>
+
+#include "lang2manip/core/error.hpp"
+#include "lang2manip/model/scene.hpp"
+#include "lang2manip/symbolic/object_heading.hpp"
+
+namespace lang2manip {
+namespace {
+
+using Point = Eigen::Vector2d;
+
+std::vector<Point> centresOf(const std::vector<AlignedBox3>& boxes) {
+  std::vector<Point> centres;
+  for (const AlignedBox3& box : boxes) centres.push_back(box.center().head<2>());
+  return centres;
+}
+
+Point centroidOf(const std::vector<Point>& points) {
+  Point sum = Point::Zero();
+  for (const Point& p : points) sum += p;
+  return sum / static_cast<double>(points.size());
+}
+
+/// `value` with `digits` decimals.
+std::string fixed(double value, int digits) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.*f", digits, value);
+  return buffer;
+}
+std::string metres(double value) { return fixed(value, 3) + " m"; }
+std::string degrees(double radians) { return fixed(radians * 180.0 / std::numbers::pi, 0) + " deg"; }
+
+GoalCheck checkLine(const Goal& goal, const std::vector<Point>& points, double tolerance) {
+  const Point centre = centroidOf(points);
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  for (const Point& p : points) scatter += (p - centre) * (p - centre).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> axes(scatter);
+  const Point along = axes.eigenvectors().col(1);
+  const Point across(-along.y(), along.x());
+  double offLine = 0.0;
+  std::vector<double> positions;
+  for (const Point& p : points) {
+    offLine = std::max(offLine, std::abs((p - centre).dot(across)));
+    positions.push_back((p - centre).dot(along));
+  }
+  std::sort(positions.begin(), positions.end());
+  std::vector<double> spacings;
+  for (std::size_t i = 1; i < positions.size(); ++i) spacings.push_back(positions[i] - positions[i - 1]);
+  const double heading = std::atan2(along.y(), along.x());
+  std::string explanation = "the centres lie within " + metres(offLine) + " of a line along yaw " + degrees(heading);
+  bool holds = offLine <= tolerance;
+  if (goal.heading) {
+    const double off = std::abs(reducedAngle(heading - *goal.heading, std::numbers::pi));
+    explanation += ", " + degrees(off) + " off the wanted direction";
+    holds = holds && off <= kLineHeadingTolerance;
+  }
+  const auto [fewest, most] = std::minmax_element(spacings.begin(), spacings.end());
+  explanation += ", neighbours " + fixed(*fewest, 3) + " to " + metres(*most) + " apart";
+  if (goal.evenlySpaced) holds = holds && *most - *fewest <= tolerance;
+  if (goal.distance) holds = holds && std::abs(*fewest - *goal.distance) <= tolerance && std::abs(*most - *goal.distance) <= tolerance;
+  return {holds, explanation};
+}
+
+GoalCheck checkCircle(const std::vector<Point>& points, double tolerance) {
+  const Point centre = centroidOf(points);
+  std::vector<double> radii;
+  std::vector<double> angles;
+  for (const Point& p : points) {
+    radii.push_back((p - centre).norm());
+    angles.push_back(std::atan2(p.y() - centre.y(), p.x() - centre.x()));
+  }
+  const double radius = std::accumulate(radii.begin(), radii.end(), 0.0) / static_cast<double>(radii.size());
+  double offCircle = 0.0;
+  for (const double r : radii) offCircle = std::max(offCircle, std::abs(r - radius));
+  std::sort(angles.begin(), angles.end());
+  const double share = 2.0 * std::numbers::pi / static_cast<double>(points.size());
+  double widestGap = angles.front() + 2.0 * std::numbers::pi - angles.back();
+  double narrowestGap = widestGap;
+  for (std::size_t i = 1; i < angles.size(); ++i) {
+    widestGap = std::max(widestGap, angles[i] - angles[i - 1]);
+    narrowestGap = std::min(narrowestGap, angles[i] - angles[i - 1]);
+  }
+  const bool holds = offCircle <= tolerance && radius >= tolerance && narrowestGap >= share / 2.0 && widestGap <= 1.5 * share;
+  return {holds, "the centres lie within " + metres(offCircle) + " of a circle of radius " + metres(radius) +
+                     ", neighbours " + fixed(narrowestGap * 180.0 / std::numbers::pi, 0) + " to " + degrees(widestGap) + " apart around it"};
+}
+
+/// Each point within tolerance of its own corner of the regular polygon fitted to them.
+GoalCheck checkPolygon(const std::vector<Point>& points, double tolerance) {
+  const std::size_t corners = points.size();
+  const double n = static_cast<double>(corners);
+  const Point centre = centroidOf(points);
+  double radius = 0.0;
+  Point rotation = Point::Zero();  // the mean of n times each point's angle: the polygon's rotation
+  for (const Point& p : points) {
+    radius += (p - centre).norm() / n;
+    const double angle = std::atan2(p.y() - centre.y(), p.x() - centre.x());
+    rotation += Point(std::cos(n * angle), std::sin(n * angle));
+  }
+  const double first = std::atan2(rotation.y(), rotation.x()) / n;
+  std::vector<bool> taken(corners, false);
+  double offCorner = 0.0;
+  bool ownCorners = true;
+  for (const Point& p : points) {
+    std::size_t nearest = 0;
+    double distance = 1e9;
+    for (std::size_t k = 0; k < corners; ++k) {
+      const double angle = first + 2.0 * std::numbers::pi * static_cast<double>(k) / n;
+      const double d = (p - (centre + radius * Point(std::cos(angle), std::sin(angle)))).norm();
+      if (d < distance) nearest = k, distance = d;
+    }
+    ownCorners = ownCorners && !taken[nearest];
+    taken[nearest] = true;
+    offCorner = std::max(offCorner, distance);
+  }
+  const double side = 2.0 * radius * std::sin(std::numbers::pi / n);
+  const bool holds = ownCorners && offCorner <= tolerance && side >= 2.0 * tolerance;
+  return {holds, "the centres lie within " + metres(offCorner) + " of the corners of a regular polygon of side " + metres(side) +
+                     (ownCorners ? "" : ", two at one corner")};
+}
+
+const SceneObject& memberNamed(const Scene& scene, const std::string& name) {
+  const SceneObject* object = scene.findObject(name);
+  if (object != nullptr) return *object;
+  std::string names;
+  for (const SceneObject& o : scene.objects()) names += (names.empty() ? "" : ", ") + o.name;
+  throw InputError("goal member: unknown object \"" + name + "\" (objects: " + names + ")");
+}
+
+GoalCheck checkSpreadOut(const std::vector<AlignedBox3>& boxes, double nearDistance) {
+  double closest = 1e9;
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    for (std::size_t j = i + 1; j < boxes.size(); ++j) {
+      AlignedBox3 a = boxes[i], b = boxes[j];
+      a.min().z() = b.min().z() = 0.0;  // seen from above
+      a.max().z() = b.max().z() = 0.0;
+      closest = std::min(closest, boxGap(a, b));
+    }
+  }
+  return {closest >= nearDistance, "the closest two are " + metres(closest) + " apart (spread out: at least " + metres(nearDistance) + ")"};
+}
+
+}  // namespace
+
+GoalCheck checkArrangedBoxes(const Goal& goal, const std::vector<AlignedBox3>& boxes, const SpatialOptions& spatial) {
+  if (!goal.shape) throw InputError("goal \"" + describeGoal(goal) + "\": no shape");
+  if (boxes.size() < 2) throw InputError("goal \"" + describeGoal(goal) + "\": an arrangement needs at least two members");
+  const std::vector<Point> centres = centresOf(boxes);
+  const double tolerance = spatial.distanceTolerance;
+  switch (*goal.shape) {
+    case ArrangementShape::kLine: return checkLine(goal, centres, tolerance);
+    case ArrangementShape::kCircle:
+      if (boxes.size() < 3) return {false, "a circle needs at least three members"};
+      return checkCircle(centres, tolerance);
+    case ArrangementShape::kTriangle:
+    case ArrangementShape::kSquare: {
+      const std::size_t corners = *goal.shape == ArrangementShape::kTriangle ? 3 : 4;
+      if (boxes.size() != corners) return {false, "a " + arrangementShapeName(*goal.shape) + " has " + std::to_string(corners) + " members"};
+      return checkPolygon(centres, tolerance);
+    }
+    case ArrangementShape::kSpreadOut: return checkSpreadOut(boxes, spatial.nearDistance);
+  }
+  return {false, "unknown shape"};
+}
+
+GoalCheck checkArranged(const Scene& scene, const Goal& goal, const GoalCheckOptions& options) {
+  const Pose toBase = robotBaseFrame(scene, options.robot).inverse();
+  std::vector<AlignedBox3> boxes;
+  for (const std::string& member : goal.members) {
+    const SceneObject& object = memberNamed(scene, member);
+    if (scene.findAttachment(member) != nullptr) return {false, member + " is held, not standing in the arrangement"};
+    if (!goal.target.empty()) {
+      Goal resting;
+      resting.object = member;
+      resting.relation = SpatialRelation::kOn;
+      resting.target = goal.target;
+      resting.region = goal.region;
+      const GoalCheck on = checkGoalInScene(scene, resting, options);
+      if (!on.holds) return on;
+    }
+    AlignedBox3 box;
+    const AlignedBox3 world = object.worldBounds();
+    for (int corner = 0; corner < 8; ++corner) box.extend(toBase * world.corner(static_cast<AlignedBox3::CornerType>(corner)));
+    boxes.push_back(box);
+  }
+  GoalCheck check = checkArrangedBoxes(goal, boxes, options.spatial);
+  check.explanation = describeGoal(goal) + ": " + check.explanation;
+  return check;
+}
+
+}  // namespace lang2manip

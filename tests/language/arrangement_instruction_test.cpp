@@ -1,0 +1,117 @@
+// Arrangements in instructions (issue 23, class 2) on the workbench scene: lines, circles,
+// triangles, squares and spread-out objects, where they go, and that the places the offline
+// planner chooses satisfy the arranged goal the check measures.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "lang2manip/language/instruction.hpp"
+#include "lang2manip/language/object_descriptor.hpp"
+#include "lang2manip/symbolic/spatial_relations.hpp"
+#include "lang2manip/symbolic/task_planner.hpp"
+#include "language/language_test_scenes.hpp"
+#include "language/language_test_support.hpp"
+
+namespace lang2manip {
+namespace {
+
+using ::testing::HasSubstr;
+
+TaskSpecification arrangementOf(const std::string& instruction, const Scene& scene = test::workbenchScene()) {
+  return understandInstruction(instruction, describeObjects(scene));
+}
+
+std::string arrangementRefusal(const std::string& instruction) {
+  try {
+    return "understood: " + test::summarize(arrangementOf(instruction));
+  } catch (const PlanningError& error) {
+    return error.what();
+  }
+}
+
+/// The workbench with the yellow cup in the middle of the table, room around it.
+Scene cupInTheMiddle() {
+  Scene scene = test::workbenchScene();
+  scene.object("yellow_cup").pose.translation().head<2>() = Eigen::Vector2d(0.0, 0.0);
+  return scene;
+}
+
+/// The scene with every object of an at_position step moved there, and the check of each
+/// arranged goal on it.
+void expectPlacesMakeTheArrangement(const std::string& instruction, Scene scene = test::workbenchScene()) {
+  const TaskSpecification specification = arrangementOf(instruction, scene);
+  for (const Goal& step : specification.steps) {
+    ASSERT_EQ(step.kind, GoalKind::kAtPosition) << instruction;
+    scene.object(step.object).pose.translation().head<2>() = step.position->head<2>();
+  }
+  ASSERT_FALSE(specification.goals.empty());
+  for (const Goal& goal : specification.goals) {
+    ASSERT_EQ(goal.kind, GoalKind::kArranged) << instruction;
+    const GoalCheck check = checkGoalInScene(scene, goal);
+    EXPECT_TRUE(check.holds) << instruction << ": " << check.explanation;
+  }
+}
+
+TEST(ArrangementInstruction, ShapesAreReadInManyWordings) {
+  EXPECT_EQ(test::summarize(arrangementOf("arrange the blocks in a circle")), "red_block, blue_block, green_block in a circle on table");
+  EXPECT_EQ(test::summarize(arrangementOf("put the blocks and the markers in a ring")),
+            "red_block, blue_block, green_block, marker_1, marker_2 in a circle on table");
+  EXPECT_EQ(test::summarize(arrangementOf("make a triangle with the blocks")), "red_block, blue_block, green_block in a triangle on table");
+  EXPECT_EQ(test::summarize(arrangementOf("form a triangular formation out of the three blocks")),
+            "red_block, blue_block, green_block in a triangle on table");
+  EXPECT_EQ(test::summarize(arrangementOf("put the blocks and the red marker in the shape of a square")),
+            "red_block, blue_block, green_block, marker_1 in a square on table");
+  EXPECT_EQ(test::summarize(arrangementOf("spread out the blocks")), "red_block, blue_block, green_block spread out on table");
+  EXPECT_EQ(test::summarize(arrangementOf("spread the blocks out across the table")), "red_block, blue_block, green_block spread out on table");
+  EXPECT_EQ(test::summarize(arrangementOf("put the blocks in an evenly spaced row")),
+            "red_block, blue_block, green_block in a line along yaw 90 deg, evenly spaced on table");
+  EXPECT_EQ(test::summarize(arrangementOf("line the blocks up in a vertical line 12 cm apart")),
+            "red_block, blue_block, green_block in a line along yaw 0 deg, evenly spaced, 0.12 m apart on table");
+}
+
+TEST(ArrangementInstruction, ThePlacesChosenMakeTheArrangementTheCheckMeasures) {
+  for (const char* instruction :
+       {"put the blocks in a horizontal line", "put the blocks in a vertical line 12 cm apart", "put the blocks in a diagonal line", "line up the blocks along the far edge",
+        "arrange the blocks in a circle", "put the blocks and the markers in a circle", "make a triangle with the blocks",
+        "put the blocks and the red marker in a square",
+        "put the blocks in a triangle in the far left corner of the table", "put the blocks and the cups in a line along the near edge",
+        "spread out the blocks and the markers"}) {
+    expectPlacesMakeTheArrangement(instruction);
+  }
+  expectPlacesMakeTheArrangement("arrange the blocks in a circle around the yellow cup", cupInTheMiddle());
+}
+
+TEST(ArrangementInstruction, ACircleAroundAnObjectIsCentredOnItAndClearsIt) {
+  const TaskSpecification specification = arrangementOf("arrange the blocks in a circle around the yellow cup", cupInTheMiddle());
+  const Vector3 cup(0.0, 0.0, 0.0);
+  for (const Goal& step : specification.steps) {
+    const double radius = (step.position->head<2>() - cup.head<2>()).norm();
+    EXPECT_GT(radius, 0.042 + 0.03) << step.object;  // half the cup's diagonal and half a block
+    EXPECT_LT(radius, 0.15) << step.object;
+  }
+}
+
+TEST(ArrangementInstruction, SpreadingOutMovesOnlyTheObjectsThatAreTooClose) {
+  // The blocks stand 20 cm apart already: spread out, nothing has to move.
+  const TaskSpecification specification = arrangementOf("spread out the red and the green block");
+  for (const Goal& step : specification.steps) {
+    const Vector3 now = describeObjects(test::workbenchScene()).at(step.object == "red_block" ? 1 : 3).origin;
+    EXPECT_NEAR((step.position->head<2>() - now.head<2>()).norm(), 0.0, 1e-9) << step.object;
+  }
+}
+
+TEST(ArrangementInstruction, ArrangementsThatCannotBeAreRefusedSayingWhy) {
+  EXPECT_THAT(arrangementRefusal("make a triangle with the blocks and the markers"), HasSubstr("a triangle has 3 members, not 5"));
+  EXPECT_THAT(arrangementRefusal("put the blocks in a square"), HasSubstr("a square has 4 members, not 3"));
+  EXPECT_THAT(arrangementRefusal("put the red block in a circle"), HasSubstr("an arrangement needs at least two objects"));
+  EXPECT_THAT(arrangementRefusal("put the blocks in a line 3 cm apart"), HasSubstr("0.030 m apart would overlap: the widest is wider than that"));
+  EXPECT_THAT(arrangementRefusal("put the blocks in a line around the yellow cup"), HasSubstr("only a circle, triangle or square goes around something"));
+  // Around the box by the table's edge, a circle clear of it does not fit.
+  EXPECT_THAT(arrangementRefusal("arrange the blocks in a circle around the box"), HasSubstr("around it, and the reachable top has none"));
+  EXPECT_THAT(arrangementRefusal("put the blocks in a circle in a corner"), HasSubstr("say which corner the arrangement goes in"));
+  // Twenty objects' worth of spacing does not fit on a 1.2 m table.
+  EXPECT_THAT(arrangementRefusal("put the blocks, the cups, the box and the markers in a line 30 cm apart"), HasSubstr("objects in a line need"));
+}
+
+}  // namespace
+}  // namespace lang2manip

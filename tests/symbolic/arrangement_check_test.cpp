@@ -1,0 +1,158 @@
+// Arranged goals (issue 23, class 2): the geometric predicates of lines, circles, triangles,
+// squares and spread-out objects, their check on a scene, and the goal statement an LLM writes.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "lang2manip/model/builtin_data.hpp"
+#include "lang2manip/model/kautham_problem.hpp"
+#include "lang2manip/symbolic/arrangement_check.hpp"
+#include "lang2manip/symbolic/goal_statement.hpp"
+
+namespace lang2manip {
+namespace {
+
+using ::testing::HasSubstr;
+using nlohmann::json;
+
+/// A 4 cm block's box centred at (x, y).
+AlignedBox3 block(double x, double y) { return {Vector3(x - 0.02, y - 0.02, 0.0), Vector3(x + 0.02, y + 0.02, 0.04)}; }
+
+Goal arranged(ArrangementShape shape, std::size_t members) {
+  Goal goal;
+  goal.kind = GoalKind::kArranged;
+  goal.shape = shape;
+  for (std::size_t i = 0; i < members; ++i) goal.members.push_back("block" + std::to_string(i));
+  return goal;
+}
+
+std::vector<AlignedBox3> onCircle(std::size_t n, double radius, double firstAngle = 0.3) {
+  std::vector<AlignedBox3> boxes;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double angle = firstAngle + 2.0 * std::numbers::pi * static_cast<double>(k) / static_cast<double>(n);
+    boxes.push_back(block(0.5 + radius * std::cos(angle), 0.1 + radius * std::sin(angle)));
+  }
+  return boxes;
+}
+
+TEST(ArrangementCheck, ALineHoldsWithinTheToleranceOfItsFittedLineAndAlongItsHeading) {
+  Goal line = arranged(ArrangementShape::kLine, 4);
+  std::vector<AlignedBox3> boxes{block(0.5, -0.15), block(0.505, -0.05), block(0.495, 0.05), block(0.5, 0.15)};
+  EXPECT_TRUE(checkArrangedBoxes(line, boxes, {}).holds);
+  line.heading = std::numbers::pi / 2.0;  // sideways: either way along it
+  EXPECT_TRUE(checkArrangedBoxes(line, boxes, {}).holds);
+  line.heading = -std::numbers::pi / 2.0;
+  EXPECT_TRUE(checkArrangedBoxes(line, boxes, {}).holds);
+  line.heading = 0.0;
+  const GoalCheck across = checkArrangedBoxes(line, boxes, {});
+  EXPECT_FALSE(across.holds);
+  EXPECT_THAT(across.explanation, HasSubstr("89 deg off the wanted direction"));
+  line.heading.reset();
+  boxes[2] = block(0.56, 0.05);  // 6 cm off the line
+  const GoalCheck bent = checkArrangedBoxes(line, boxes, {});
+  EXPECT_FALSE(bent.holds);
+  EXPECT_THAT(bent.explanation, HasSubstr("of a line along yaw"));
+}
+
+TEST(ArrangementCheck, EvenSpacingAndAGivenSpacingAreMeasuredBetweenNeighbours) {
+  Goal line = arranged(ArrangementShape::kLine, 3);
+  line.evenlySpaced = true;
+  EXPECT_TRUE(checkArrangedBoxes(line, {block(0.4, 0.0), block(0.5, 0.0), block(0.6, 0.0)}, {}).holds);
+  const GoalCheck uneven = checkArrangedBoxes(line, {block(0.4, 0.0), block(0.45, 0.0), block(0.6, 0.0)}, {});
+  EXPECT_FALSE(uneven.holds);
+  EXPECT_THAT(uneven.explanation, HasSubstr("neighbours 0.050 to 0.150 m apart"));
+  line.distance = 0.10;
+  EXPECT_TRUE(checkArrangedBoxes(line, {block(0.4, 0.0), block(0.5, 0.0), block(0.6, 0.0)}, {}).holds);
+  EXPECT_FALSE(checkArrangedBoxes(line, {block(0.4, 0.0), block(0.55, 0.0), block(0.7, 0.0)}, {}).holds);
+}
+
+TEST(ArrangementCheck, ACircleNeedsEveryCentreOnItAndTheMembersSpreadAroundIt) {
+  const Goal circle = arranged(ArrangementShape::kCircle, 5);
+  EXPECT_TRUE(checkArrangedBoxes(circle, onCircle(5, 0.10), {}).holds);
+  std::vector<AlignedBox3> squeezed = onCircle(5, 0.10);
+  squeezed[1] = onCircle(5, 0.10, 0.35)[0];  // two almost at one place, a gap elsewhere
+  EXPECT_FALSE(checkArrangedBoxes(circle, squeezed, {}).holds);
+  std::vector<AlignedBox3> dented = onCircle(5, 0.10);
+  dented[2] = onCircle(5, 0.06)[2];
+  const GoalCheck off = checkArrangedBoxes(circle, dented, {});
+  EXPECT_FALSE(off.holds);
+  EXPECT_THAT(off.explanation, HasSubstr("of a circle of radius"));
+  EXPECT_FALSE(checkArrangedBoxes(arranged(ArrangementShape::kCircle, 2), onCircle(2, 0.1), {}).holds);
+}
+
+TEST(ArrangementCheck, TrianglesAndSquaresAreRegularPolygonsOfTheirMembers) {
+  EXPECT_TRUE(checkArrangedBoxes(arranged(ArrangementShape::kTriangle, 3), onCircle(3, 0.08), {}).holds);
+  EXPECT_TRUE(checkArrangedBoxes(arranged(ArrangementShape::kSquare, 4), onCircle(4, 0.08, 0.0), {}).holds);
+  // Three in a row are no triangle; a rhombus is no square.
+  EXPECT_FALSE(checkArrangedBoxes(arranged(ArrangementShape::kTriangle, 3), {block(0.4, 0.0), block(0.5, 0.0), block(0.6, 0.0)}, {}).holds);
+  const std::vector<AlignedBox3> rhombus{block(0.5, 0.0), block(0.6, 0.06), block(0.7, 0.0), block(0.6, -0.06)};
+  EXPECT_FALSE(checkArrangedBoxes(arranged(ArrangementShape::kSquare, 4), rhombus, {}).holds);
+  const GoalCheck count = checkArrangedBoxes(arranged(ArrangementShape::kSquare, 3), onCircle(3, 0.08), {});
+  EXPECT_FALSE(count.holds);
+  EXPECT_THAT(count.explanation, HasSubstr("a square has 4 members"));
+}
+
+TEST(ArrangementCheck, SpreadOutMeansNoTwoNextToEachOther) {
+  const Goal spread = arranged(ArrangementShape::kSpreadOut, 3);
+  EXPECT_TRUE(checkArrangedBoxes(spread, {block(0.4, 0.0), block(0.55, 0.0), block(0.4, 0.2)}, {}).holds);
+  const GoalCheck close = checkArrangedBoxes(spread, {block(0.4, 0.0), block(0.48, 0.0), block(0.4, 0.2)}, {});
+  EXPECT_FALSE(close.holds);
+  EXPECT_THAT(close.explanation, HasSubstr("the closest two are 0.040 m apart (spread out: at least 0.100 m)"));
+}
+
+TEST(ArrangementCheck, OnASceneMembersMustStandOnTheTargetAndNotBeHeld) {
+  Scene scene = readKauthamProblem(resolveProblem("panda_desk")).scene;
+  Goal line;
+  line.kind = GoalKind::kArranged;
+  line.shape = ArrangementShape::kLine;
+  line.members = {"marker", "eraser"};
+  line.target = "desk";
+  const GoalCheck two = checkGoalInScene(scene, line);  // any two points are on a line
+  EXPECT_TRUE(two.holds) << two.explanation;
+  EXPECT_THAT(two.explanation, HasSubstr("marker, eraser in a line on desk: the centres lie within 0.000 m"));
+  line.target = "holder";
+  EXPECT_FALSE(checkGoalInScene(scene, line).holds);
+  line.target.clear();
+  line.members = {"marker", "cup"};
+  EXPECT_THROW(checkGoalInScene(scene, line), InputError);
+}
+
+TEST(ArrangementCheck, TheGoalStatementReadsAndWritesArrangementsAndNamesEachMistake) {
+  const std::vector<std::string> objects{"desk", "marker", "eraser", "holder"};
+  std::vector<std::string> problems;
+  const json goals = {{{"kind", "arranged"}, {"members", {"marker", "eraser"}}, {"shape", "line"}, {"target", "desk"},
+                       {"heading", 1.5707963}, {"evenly_spaced", true}, {"distance", 0.1}}};
+  const std::vector<Goal> read = readGoalStatement(goals, "goals", objects, problems);
+  ASSERT_TRUE(problems.empty()) << problems.front();
+  EXPECT_EQ(describeGoal(read.front()), "marker, eraser in a line along yaw 90 deg, evenly spaced, 0.1 m apart on desk");
+  const json written = goalStatementJson(read)[0];
+  EXPECT_EQ(written["members"], json({"marker", "eraser"}));
+  EXPECT_EQ(written["shape"], "line");
+  EXPECT_EQ(written["evenly_spaced"], true);
+  EXPECT_EQ(readGoalStatement(goalStatementJson(read), "goals", objects, problems).front().members, read.front().members);
+
+  const json wrong = {{{"kind", "arranged"}, {"members", {"marker", "cup"}}, {"shape", "line"}},
+                      {{"kind", "arranged"}, {"members", {"marker", "eraser"}}, {"shape", "hexagon"}},
+                      {{"kind", "arranged"}, {"members", {"marker", "eraser"}}, {"shape", "triangle"}},
+                      {{"kind", "arranged"}, {"members", {"marker", "marker", "eraser"}}, {"shape", "circle"}},
+                      {{"kind", "arranged"}, {"members", {"marker", "eraser", "holder"}}, {"shape", "circle"}, {"heading", 0.0}},
+                      {{"kind", "arranged"}, {"members", "marker"}, {"shape", "line"}},
+                      {{"kind", "arranged"}, {"object", "marker"}, {"members", {"marker", "eraser"}}, {"shape", "line"}}};
+  problems.clear();
+  readGoalStatement(wrong, "goals", objects, problems);
+  ASSERT_EQ(problems.size(), 8u);
+  EXPECT_THAT(problems[0], HasSubstr("goals[0].members[1]: unknown object \"cup\""));
+  EXPECT_THAT(problems[1], HasSubstr("goals[1].shape: unknown shape string \"hexagon\" (shapes: line, circle, triangle, square, spread_out)"));
+  EXPECT_THAT(problems[2], HasSubstr("goals[2].members: a triangle has 3 members, not 2"));
+  EXPECT_THAT(problems[3], HasSubstr("goals[3].members[1]: \"marker\" is named twice"));
+  EXPECT_THAT(problems[4], HasSubstr("goals[4]: heading, evenly_spaced and distance are of a line only"));
+  EXPECT_THAT(problems[5], HasSubstr("goals[5].members: expected an array of object names"));
+  EXPECT_THAT(problems[6], HasSubstr("goals[5].members: a line needs at least 2 members"));
+  EXPECT_THAT(problems[7], HasSubstr("goals[6].object: must be null for an arranged goal"));
+}
+
+}  // namespace
+}  // namespace lang2manip
