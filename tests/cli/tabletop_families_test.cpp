@@ -171,5 +171,24 @@ TEST(RegionsForAnLlm, ARegionPlanFromTheLoopbackLlmIsGroundedAndVerified) {
   EXPECT_THAT(request, HasSubstr("(a box), pink"));
 }
 
+// An arrangement the LLM states as an arranged goal (its own places): checked as a line along the
+// direction asked, whatever places it chose; the prompt tells it the grammar.
+TEST(ArrangementsForAnLlm, AnArrangedGoalFromTheLoopbackLlmIsCheckedAsALine) {
+  FakeLlmServer server(FakeLlmProtocol::kOpenAi);
+  const nlohmann::json place = {{"action", "place"}, {"object", "eraser"}, {"params", {{"position", {{"x", 0.55}, {"y", -0.18}, {"z", -0.002}}}}}};
+  const nlohmann::json goal = {{"kind", "arranged"}, {"members", {"marker", "eraser"}}, {"shape", "line"}, {"target", "desk"}, {"heading", 0.0}};
+  server.enqueueAnswer(nlohmann::json({{"actions", {{{"action", "pick"}, {"object", "eraser"}}, place}}, {"goals", {goal}}}).dump());
+  const test::TempDirectory directory;
+  const std::string environment = "env -u OPENAI_API_KEY OPENAI_BASE_URL=" + server.baseUrl() + " OPENAI_API_KEY=sk-test";
+  const RunResult result = run("run --llm openai:gpt-test --task \"queue the rubber up behind the pen, pointing away from you\"" + kBudgets +
+                                   " --out " + directory.path().string(),
+                               true, environment);
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("marker, eraser in a line along yaw 0 deg on desk"));
+  EXPECT_THAT(result.output, HasSubstr("holds"));
+  ASSERT_EQ(server.requests().size(), 1u);
+  EXPECT_THAT(server.requests()[0].body, HasSubstr("\\\"kind\\\": \\\"arranged\\\""));
+}
+
 }  // namespace
 }  // namespace lang2manip

@@ -191,6 +191,11 @@ void StepParser::arrange(Step& step, const ShapePhrase& phrase) {
   request.shape = phrase.shape;
   request.area = top.reachableTop.value_or(top.bounds);
   if (phrase.region) request.centreArea = regionBox(request.area, *phrase.region);
+  if (phrase.region && phrase.region->kind == SurfaceRegion::Kind::kEdge && phrase.shape == ArrangementShape::kLine) {
+    const int along = phrase.region->depth != 0 ? 1 : 0;  // a line along an edge may run its whole length
+    request.centreArea->min()[along] = request.area.min()[along];
+    request.centreArea->max()[along] = request.area.max()[along];
+  }
   request.direction = phrase.direction.value_or(Vector3::UnitY());
   if (phrase.diagonal) request.direction = Vector3(request.area.sizes().x(), request.area.sizes().y(), 0.0).normalized();
   request.spacing = phrase.spacing;
@@ -217,7 +222,8 @@ void StepParser::arrange(Step& step, const ShapePhrase& phrase) {
   for (std::size_t i = 0; i < step.objects.size(); ++i) {
     const ObjectDescriptor& object = reader_.descriptor(step.objects[i]);
     const Vector3& spot = (*spots)[i];
-    inRegion = inRegion && request.centreArea->contains(Vector3(spot.x(), spot.y(), request.centreArea->center().z()));
+    const AlignedBox3 regionArea = phrase.region ? regionBox(request.area, *phrase.region) : request.area;
+    inRegion = inRegion && regionArea.contains(Vector3(spot.x(), spot.y(), regionArea.center().z()));
     Goal goal;
     goal.kind = GoalKind::kAtPosition;
     goal.object = step.objects[i];
