@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "lang2manip/language/arrangement_layout.hpp"
 #include "lang2manip/language/instruction.hpp"
 #include "lang2manip/language/object_descriptor.hpp"
 #include "lang2manip/symbolic/spatial_relations.hpp"
@@ -111,6 +112,25 @@ TEST(ArrangementInstruction, ArrangementsThatCannotBeAreRefusedSayingWhy) {
   EXPECT_THAT(arrangementRefusal("put the blocks in a circle in a corner"), HasSubstr("say which corner the arrangement goes in"));
   // Twenty objects' worth of spacing does not fit on a 1.2 m table.
   EXPECT_THAT(arrangementRefusal("put the blocks, the cups, the box and the markers in a line 30 cm apart"), HasSubstr("objects in a line need"));
+}
+
+TEST(ArrangementInstruction, ALayoutGoesOverMovableObjectsOnlyWhenNothingElseIsFree) {
+  // A 30 cm strip with a bowl across its middle: three 4 cm blocks in a line need 20 cm.
+  language_detail::ArrangementLayoutRequest request;
+  request.area = AlignedBox3(Vector3(0.3, -0.15, 0.0), Vector3(0.6, 0.15, 0.0));
+  request.direction = Vector3::UnitX();
+  for (const double y : {-0.1, 0.0, 0.1}) {
+    request.members.emplace_back(Vector3(0.05, y - 0.02, 0.0), Vector3(0.09, y + 0.02, 0.04));  // off the strip
+    request.onSupport.push_back(false);
+  }
+  request.others = {AlignedBox3(Vector3(0.3, -0.15, 0.0), Vector3(0.6, 0.15, 0.08))};
+  request.othersMovable = {true};
+  std::string why;
+  const auto over = language_detail::layOutArrangement(request, why);
+  ASSERT_TRUE(over) << why;  // the bowl is set aside first
+  request.othersMovable = {false};
+  EXPECT_FALSE(language_detail::layOutArrangement(request, why));
+  EXPECT_THAT(why, HasSubstr("3 objects in a line need"));
 }
 
 }  // namespace

@@ -52,6 +52,11 @@ AlignedBox3 movedTo(const AlignedBox3& box, const Vector3& centre) {
   return AlignedBox3(box.min() + by, box.max() + by);
 }
 
+/// What a layout keeps clear of: everything standing; the other objects (members move); or only
+/// the objects that cannot move (the plan sets the others aside first).
+enum class Clearance { kOfAll, kOfOthers, kOfFixed };
+constexpr Clearance kClearances[] = {Clearance::kOfAll, Clearance::kOfOthers, Clearance::kOfFixed};
+
 class Layout {
  public:
   explicit Layout(const ArrangementLayoutRequest& request) : request_(request), widest_(widestOf(request.members)) {}
@@ -71,18 +76,21 @@ class Layout {
            p.y() <= area.max().y() - margin;
   }
 
-  /// Clear of the other objects, and of where the members stand now when `ofMembers`.
-  [[nodiscard]] bool clear(const Vector3& p, bool ofMembers) const {
+  /// Clear of what `clearance` keeps clear of.
+  [[nodiscard]] bool clear(const Vector3& p, Clearance clearance) const {
     const double half = widest_ / 2.0 + kOtherClearance;
     const auto blocks = [&](const AlignedBox3& box) {
       return p.x() > box.min().x() - half && p.x() < box.max().x() + half && p.y() > box.min().y() - half && p.y() < box.max().y() + half;
     };
-    if (std::any_of(request_.others.begin(), request_.others.end(), blocks)) return false;
-    return !ofMembers || std::none_of(request_.members.begin(), request_.members.end(), blocks);
+    for (std::size_t i = 0; i < request_.others.size(); ++i) {
+      const bool movable = i < request_.othersMovable.size() && request_.othersMovable[i];
+      if ((clearance != Clearance::kOfFixed || !movable) && blocks(request_.others[i])) return false;
+    }
+    return clearance != Clearance::kOfAll || std::none_of(request_.members.begin(), request_.members.end(), blocks);
   }
 
-  [[nodiscard]] bool fits(const std::vector<Vector3>& spots, bool ofMembers) const {
-    return std::all_of(spots.begin(), spots.end(), [&](const Vector3& p) { return inside(p) && clear(p, ofMembers); });
+  [[nodiscard]] bool fits(const std::vector<Vector3>& spots, Clearance clearance) const {
+    return std::all_of(spots.begin(), spots.end(), [&](const Vector3& p) { return inside(p) && clear(p, clearance); });
   }
 
   /// Where the shape's centre is tried, nearest to the middle of where it may be first.
@@ -149,11 +157,11 @@ std::optional<std::vector<Vector3>> layOutLine(const ArrangementLayoutRequest& r
   const std::vector<Vector3> centres = layout.centres();
   for (const double pitch : layout.pitches()) {
     const double span = pitch * static_cast<double>(n - 1);
-    for (const bool ofMembers : {true, false}) {
+    for (const Clearance clearance : kClearances) {
       for (const Vector3& centre : centres) {
         std::vector<Vector3> spots;
         for (std::size_t i = 0; i < n; ++i) spots.push_back(centre + direction * (-span / 2.0 + pitch * static_cast<double>(i)));
-        if (layout.fits(spots, ofMembers)) return inMemberOrder(spots, order);
+        if (layout.fits(spots, clearance)) return inMemberOrder(spots, order);
       }
     }
   }
@@ -172,7 +180,7 @@ std::optional<std::vector<Vector3>> layOutRing(const ArrangementLayoutRequest& r
   }
   const double first = request.shape == ArrangementShape::kSquare ? std::numbers::pi / 4.0 : 0.0;  // a square's sides along x and y
   const std::vector<Vector3> centres = layout.centres();
-  for (const bool ofMembers : {true, false}) {
+  for (const Clearance clearance : kClearances) {
     for (const Vector3& centre : centres) {
       for (int r = 0; r < kRotations; ++r) {
         const double rotation = first + share * static_cast<double>(r) / kRotations;
@@ -181,7 +189,7 @@ std::optional<std::vector<Vector3>> layOutRing(const ArrangementLayoutRequest& r
           const double angle = rotation + share * static_cast<double>(k);
           spots.push_back(centre + radius * Vector3(std::cos(angle), std::sin(angle), 0.0));
         }
-        if (layout.fits(spots, ofMembers)) return leastTravel(request.members, spots);
+        if (layout.fits(spots, clearance)) return leastTravel(request.members, spots);
       }
     }
   }
@@ -224,7 +232,7 @@ std::optional<std::vector<Vector3>> layOutSpread(const ArrangementLayoutRequest&
       }
       for (const Vector3& spot : candidates) {
         const AlignedBox3 box = movedTo(members[i], spot);
-        if (layout.inside(spot) && layout.clear(spot, false) && farFromPlaced(box)) {
+        if (layout.inside(spot) && layout.clear(spot, Clearance::kOfOthers) && farFromPlaced(box)) {
           placed[i] = box;
           break;
         }

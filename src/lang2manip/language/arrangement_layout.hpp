@@ -24,8 +24,10 @@ struct ArrangementLayoutRequest {
   AlignedBox3 area;
   /// Where the shape's centre may be (a region of the area; the whole area when none).
   std::optional<AlignedBox3> centreArea;
-  /// What must stay clear: the other objects standing on the support.
+  /// What must stay clear: the other objects standing on the support, and whether each can be
+  /// set aside (a layout over movable ones is the last tried).
   std::vector<AlignedBox3> others;
+  std::vector<bool> othersMovable;
   /// A line's direction (unit, x-y).
   Vector3 direction = Vector3::UnitY();
   /// The spacing of neighbouring centres ("10 cm apart"); none: the widest member plus a gap.

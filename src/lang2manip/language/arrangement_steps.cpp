@@ -206,7 +206,9 @@ void StepParser::arrange(Step& step, const ShapePhrase& phrase) {
   if (!phrase.around.empty()) request.around = reader_.descriptor(phrase.around).bounds;
   for (const ObjectDescriptor& other : reader_.objects()) {
     const bool below = other.bounds.max().z() < top.bounds.max().z() - 0.01;  // what the support stands on
-    if (other.name != support && !below && !containsWord(step.objects, other.name)) request.others.push_back(other.bounds);
+    if (other.name == support || below || containsWord(step.objects, other.name)) continue;
+    request.others.push_back(other.bounds);
+    request.othersMovable.push_back(other.movable);
   }
   if (phrase.spacing && *phrase.spacing < std::max_element(request.members.begin(), request.members.end(), [](const AlignedBox3& a, const AlignedBox3& b) {
                                                 return a.sizes().head<2>().maxCoeff() < b.sizes().head<2>().maxCoeff();
