@@ -10,6 +10,7 @@
 #include "lang2manip/cli/family_support.hpp"
 #include "lang2manip/cli/tabletop_scenes.hpp"
 #include "lang2manip/core/text_parsing.hpp"
+#include "lang2manip/grounding/object_geometry.hpp"
 #include "lang2manip/symbolic/symbolic_state.hpp"
 
 namespace lang2manip::families {
@@ -86,10 +87,7 @@ Check polygonOf(std::vector<std::string> blocks) {
 }
 
 AlignedBox3 footprintInBase(const Scene& scene, const std::string& object) {
-  const Pose toBase = robotBaseFrame(scene, "").inverse();
-  AlignedBox3 box;
-  for (int c = 0; c < 8; ++c) box.extend(toBase * scene.object(object).worldBounds().corner(static_cast<AlignedBox3::CornerType>(c)));
-  return box;
+  return transformedBox(scene.object(object).worldBounds(), robotBaseFrame(scene, "").inverse());
 }
 
 /// Every two blocks' boxes (seen from above) at least 10 cm apart: no two next to each other.

@@ -5,6 +5,8 @@
 #include <numbers>
 #include <numeric>
 
+#include "lang2manip/core/text_parsing.hpp"
+
 namespace lang2manip::language_detail {
 namespace {
 
@@ -256,6 +258,10 @@ std::optional<std::vector<Vector3>> layOutSpread(const ArrangementLayoutRequest&
 
 std::optional<std::vector<Vector3>> layOutArrangement(const ArrangementLayoutRequest& request, std::string& why) {
   const Layout layout(request);
+  if (request.spacing && *request.spacing < layout.widest()) {
+    why = "objects " + metresText(*request.spacing) + " apart would overlap: the widest is wider than that";
+    return std::nullopt;
+  }
   switch (request.shape) {
     case ArrangementShape::kLine: return layOutLine(request, layout, why);
     case ArrangementShape::kCircle:

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/language/arrangement_layout.hpp"
 #include "lang2manip/language/clause_parser.hpp"
 #include "lang2manip/language/clause_step.hpp"
@@ -138,16 +137,17 @@ void StepParser::parseArrangementPlace(Step& step, ShapePhrase& phrase) {
   const Words& words = step.words;
   for (bool more = true; more && !step.atEnd();) {
     std::size_t& at = step.at;
-    const std::size_t preposition = regionPreposition(words, at);
-    const std::optional<RegionPhrase> region = matchRegionPhrase(words, at + (matchesAt(words, at, {"along"}) ? 1 : preposition));
-    if (region && (matchesAt(words, at, {"along"}) || preposition > 0)) {  // "along the top edge", "in the middle"
-      if (matchesAt(words, at, {"along"}) && region->region.kind != SurfaceRegion::Kind::kEdge) failStep(step, "a line goes along an edge: the top, bottom, left or right one");
+    const bool along = matchesAt(words, at, {"along"});
+    const std::size_t preposition = along ? 1 : regionPreposition(words, at);
+    const std::optional<RegionPhrase> region = matchRegionPhrase(words, at + preposition);
+    if (region && preposition > 0) {  // "along the top edge", "in the middle"
+      if (along && region->region.kind != SurfaceRegion::Kind::kEdge) failStep(step, "a line goes along an edge: the top, bottom, left or right one");
       if (region->nearestCorner || region->farthestCorner || (region->region.depth == 0 && region->region.side == 0 && region->region.kind == SurfaceRegion::Kind::kCorner)) {
         failStep(step, "say which corner the arrangement goes in (\"the far left corner\")");
       }
       phrase.region = region->region;
-      if (matchesAt(words, at, {"along"})) phrase.direction = region->region.depth != 0 ? Vector3::UnitY() : Vector3::UnitX();
-      at += (matchesAt(words, at, {"along"}) ? 1 : preposition) + region->length;
+      if (along) phrase.direction = region->region.depth != 0 ? Vector3::UnitY() : Vector3::UnitX();
+      at += preposition + region->length;
       continue;
     }
     if (matchesAt(words, at, {"around"}) || matchesAt(words, at, {"round"}) || matchesAt(words, at, {"surrounding"})) {
@@ -209,11 +209,6 @@ void StepParser::arrange(Step& step, const ShapePhrase& phrase) {
     if (other.name == support || below || containsWord(step.objects, other.name)) continue;
     request.others.push_back(other.bounds);
     request.othersMovable.push_back(other.movable);
-  }
-  if (phrase.spacing && *phrase.spacing < std::max_element(request.members.begin(), request.members.end(), [](const AlignedBox3& a, const AlignedBox3& b) {
-                                                return a.sizes().head<2>().maxCoeff() < b.sizes().head<2>().maxCoeff();
-                                              })->sizes().head<2>().maxCoeff()) {
-    failStep(step, "objects " + metresText(*phrase.spacing) + " apart would overlap: the widest is wider than that");
   }
   Goal arranged = arrangedGoal(step.objects, phrase, support, request.direction);
   std::string why;
