@@ -44,6 +44,22 @@ TEST_P(ActionsOnRobot, PickThenPlaceInTheHolder) {
   EXPECT_GT(record.counters.ikCalls, 0);
 }
 
+TEST_P(ActionsOnRobot, ReleasedObjectsComeToRestOnWhatIsUnderThem) {
+  // Released a few millimetres above the holder's floor and the desk (so that nothing scrapes),
+  // each object is then where it rests, not floating where the hand let go.
+  const Scene scene = deskScene(GetParam());
+  TaskExecutor executor(scene, testSettings());
+  const Plan plan = planOf({pickAction("marker"), placeAction("marker", SpatialRelation::kIn, "holder"), pickAction("eraser"),
+                            placeAction("eraser", SpatialRelation::kLeftOf, "holder")});
+  const ExecutionRecord& record = run(executor, plan);
+  ASSERT_TRUE(record.succeeded());
+  const SceneObject& holder = scene.object("holder");
+  const double floor = transformedBox(*holder.cavity, holder.pose).min().z();
+  EXPECT_NEAR(record.finalScene.object("marker").worldBounds().min().z(), floor, 1e-9);
+  EXPECT_NEAR(record.finalScene.object("eraser").worldBounds().min().z(), scene.object("desk").worldBounds().max().z(), 1e-9);
+  EXPECT_TRUE(verifyExecution(executor.arm(), scene, record, goalsImpliedByPlan(plan)).success);
+}
+
 TEST_P(ActionsOnRobot, CartesianStepsWhoseJointsMoveFastAreHalvedNotRefused) {
   // 8 cm Cartesian steps with at most 0.12 rad per joint and step: whole steps would jump, the
   // halved ones (down to 1 cm) do not, and every waypoint keeps within the limit.
@@ -128,6 +144,34 @@ TEST_P(ActionsOnRobot, PushSlidesTheObjectByTheDistance) {
   EXPECT_TRUE(checkGoalInScene(record.finalScene, goal, options).holds);
   const ExecutionVerification verification = verifyExecution(executor.arm(), scene, record, {goal});
   EXPECT_TRUE(verification.success) << verification.collision;
+}
+
+TEST_P(ActionsOnRobot, AnObjectWiderThanTheHandIsPushedByWhatMeetsIt) {
+  // Taller than the fingers are long and wider than the hand opens: the palm meets it first.
+  Scene scene = deskScene(GetParam());
+  const Vector3 at = scene.object("eraser").pose.translation();
+  scene.removeObject("eraser");
+  scene.addObject(boxObject("crate", Vector3(0.14, 0.14, 0.06), at));
+  const Pose X_WB = robotBaseFrame(scene, scene.robots().front().name);
+  for (const Vector3& direction : {Vector3(0, -1, 0), Vector3(1, 0, 0), Vector3(-1, 0, 0)}) {
+    SCOPED_TRACE(direction.transpose());
+    TaskExecutor executor(scene, testSettings());
+    const ExecutionRecord& record = run(executor, planOf({pushAction("crate", direction, 0.06)}));
+    ASSERT_TRUE(record.succeeded()) << (record.failure ? record.failure->reason : "");
+    const Vector3 moved = record.finalScene.object("crate").pose.translation() - at;
+    EXPECT_LT((moved - X_WB.linear() * direction * 0.06).norm(), 1e-9);
+    Goal goal;
+    goal.kind = GoalKind::kDisplaced;
+    goal.object = "crate";
+    goal.displacement = direction * 0.06;
+    const ExecutionVerification verification = verifyExecution(executor.arm(), scene, record, {goal});
+    EXPECT_TRUE(verification.success) << verification.collision;
+  }
+  // Carrying it is impossible, and the failure says so as data.
+  TaskExecutor executor(scene, testSettings());
+  const auto failure = executor.execute(planOf({pickAction("crate")}), StopCondition::never());
+  ASSERT_TRUE(failure.has_value());
+  EXPECT_TRUE(failure->objectUngraspable) << failure->reason;
 }
 
 TEST_P(ActionsOnRobot, EachActionIsPlannedWithItsOwnPlanner) {

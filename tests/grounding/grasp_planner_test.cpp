@@ -95,6 +95,24 @@ TEST_P(GraspOnRobot, FarAwayObjectIsRefusedAsUnreachable) {
   EXPECT_THAT(plan.reason, HasSubstr("out of reach"));
 }
 
+TEST_P(GraspOnRobot, EveryCandidateHoldsTheObjectBetweenThePads) {
+  // Flat and low objects resting on the desk: no finger passes under them (through the desk).
+  Scene scene = deskScene(GetParam());
+  scene.addObject(boxObject("slab", Vector3(0.14, 0.14, 0.06), Vector3(0.1, -0.3, 0.75)));
+  const ReachabilityChecker reach = reachFor(GetParam(), scene);
+  for (const std::string object : {"marker", "eraser", "slab"}) {
+    const GraspPlan plan = planGrasp(reach, object, GraspDirection::kAuto);
+    const SceneObject& o = scene.object(object);
+    for (const GraspCandidate& c : plan.candidates) {
+      const Vector3 closing = c.graspPose.linear() * reach.gripper().closingAxis;
+      const double offCentre = std::abs((objectCentre(o, o.pose) - c.graspPose.translation()).dot(closing));
+      EXPECT_LE(offCentre + c.objectWidth / 2.0, c.opening / 2.0 + 0.0031) << object << ": " << c.label;
+    }
+  }
+  const GraspPlan slab = planGrasp(reach, "slab", GraspDirection::kAuto);
+  EXPECT_FALSE(slab.success()) << slab.candidates.front().label;
+}
+
 INSTANTIATE_TEST_SUITE_P(DeskRobots, GraspOnRobot, ::testing::Values("panda", "ur5"));
 
 TEST(GraspPlanner, AutoRanksSeveralDirectionsAndIsDeterministic) {
@@ -123,7 +141,7 @@ TEST(GraspPlanner, FlatEraserCannotBeHeldLevelFromTheSide) {
   const AlignedBox3 eraser = reach.scene().object("eraser").worldBounds();
   for (const GraspCandidate& c : side.candidates) {
     EXPECT_LT(c.approachDirection.z(), -0.4) << c.label;
-    const AlignedBox3 fingers = transformedBox(reach.gripper().fingerBounds, c.graspPose);
+    const AlignedBox3 fingers = transformedBox(reach.gripper().fingerBoundsBetween(c.objectWidth, c.opening), c.graspPose);
     EXPECT_GT(fingers.min().z(), eraser.min().z()) << c.label;
     EXPECT_LT(fingers.min().z(), eraser.max().z() - GraspSettings{}.minimumEngagement + 1e-9) << c.label;
   }

@@ -218,6 +218,17 @@ TEST(OfflineTaskPlannerTest, APushThatFailedBecomesAPickAndPlaceByTheSameDisplac
   EXPECT_EQ(regrasped.actions[0].refinements.grasp, graspRetryOrder()[1]);
 }
 
+TEST(OfflineTaskPlannerTest, AnObjectNoGraspFitsIsNotPickedAgain) {
+  OfflineTaskPlanner planner;
+  const Scene scene = test::deskScene();
+  PlanningRequest request = requestFor(scene, "move the eraser 5 cm to the left");
+  request.earlierAttempts.push_back(groundingFailure(firstPlan(planner, request), "eraser", "motion"));
+  PlanAttempt carried = groundingFailure(firstPlan(planner, request), "eraser", "grasp");
+  carried.grounding->objectUngraspable = true;  // too wide in every direction, as grounding measured it
+  request.earlierAttempts.push_back(carried);
+  EXPECT_NE(planningErrorOf(planner, request).find("nothing new to try: no grasp of eraser exists"), std::string::npos);
+}
+
 TEST(OfflineTaskPlannerTest, RoomOfContainersComesFromTheirCavities) {
   const SequencingOptions options = sequencingOptionsFor(test::deskScene());
   EXPECT_NEAR(options.containerFloorArea.at("holder"), 0.0564 * 0.0564, 1e-9);

@@ -112,7 +112,8 @@ json roundsJson(const RepairResult& repair) {
     if (const auto& failure = round.attempt.grounding) {
       entry["grounding_failure"] = {{"action_index", failure->actionIndex}, {"stage", failure->stage},
                                     {"object", failure->object}, {"reason", failure->reason},
-                                    {"blocking_objects", failure->blockingObjects}};
+                                    {"blocking_objects", failure->blockingObjects},
+                                    {"object_ungraspable", failure->objectUngraspable}};
     }
     rounds.push_back(entry);
   }

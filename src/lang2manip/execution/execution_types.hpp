@@ -195,6 +195,8 @@ struct ActionExecution {
   std::string reason;
   /// On failure: the objects standing where the action needed room (a placement's blockers).
   std::vector<std::string> blockingObjects;
+  /// On failure: the gripper cannot hold the object in any direction (GroundingFailure).
+  bool objectUngraspable = false;
   /// What was chosen: "top, closing 90 deg ...", "in holder at ...", "home".
   std::string choice;
   std::vector<MotionSegment> segments;

@@ -35,12 +35,31 @@ Matrix3 toolOrientation(const GripperGeometry& gripper, const Vector3& approach,
   return inWorld * inGripper.transpose();
 }
 
-/// How far the fingers reach from the tool frame along world direction `direction` (their box's
-/// support function).
-double fingerReachAlong(const GripperGeometry& gripper, const Matrix3& R_WG, const Vector3& direction) {
+/// How far `box` (in H) reaches from H along world direction `direction` with H at rotation
+/// R_WG (its support function).
+double boxReachAlong(const AlignedBox3& box, const Matrix3& R_WG, const Vector3& direction) {
   const Vector3 d = R_WG.transpose() * direction;
   double reach = 0.0;
-  for (int i = 0; i < 3; ++i) reach += std::max(gripper.fingerBounds.min()[i] * d[i], gripper.fingerBounds.max()[i] * d[i]);
+  for (int i = 0; i < 3; ++i) reach += std::max(box.min()[i] * d[i], box.max()[i] * d[i]);
+  return reach;
+}
+
+/// How far the hand (fingers and every shape of the hand) reaches from H along `direction`.
+double handReachAlong(const GripperGeometry& gripper, const Matrix3& R_WG, const Vector3& direction) {
+  double reach = boxReachAlong(gripper.fingerBounds, R_WG, direction);
+  for (const AlignedBox3& box : gripper.closedHandBounds) reach = std::max(reach, boxReachAlong(box, R_WG, direction));
+  return reach;
+}
+
+/// How far the parts of the hand that meet a pushed object reach from H along `direction` (the
+/// push), with H at height `z`: the fingers, and the shapes that come lower than `objectTop`
+/// (the others pass over the object).
+double pushingReachAlong(const GripperGeometry& gripper, const Matrix3& R_WG, const Vector3& direction, double z, double objectTop) {
+  const Vector3 down = -Vector3::UnitZ();
+  double reach = boxReachAlong(gripper.fingerBounds, R_WG, direction);
+  for (const AlignedBox3& box : gripper.closedHandBounds) {
+    if (z - boxReachAlong(box, R_WG, down) < objectTop) reach = std::max(reach, boxReachAlong(box, R_WG, direction));
+  }
   return reach;
 }
 
@@ -60,19 +79,20 @@ std::vector<Pose> pushContacts(const ArmContext& arm, const Scene& world, const 
   const Vector3 centre = objectCentre(object, object.pose);
   std::vector<Pose> contacts;
   const auto add = [&](const Matrix3& R_WG, double z) {
-    Pose contact = Pose::Identity();
-    contact.linear() = R_WG;
-    contact.translation() = centre - direction * (halfExtent + fingerReachAlong(arm.gripper(), R_WG, direction) + arm.settings().pushStandoff);
-    contact.translation().z() = z;
-    Pose turned = contact;
-    turned.linear() = R_WG * Eigen::AngleAxisd(M_PI, arm.gripper().approachAxis).toRotationMatrix();
-    contacts.insert(contacts.end(), {contact, turned});
+    for (const Matrix3& R : {R_WG, Matrix3(R_WG * Eigen::AngleAxisd(M_PI, arm.gripper().approachAxis).toRotationMatrix())}) {
+      Pose contact = Pose::Identity();
+      contact.linear() = R;
+      const double reach = pushingReachAlong(arm.gripper(), R, direction, z, bounds.max().z());
+      contact.translation() = centre - direction * (halfExtent + reach + arm.settings().pushStandoff);
+      contact.translation().z() = z;
+      contacts.push_back(contact);
+    }
   };
   const Matrix3 topDown = toolOrientation(arm.gripper(), down, across);
   add(topDown, supportTop + std::min(kFingertipClearance, kFingertipHeightFraction * height) + arm.gripper().fingertipOffset());
   for (const Vector3& closing : {across, Vector3(Vector3::UnitZ())}) {
     const Matrix3 R_WG = toolOrientation(arm.gripper(), direction, closing);
-    const double below = fingerReachAlong(arm.gripper(), R_WG, down);
+    const double below = handReachAlong(arm.gripper(), R_WG, down);
     const double z = std::max(centre.z(), supportTop + kFingertipClearance + below);
     // The face must meet the object below its top, not pass over it.
     if (z - below <= bounds.max().z() - kFingertipHeightFraction * height) add(R_WG, z);

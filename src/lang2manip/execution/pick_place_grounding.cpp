@@ -13,6 +13,12 @@ namespace {
 /// The gripper is opened before a transit when it is farther than this from the wanted gap (m).
 constexpr double kWidthTolerance = 1e-4;
 
+/// True for a grasp failure of the object's shape (too wide, too narrow, no candidate fits),
+/// which no other IK seed changes.
+bool fitsNoGrasp(GraspFailure failure) {
+  return failure == GraspFailure::kTooWide || failure == GraspFailure::kNotGraspable || failure == GraspFailure::kNoCandidate;
+}
+
 void countReach(const ReachabilityChecker& reach, ExecutionCounters& counters) {
   counters.ikCalls += reach.statistics().ikCalls;
   counters.collisionChecks += reach.statistics().collisionChecks;
@@ -79,7 +85,7 @@ std::optional<GroundingAttempt> tryPlace(const GroundingContext& c, const Scene&
   MotionSegment release = gripperMotion(arm, a.world, a.q, place.releaseOpening, "release " + name);
   release.gripperEvent = GripperEvent::kRelease;
   if (!a.add(arm, std::move(release), c.counters)) return a;
-  a.world.detach(name, place.objectPose);
+  a.world.detach(name, place.restingPose);
   retreat(c, a, place, record);
   return a;
 }
@@ -128,6 +134,9 @@ std::optional<GroundingAttempt> groundPick(const GroundingContext& c, const Scen
     record.times.grasp += secondsSince(began);
     if (!grasps.success()) {
       refuse(record, "grasp", grasps.reason);
+      // No grasp of any direction fits the object's shape: no other seed changes that.
+      record.objectUngraspable = request.direction == GraspDirection::kAuto && fitsNoGrasp(grasps.failure);
+      if (record.objectUngraspable) break;
       continue;
     }
     auto done = firstThatMoves(c, grasps.candidates, arm.settings().maxGraspAttempts, "pick " + object.name, record,

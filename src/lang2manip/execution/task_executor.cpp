@@ -52,7 +52,7 @@ std::optional<GroundingFailure> TaskExecutor::execute(const Plan& plan, const St
       }
       record.actions.push_back(std::move(action));
     }
-    record.failure = GroundingFailure{index, "precondition", plan.actions[index].object, reason, {}};
+    record.failure = GroundingFailure{index, "precondition", plan.actions[index].object, reason, {}, true};
     record.finalScene = std::move(world);
     executions_.push_back(std::move(record));
     return executions_.back().failure;
@@ -73,7 +73,7 @@ std::optional<GroundingFailure> TaskExecutor::execute(const Plan& plan, const St
     record.times += action.times;
     if (action.status == ActionStatus::kFailed) {
       record.failure = GroundingFailure{i, action.stage.empty() ? "motion" : action.stage, plan.actions[i].object,
-                                        action.reason, action.blockingObjects};
+                                        action.reason, action.blockingObjects, action.objectUngraspable};
     }
     record.actions.push_back(std::move(action));
   }

@@ -107,8 +107,8 @@ std::vector<Approach> approachesFor(const GraspGeometryInput& in, GraspDirection
   return all;
 }
 
-/// How far (m) lifting a grasp off the support may move it along the closing axis and still
-/// count as centred on the object.
+/// How far (m) lifting a grasp off the support may move it along the closing axis beyond the
+/// opening's free play and still count as holding the object between the pads.
 constexpr double kCentringTolerance = 0.003;
 
 std::string describe(GraspDirection direction, const Vector3& a, const Vector3& c, double offset) {
@@ -146,7 +146,8 @@ void addGrasps(const GraspGeometryInput& in, const GripperGeometry& gripper, con
   const Vector3 centre = objectCentre(object, in.objectPose);
   // The fingers as they are from the opening the grasp approaches with down to the object's
   // width, and where the pads are then: linkage fingers move along the approach axis.
-  const AlignedBox3 fingers = gripper.fingerBoundsBetween(width, std::min(gripper.maxOpening, width + 2.0 * settings.openingMargin));
+  const double approachOpening = std::min(gripper.maxOpening, width + 2.0 * settings.openingMargin);
+  const AlignedBox3 fingers = gripper.fingerBoundsBetween(width, approachOpening);
   const double pads = gripper.padCentreAt(width);
   const double padHalfWidth = fingerHalfExtent(fingers, R.transpose() * t);
   const double depthHalf = halfExtentAlong(object, in.objectPose, a);
@@ -157,11 +158,14 @@ void addGrasps(const GraspGeometryInput& in, const GripperGeometry& gripper, con
     const double lift = std::max(0.0, in.supportTop + settings.supportClearance - (p.z() + fingerLowest(fingers, R)));
     p.z() += lift;
     const std::string label = describe(approach.direction, a, c, offset);
-    // Lifted across the closing axis, the object is no longer between the pads: then the TCP
-    // itself must be below the top; otherwise the fingertips must be.
-    const bool centred = std::abs(lift * c.z()) <= kCentringTolerance;
-    const double lowestHold = centred ? p.z() + fingerLowest(fingers, R) : p.z() + (R * Vector3(0.0, 0.0, pads)).z();
-    if (lowestHold > top - settings.minimumEngagement) {
+    // Lifted along the closing axis by more than the approach opening leaves free, a pad would
+    // come down into the object instead of beside it: the object is not between the pads.
+    if (std::abs(lift * c.z()) > (approachOpening - width) / 2.0 + kCentringTolerance) {
+      out.rejections.push_back({label, GraspFailure::kNotGraspable,
+                                object.name + ": a finger would have to pass under it, through its support"});
+      continue;
+    }
+    if (p.z() + fingerLowest(fingers, R) > top - settings.minimumEngagement) {
       out.rejections.push_back({label, GraspFailure::kNotGraspable,
                                 object.name + ": the fingers cannot close below its top without touching its support"});
       continue;

@@ -117,12 +117,11 @@ void describeFingers(const RobotModel& model, const FingerSet& fingers, const Pa
   for (double& centre : g.padCentreCurve) centre -= whenOpen;
 }
 
-/// Bounds of the collision geometry below the last arm joint, in the tool frame (a tool without
-/// gripper: what pushes).
-AlignedBox3 toolBounds(const RobotModel& model, const Manipulator& manipulator) {
-  AlignedBox3 bounds;
-  if (manipulator.armJoints.empty()) return bounds;
-  const VectorX q = model.middleConfiguration();
+/// The bounds of each collision shape below the last arm joint (hand, fingers, tool) in the tool
+/// frame, at configuration `q`.
+std::vector<AlignedBox3> toolShapeBoxes(const RobotModel& model, const Manipulator& manipulator, const VectorX& q) {
+  std::vector<AlignedBox3> boxes;
+  if (manipulator.armJoints.empty()) return boxes;
   const std::vector<Pose> poses = model.linkPoses(q);
   const Pose X_TR = poses[static_cast<std::size_t>(model.linkIndex(manipulator.toolFrame))].inverse();
   std::vector<int> stack{model.childLinkOf(model.jointIndex(manipulator.armJoints.back()))};
@@ -130,13 +129,23 @@ AlignedBox3 toolBounds(const RobotModel& model, const Manipulator& manipulator) 
     const int link = stack.back();
     stack.pop_back();
     for (const Shape& shape : model.links()[static_cast<std::size_t>(link)].collisions) {
-      bounds.extend(transformedBox(shapeBounds(shape), X_TR * poses[static_cast<std::size_t>(link)]));
+      boxes.push_back(transformedBox(shapeBounds(shape), X_TR * poses[static_cast<std::size_t>(link)]));
     }
     for (int j = 0; j < static_cast<int>(model.joints().size()); ++j) {
       if (model.parentLinkOf(j) == link) stack.push_back(model.childLinkOf(j));
     }
   }
-  return bounds;
+  return boxes;
+}
+
+/// The shape boxes of the hand in H with the gripper closed (a tool without gripper as it is).
+std::vector<AlignedBox3> closedHandBoxes(const RobotModel& model, const Manipulator& manipulator, const GripperGeometry& g) {
+  VectorX q = model.middleConfiguration();
+  if (g.hasGripper()) q = withGripperFraction(model, g, q, 0.0);
+  std::vector<AlignedBox3> boxes = toolShapeBoxes(model, manipulator, q);
+  const Pose X_HT = g.graspFrame.inverse();
+  for (AlignedBox3& box : boxes) box = transformedBox(box, X_HT);
+  return boxes;
 }
 
 /// R_TH for a tool without gripper: T itself when `approach` is T's +z, else H's +z along
@@ -209,8 +218,10 @@ GripperGeometry describeGripper(const RobotModel& model, const std::string& mani
     describeGripperJoints(model, manipulator, gripper);
   } else {
     gripper.graspFrame.linear() = toolRotation(manipulator.approachAxis.value_or(Vector3::UnitZ()));
-    const AlignedBox3 bounds = toolBounds(model, manipulator);
-    if (!bounds.isEmpty()) gripper.fingerBounds = transformedBox(bounds, gripper.graspFrame.inverse());
+  }
+  gripper.closedHandBounds = closedHandBoxes(model, manipulator, gripper);
+  if (!gripper.hasGripper()) {
+    for (const AlignedBox3& box : gripper.closedHandBounds) gripper.fingerBounds.extend(box);
   }
   if (gripper.fingerBounds.isEmpty()) gripper.fingerBounds = AlignedBox3(Vector3::Zero(), Vector3::Zero());
   return gripper;

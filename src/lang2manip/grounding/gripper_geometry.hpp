@@ -56,6 +56,9 @@ struct GripperGeometry {
   /// Bounds in H of the fingers' collision geometry over the whole travel; for a tool without
   /// gripper, of the geometry rigidly attached below the last arm joint.
   AlignedBox3 fingerBounds;
+  /// Bounds in H of each collision shape below the last arm joint (palm, fingers, camera, tool)
+  /// with the gripper closed: what meets an object the hand pushes.
+  std::vector<AlignedBox3> closedHandBounds;
   /// Gripper joints (the manipulator's, mimics excluded) and their values when open and closed.
   /// Open is the end of the travel where the pads are farther apart, whatever the limits say.
   std::vector<std::string> gripperJoints;

@@ -106,8 +106,10 @@ struct PlacementCandidate {
   /// What the object rests on (the container for "in").
   std::string support;
   std::string label;
-  /// X_WO: where the object is released.
+  /// X_WO: where the object is released (releaseGap above its support, dropHeight not counted),
+  /// and where it comes to rest after the release: on its support, straight below.
   Pose objectPose = Pose::Identity();
+  Pose restingPose = Pose::Identity();
   /// Index into the request's grasps (0 for the held grasp) and that grasp X_OG.
   std::size_t graspIndex = 0;
   Pose objectToGripper = Pose::Identity();

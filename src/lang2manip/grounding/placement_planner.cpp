@@ -123,6 +123,7 @@ bool tryPoseAt(Attempt& a, const PoseCandidate& pose, double drop, int& checks, 
     c.support = pose.support;
     c.label = pose.label;
     c.objectPose = pose.pose;
+    c.restingPose = Pose(Eigen::Translation3d(-Vector3::UnitZ() * s.releaseGap)) * pose.pose;
     c.graspIndex = g;
     c.objectToGripper = a.grasps[g];
     c.dropHeight = drop;

@@ -38,6 +38,7 @@ const std::string& objectToRegrasp(const PlanAttempt& attempt) {
     nothingNewToTry("the failure is not one of executing its plan", attempt.failure);
   }
   const GroundingFailure& failure = *attempt.grounding;
+  if (failure.objectUngraspable) nothingNewToTry("no grasp of " + failure.object + " exists", attempt.failure);
   if (failure.stage == "precondition") {
     nothingNewToTry("the plan asks for something the world does not allow", attempt.failure);
   }

@@ -27,6 +27,9 @@ struct GroundingFailure {
   std::string reason;
   /// The objects standing where the action needed room (every placement blocked by them).
   std::vector<std::string> blockingObjects;
+  /// True when the gripper cannot hold `object` in any direction as it stands (too wide or too
+  /// narrow for it): no plan that picks it can succeed.
+  bool objectUngraspable = false;
 };
 
 /// One earlier round: what the planner answered and why it was not accepted, in words (for
