@@ -141,6 +141,53 @@ TEST(Placement, AWideContainerIsEnteredAndANarrowOneIsDroppedInto) {
   }
 }
 
+TEST(Placement, ObjectsPutInOneAtATimeArePackedSoThatTheLastStillFits) {
+  // Four 4.5 cm blocks fit a 11.6 cm tray only two by two: each one, placed without knowing
+  // what follows, leaves the most room for more like it (a corner, not the middle).
+  Scene scene = deskScene("panda");
+  scene.removeObject("marker");
+  scene.removeObject("eraser");
+  scene.addObject(tray(Vector3(0.116, 0.116, 0.0), 0.04, Vector3(0.15, -0.15, 0.75)));
+  const std::vector<Vector3> starts{{-0.05, 0.1, 0.75}, {-0.05, 0.2, 0.75}, {0.05, 0.2, 0.75}, {-0.05, -0.05, 0.75}};
+  for (std::size_t i = 0; i < starts.size(); ++i) scene.addObject(boxObject("block" + std::to_string(i), Vector3::Constant(0.045), starts[i]));
+  for (std::size_t i = 0; i < starts.size(); ++i) {
+    const std::string block = "block" + std::to_string(i);
+    const ReachabilityChecker reach = reachFor("panda", scene);
+    const PlacementPlan plan = place(reach, block, relation(SpatialRelation::kIn, "tray"));
+    ASSERT_TRUE(plan.success()) << block << ": " << plan.reason;
+    scene = placed(reach, plan);
+    const Vector3 offCentre = scene.object(block).worldBounds().center() - Vector3(0.15, -0.15, 0.0);
+    EXPECT_GT(std::abs(offCentre.x()), 0.03) << block;
+    EXPECT_GT(std::abs(offCentre.y()), 0.03) << block;
+  }
+}
+
+TEST(Placement, ObjectsKnownToFollowAllKeepAPlace) {
+  // The same four blocks put in by one plan: each placement leaves one free position for every
+  // block that follows it, all at once (each alone would find one in the middle's way).
+  Scene scene = deskScene("panda");
+  scene.removeObject("marker");
+  scene.removeObject("eraser");
+  scene.addObject(tray(Vector3(0.116, 0.116, 0.0), 0.04, Vector3(0.15, -0.15, 0.75)));
+  const std::vector<Vector3> starts{{-0.05, 0.1, 0.75}, {-0.05, 0.2, 0.75}, {0.05, 0.2, 0.75}, {-0.05, -0.05, 0.75}};
+  std::vector<std::string> blocks;
+  for (std::size_t i = 0; i < starts.size(); ++i) {
+    blocks.push_back("block" + std::to_string(i));
+    scene.addObject(boxObject(blocks.back(), Vector3::Constant(0.045), starts[i]));
+  }
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    const ReachabilityChecker reach = reachFor("panda", scene);
+    PlacementRequest request;
+    request.object = blocks[i];
+    request.target = relation(SpatialRelation::kIn, "tray");
+    request.grasps = graspsOf(reach, blocks[i]);
+    request.placedAfter.assign(blocks.begin() + static_cast<std::ptrdiff_t>(i + 1), blocks.end());
+    const PlacementPlan plan = planPlacement(reach, request);
+    ASSERT_TRUE(plan.success()) << blocks[i] << ": " << plan.reason;
+    scene = placed(reach, plan);
+  }
+}
+
 TEST(Placement, FullHolderIsRefused) {
   Scene scene = deskScene("panda");
   scene.addObject(boxObject("block", Vector3(0.055, 0.055, 0.09), Vector3(0.12, 0.02, 0.755)));

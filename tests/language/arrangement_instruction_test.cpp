@@ -101,6 +101,25 @@ TEST(ArrangementInstruction, SpreadingOutMovesOnlyTheObjectsThatAreTooClose) {
   }
 }
 
+TEST(ArrangementInstruction, ObjectsNextToEachOtherFormOneGroup) {
+  for (const char* instruction :
+       {"put the blocks next to each other", "place the red and green blocks side by side", "put the blocks and the markers together",
+        "gather the blocks", "group the blocks together on the table", "bring the red block and the red marker together",
+        "cluster the blocks in the far right corner", "put the blocks close to each other in the middle of the table"}) {
+    SCOPED_TRACE(instruction);
+    const TaskSpecification specification = arrangementOf(instruction);
+    ASSERT_EQ(specification.goals.size(), 1u);
+    EXPECT_EQ(specification.goals.front().shape, ArrangementShape::kTogether);
+    expectPlacesMakeTheArrangement(instruction);
+  }
+  EXPECT_EQ(test::summarize(arrangementOf("put the blocks next to each other")), "red_block, blue_block, green_block next to each other on table");
+  // "Together" into a container puts them there; "line up side by side" is a line.
+  EXPECT_EQ(test::summarize(arrangementOf("put the red and green blocks together in the yellow cup")), "red_block in yellow_cup; green_block in yellow_cup");
+  EXPECT_EQ(test::summarize(arrangementOf("line up the blocks side by side")), "red_block, blue_block, green_block in a line on table");
+  EXPECT_THAT(arrangementRefusal("put the blocks next to each other around the yellow cup"),
+              HasSubstr("only a circle, triangle or square goes around something"));
+}
+
 TEST(ArrangementInstruction, ArrangementsThatCannotBeAreRefusedSayingWhy) {
   EXPECT_THAT(arrangementRefusal("make a triangle with the blocks and the markers"), HasSubstr("a triangle has 3 members, not 5"));
   EXPECT_THAT(arrangementRefusal("put the blocks in a square"), HasSubstr("a square has 4 members, not 3"));

@@ -103,6 +103,22 @@ TEST(ArrangementCheck, SpreadOutMeansNoTwoNextToEachOther) {
   EXPECT_THAT(close.explanation, HasSubstr("the closest two are 0.040 m apart (spread out: at least 0.100 m)"));
 }
 
+TEST(ArrangementCheck, TogetherMeansOneGroupOfNeighbours) {
+  const Goal together = arranged(ArrangementShape::kTogether, 3);
+  // A chain: each within 10 cm of the next, the ends 24 cm apart.
+  EXPECT_TRUE(checkArrangedBoxes(together, {block(0.4, 0.0), block(0.5, 0.0), block(0.6, 0.04)}, {}).holds);
+  const GoalCheck apart = checkArrangedBoxes(together, {block(0.4, 0.0), block(0.46, 0.0), block(0.4, 0.3)}, {});
+  EXPECT_FALSE(apart.holds);
+  EXPECT_THAT(apart.explanation, HasSubstr("the widest gap that joins them into one group is 0.260 m (next to each other: at most 0.100 m)"));
+  const json statement = {{"kind", "arranged"}, {"members", {"block0", "block1"}}, {"shape", "together"}};
+  std::vector<std::string> problems;
+  const std::vector<Goal> goals = readGoalStatement(json::array({statement}), "goals", {"block0", "block1"}, problems);
+  EXPECT_TRUE(problems.empty()) << problems.front();
+  ASSERT_EQ(goals.size(), 1u);
+  EXPECT_EQ(goals.front().shape, ArrangementShape::kTogether);
+  EXPECT_EQ(describeGoal(goals.front()), "block0, block1 next to each other");
+}
+
 TEST(ArrangementCheck, OnASceneMembersMustStandOnTheTargetAndNotBeHeld) {
   Scene scene = readKauthamProblem(resolveProblem("panda_desk")).scene;
   Goal line;
@@ -145,7 +161,7 @@ TEST(ArrangementCheck, TheGoalStatementReadsAndWritesArrangementsAndNamesEachMis
   readGoalStatement(wrong, "goals", objects, problems);
   ASSERT_EQ(problems.size(), 8u);
   EXPECT_THAT(problems[0], HasSubstr("goals[0].members[1]: unknown object \"cup\""));
-  EXPECT_THAT(problems[1], HasSubstr("goals[1].shape: unknown shape string \"hexagon\" (shapes: line, circle, triangle, square, spread_out)"));
+  EXPECT_THAT(problems[1], HasSubstr("goals[1].shape: unknown shape string \"hexagon\" (shapes: line, circle, triangle, square, spread_out, together)"));
   EXPECT_THAT(problems[2], HasSubstr("goals[2].members: a triangle has 3 members, not 2"));
   EXPECT_THAT(problems[3], HasSubstr("goals[3].members[1]: \"marker\" is named twice"));
   EXPECT_THAT(problems[4], HasSubstr("goals[4]: heading, evenly_spaced and distance are of a line only"));

@@ -106,6 +106,30 @@ Check spreadOutCheck(std::vector<std::string> blocks) {
   };
 }
 
+/// One group: every block reached from any other through blocks whose boxes (seen from above)
+/// come within 10 cm of each other.
+Check togetherCheck(std::vector<std::string> blocks) {
+  return [blocks = std::move(blocks)](const Scene& final, const Scene&) {
+    std::string why;
+    if (!centresOnDesk(final, blocks, why)) return failure(why);
+    std::vector<std::size_t> group{0};
+    std::vector<bool> joined(blocks.size(), false);
+    joined[0] = true;
+    for (std::size_t k = 0; k < group.size(); ++k) {
+      const AlignedBox3 a = footprintInBase(final, blocks[group[k]]);
+      for (std::size_t j = 0; j < blocks.size(); ++j) {
+        const AlignedBox3 b = footprintInBase(final, blocks[j]);
+        const Point apart = (a.min().head<2>() - b.max().head<2>()).cwiseMax(b.min().head<2>() - a.max().head<2>()).cwiseMax(0.0);
+        if (!joined[j] && apart.norm() <= 0.10) joined[j] = true, group.push_back(j);
+      }
+    }
+    for (std::size_t j = 0; j < blocks.size(); ++j) {
+      if (!joined[j]) return failure(blocks[j] + " is more than 0.10 m from every block of " + blocks[0] + "'s group");
+    }
+    return pass();
+  };
+}
+
 /// Sideways (within 20 degrees), every centre within 2 cm of the line and in the third of the
 /// reachable desk by `edge` (far: +1, near: -1), neighbours spaced alike within 2 cm.
 Check lineAlongEdge(std::vector<std::string> blocks, int edge) {
@@ -262,13 +286,29 @@ std::optional<FamilyInstance> spreadOut(const Scene& desk, Random& random) {
   return withPlan(result, blocks, freeSpots(*scene, offsets, AlignedBox3(reach.center() - shift, reach.center() + shift)));
 }
 
+std::optional<FamilyInstance> together(const Scene& desk, Random& random) {
+  TabletopRequest request;
+  request.blocks = drawCount(2, 4, random);
+  request.gap = 0.12;  // drawn apart: none next to another
+  auto scene = generateTabletop(desk, request, random);
+  if (!scene) return std::nullopt;
+  const auto blocks = objectsOfKind(*scene, "block");
+  const std::vector<std::string> wordings{"put the blocks next to each other", "place the blocks side by side on the table", "gather the blocks",
+                                          "group the blocks together", "bring all the blocks close together", "put the blocks close to one another"};
+  FamilyInstance result{"own_together", drawOne(wordings, random), *scene, togetherCheck(blocks), {}};
+  std::vector<Point> offsets;
+  for (std::size_t i = 0; i < blocks.size(); ++i) offsets.emplace_back(0.0, 0.085 * (static_cast<double>(i) - static_cast<double>(blocks.size() - 1) / 2.0));
+  return withPlan(result, blocks, freeSpots(*scene, offsets, deskReach(*scene)));
+}
+
 }  // namespace
 
 std::vector<InstructionFamily> arrangementFamilies() {
   return {{"own_line_along_edge", "own", notYetDone(lineAlongAnEdge)},
           {"own_circle", "own", notYetDone(circle)},
           {"own_triangle_square", "own", notYetDone(polygon)},
-          {"own_spread_out", "own", notYetDone(spreadOut)}};
+          {"own_spread_out", "own", notYetDone(spreadOut)},
+          {"own_together", "own", notYetDone(together)}};
 }
 
 }  // namespace lang2manip::families

@@ -193,9 +193,10 @@ std::vector<AlignedBox3> laterObjectRoom(const Scene& scene, const std::string& 
   return room;
 }
 
-/// Puts first the poses after which every object of `request.placedAfter` still has a free
-/// position at the target (several objects into one container: the first must not take the
-/// middle that the next one needs). Boxes are compared, which is conservative: it only orders.
+/// Puts first the poses after which the objects of `request.placedAfter` all still have free
+/// positions at the target, one each (several objects into one container: the first must not
+/// take the middle that the next ones need). Boxes are compared, which is conservative: it only
+/// orders.
 void leaveRoomForLaterObjects(const Scene& scene, const PlacementRequest& request, const SceneObject& object,
                               const SceneRobot& robot, const std::string& arm, std::vector<PoseCandidate>& poses) {
   std::vector<std::vector<AlignedBox3>> rooms;
@@ -203,11 +204,18 @@ void leaveRoomForLaterObjects(const Scene& scene, const PlacementRequest& reques
     if (later != object.name) rooms.push_back(laterObjectRoom(scene, later, request, robot, arm));
   }
   if (rooms.empty()) return;
+  // Each later object in turn takes the first of its free positions clear of this one and of
+  // those taken before it: all of them must find one.
   std::stable_partition(poses.begin(), poses.end(), [&](const PoseCandidate& pose) {
-    const AlignedBox3 taken = boundsAtPose(object, pose.pose);
-    return std::all_of(rooms.begin(), rooms.end(), [&](const std::vector<AlignedBox3>& room) {
-      return std::any_of(room.begin(), room.end(), [&](const AlignedBox3& box) { return !box.intersects(taken); });
-    });
+    std::vector<AlignedBox3> taken{boundsAtPose(object, pose.pose)};
+    for (const std::vector<AlignedBox3>& room : rooms) {
+      const auto free = std::find_if(room.begin(), room.end(), [&](const AlignedBox3& box) {
+        return std::none_of(taken.begin(), taken.end(), [&](const AlignedBox3& other) { return box.intersects(other); });
+      });
+      if (free == room.end()) return false;
+      taken.push_back(*free);
+    }
+    return true;
   });
 }
 
@@ -246,7 +254,7 @@ PlacementPlan planPlacement(const ReachabilityChecker& reach, const PlacementReq
   const std::string what = object.name + " " + describePlacementTarget(request.target);
   const Pose current = currentObjectPose(scene, object.name);
   const PoseSamplingInput input{&scene, &object, Quaternion(object.pose.linear()), current.translation(), reach.robot().basePose,
-                                 reach.robot().name, reach.gripper().manipulator};
+                                 reach.robot().name, reach.gripper().manipulator, request.placedAfter.empty()};
   PoseSampling sampling = samplePlacementPoses(input, request.target, request.settings);
   PlacementPlan plan;
   if (sampling.poses.empty()) return failed(std::move(plan), sampling.failure, what + ": " + sampling.reason);

@@ -57,6 +57,46 @@ std::vector<double> gridValues(double low, double high, int count) {
   return values;
 }
 
+/// The footprints (boxes, world) of the objects that stand in `cavity` now, `object` and
+/// `container` left out.
+std::vector<AlignedBox3> contentsOf(const Scene& scene, const AlignedBox3& cavity, const std::string& object, const std::string& container) {
+  std::vector<AlignedBox3> contents;
+  for (const SceneObject& other : scene.objects()) {
+    if (other.name == object || other.name == container || other.collisions.empty()) continue;
+    const AlignedBox3 box = other.worldBounds();
+    if (cavity.contains(Vector3(box.center().x(), box.center().y(), std::clamp(box.min().z(), cavity.min().z(), cavity.max().z())))) {
+      contents.push_back(box);
+    }
+  }
+  return contents;
+}
+
+bool footprintsOverlap(const AlignedBox3& a, const AlignedBox3& b) {
+  return a.min().x() < b.max().x() && b.min().x() < a.max().x() && a.min().y() < b.max().y() && b.min().y() < a.max().y();
+}
+
+/// How many more footprints like `placed` still fit among `taken` and `placed` at the centres
+/// `xs` x `ys` (outermost first, taken greedily): the room a placement leaves for what may
+/// follow it into the container.
+int roomLeftFor(const AlignedBox3& placed, std::vector<AlignedBox3> taken, std::vector<double> xs, std::vector<double> ys) {
+  const auto outermostFirst = [](std::vector<double>& values) { std::reverse(values.begin(), values.end()); };
+  outermostFirst(xs);
+  outermostFirst(ys);
+  taken.push_back(placed);
+  const Vector3 half = placed.sizes() / 2.0;
+  int count = 0;
+  for (const double x : xs) {
+    for (const double y : ys) {
+      const AlignedBox3 copy(Vector3(x - half.x(), y - half.y(), placed.min().z()), Vector3(x + half.x(), y + half.y(), placed.max().z()));
+      if (std::none_of(taken.begin(), taken.end(), [&](const AlignedBox3& box) { return footprintsOverlap(box, copy); })) {
+        taken.push_back(copy);
+        ++count;
+      }
+    }
+  }
+  return count;
+}
+
 PoseSampling inContainer(const PoseSamplingInput& in, const SceneObject& container, const PlacementSettings& s) {
   if (container.role != ObjectRole::kContainer || !container.cavity) {
     return failure(PlacementFailure::kBadTarget, container.name + " is not a container");
@@ -76,15 +116,32 @@ PoseSampling inContainer(const PoseSamplingInput& in, const SceneObject& contain
                    in.object->name + " " + sizeText(size) + " is too large for the cavity of " +
                        container.name + " " + sizeText(cavity.sizes()) + " in every orientation");
   }
-  for (int cell = 0; cell < s.cavityGrid * s.cavityGrid; ++cell) {
-    for (const auto& [q, size] : fitting) {
-      const auto xs = gridValues(cavity.min().x() + s.wallMargin + size.x() / 2.0, cavity.max().x() - s.wallMargin - size.x() / 2.0, s.cavityGrid);
-      const auto ys = gridValues(cavity.min().y() + s.wallMargin + size.y() / 2.0, cavity.max().y() - s.wallMargin - size.y() / 2.0, s.cavityGrid);
-      const std::size_t ix = static_cast<std::size_t>(cell / s.cavityGrid), iy = static_cast<std::size_t>(cell % s.cavityGrid);
-      if (ix >= xs.size() || iy >= ys.size()) continue;
-      sampling.poses.push_back({restingPose(*in.object, q, xs[ix], ys[iy], floor), container.name,
-                                "in " + container.name + " at " + pointText(xs[ix], ys[iy], floor)});
+  const std::vector<AlignedBox3> contents = contentsOf(*in.scene, cavity, in.object->name, container.name);
+  // Per resting orientation, its positions (when packing for more: those that leave the most
+  // room for more objects like this one first, the middle first among equals, so that what
+  // follows later still fits); then each position in every orientation before the next one.
+  std::vector<std::vector<std::pair<int, PoseCandidate>>> byOrientation(fitting.size());
+  for (std::size_t k = 0; k < fitting.size(); ++k) {
+    const auto& [q, size] = fitting[k];
+    const auto xs = gridValues(cavity.min().x() + s.wallMargin + size.x() / 2.0, cavity.max().x() - s.wallMargin - size.x() / 2.0, s.cavityGrid);
+    const auto ys = gridValues(cavity.min().y() + s.wallMargin + size.y() / 2.0, cavity.max().y() - s.wallMargin - size.y() / 2.0, s.cavityGrid);
+    for (const double x : xs) {
+      for (const double y : ys) {
+        const Pose pose = restingPose(*in.object, q, x, y, floor);
+        byOrientation[k].emplace_back(roomLeftFor(boundsAtPose(*in.object, pose), contents, xs, ys),
+                                      PoseCandidate{pose, container.name, "in " + container.name + " at " + pointText(x, y, floor)});
+      }
     }
+    if (in.packForMore) {
+      std::stable_sort(byOrientation[k].begin(), byOrientation[k].end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    }
+  }
+  for (std::size_t rank = 0;; ++rank) {
+    bool any = false;
+    for (const auto& positions : byOrientation) {
+      if (rank < positions.size()) sampling.poses.push_back(positions[rank].second), any = true;
+    }
+    if (!any) break;
   }
   return sampling;
 }

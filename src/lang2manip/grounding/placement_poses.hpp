@@ -37,6 +37,10 @@ struct PoseSamplingInput {
   std::string robot{};
   /// Its arm (every arm when empty).
   std::string arm{};
+  /// In a container: positions that leave the most room for more objects like it come first
+  /// (nothing is known of what follows); false keeps the middle first (what follows is known and
+  /// the planner leaves room for it).
+  bool packForMore = true;
 };
 
 /// Candidate poses for `target`:

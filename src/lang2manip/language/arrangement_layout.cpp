@@ -172,6 +172,54 @@ std::optional<std::vector<Vector3>> layOutLine(const ArrangementLayoutRequest& r
   return std::nullopt;
 }
 
+/// The centres of `members` in a row along `direction` about `centre`, in the order they stand
+/// along it, each `gap` from the next (boxes of any size: the gaps, not the pitch, are equal).
+std::vector<Vector3> rowOf(const std::vector<AlignedBox3>& members, const Vector3& direction, const Vector3& centre, double gap) {
+  const std::size_t n = members.size();
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return members[a].center().dot(direction) < members[b].center().dot(direction); });
+  const auto halfAlong = [&](const AlignedBox3& box) { return box.sizes().head<2>().dot(direction.head<2>().cwiseAbs()) / 2.0; };
+  std::vector<double> offsets;
+  double at = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double half = halfAlong(members[order[i]]);
+    if (i > 0) at += half;
+    offsets.push_back(at);
+    at += half + gap;
+  }
+  const double middle = (offsets.front() + offsets.back()) / 2.0;
+  std::vector<Vector3> spots(n);
+  for (std::size_t i = 0; i < n; ++i) spots[order[i]] = centre + direction * (offsets[i] - middle);
+  return spots;
+}
+
+/// Next to each other: a row (sideways, else away from the robot) as near to where they stand
+/// now as it fits, with room for the fingers between neighbours first, then tighter.
+std::optional<std::vector<Vector3>> layOutTogether(const ArrangementLayoutRequest& request, const Layout& layout, std::string& why) {
+  Vector3 centroid = Vector3::Zero();
+  for (const AlignedBox3& member : request.members) centroid += flattened(member.center());
+  centroid /= static_cast<double>(request.members.size());
+  const AlignedBox3& area = request.centreArea.value_or(request.area);
+  const std::vector<Vector3> centres = gridOver(area, request.centreArea ? area.center() : centroid);
+  for (const double gap : {kSpacingGap, (kSpacingGap + kTightSpacingGap) / 2.0, kTightSpacingGap}) {
+    for (const Clearance clearance : kClearances) {
+      for (const Vector3& centre : centres) {
+        for (const Vector3& direction : {Vector3(Vector3::UnitY()), Vector3(Vector3::UnitX())}) {
+          std::vector<Vector3> spots = rowOf(request.members, direction, centre, gap);
+          if (layout.fits(spots, clearance)) return spots;
+        }
+      }
+    }
+  }
+  double length = kTightSpacingGap * static_cast<double>(request.members.size() - 1);
+  for (const AlignedBox3& member : request.members) length += member.sizes().y();
+  why = std::to_string(request.members.size()) + " objects next to each other need a row " +
+        std::to_string(static_cast<int>(std::round(length * 100.0))) + " cm long free, and the reachable top has none";
+  return std::nullopt;
+}
+
 std::optional<std::vector<Vector3>> layOutRing(const ArrangementLayoutRequest& request, const Layout& layout, std::string& why) {
   const std::size_t n = request.members.size();
   const double share = 2.0 * std::numbers::pi / static_cast<double>(n);
@@ -268,6 +316,7 @@ std::optional<std::vector<Vector3>> layOutArrangement(const ArrangementLayoutReq
     case ArrangementShape::kTriangle:
     case ArrangementShape::kSquare: return layOutRing(request, layout, why);
     case ArrangementShape::kSpreadOut: return layOutSpread(request, layout, why);
+    case ArrangementShape::kTogether: return layOutTogether(request, layout, why);
   }
   why = "unknown shape";
   return std::nullopt;

@@ -24,6 +24,20 @@ const std::vector<Words> kSpreadOut{{"spread", "out"}, {"spaced", "out"}, {"far"
                                     {"far", "apart", "from", "each", "other"}, {"well", "apart", "from", "each", "other"},
                                     {"far", "from", "each", "other"}, {"far", "away", "from", "each", "other"},
                                     {"apart", "from", "one", "another"}, {"apart"}, {"scattered"}};
+/// "next to each other", "close to one another", "side by side", "together", "in a group", ...
+std::vector<Words> togetherPhrases() {
+  std::vector<Words> phrases{{"side", "by", "side"}, {"close", "together"}, {"together"}, {"grouped", "together"}, {"clustered", "together"},
+                             {"in", "a", "group"}, {"in", "one", "group"}, {"in", "a", "cluster"}, {"in", "a", "bunch"}};
+  for (const Words& near : {Words{"next", "to"}, Words{"beside"}, Words{"close", "to"}, Words{"near"}, Words{"close", "by"}, Words{"by"}}) {
+    for (const Words& reciprocal : {Words{"each", "other"}, Words{"one", "another"}}) {
+      Words phrase = near;
+      phrase.insert(phrase.end(), reciprocal.begin(), reciprocal.end());
+      phrases.push_back(phrase);
+    }
+  }
+  return phrases;
+}
+const std::vector<Words> kTogether = togetherPhrases();
 const std::vector<Words> kShapeNouns{{"shape"}, {"formation"}, {"pattern"}, {"arrangement"}, {"layout"}};
 const std::vector<Words> kSkippedAdjectives{{"single"}, {"straight"}, {"neat"}, {"nice"}, {"perfect"}, {"tidy"},
                                             {"big"}, {"large"}, {"small"}, {"little"}, {"regular"}, {"equilateral"}};
@@ -119,6 +133,16 @@ bool StepParser::parseArrangement(Step& step) {
   if (const std::size_t spread = longestPhraseAt(words, at, kSpreadOut)) {
     phrase.shape = ArrangementShape::kSpreadOut;
     at += spread;
+  } else if (const std::size_t together = longestPhraseAt(words, at, kTogether)) {
+    // "together in the bowl" puts them into the bowl; "together" alone or on a support groups them
+    const std::size_t into = longestPhraseAt(words, at + together, {{"in"}, {"into"}, {"inside"}});
+    const std::size_t regionWords = regionPreposition(words, at + together);
+    if (into > 0 && !(regionWords > 0 && matchRegionPhrase(words, at + together + regionWords))) {
+      step.at = at + together;  // read on from "in the bowl"
+      return false;
+    }
+    phrase.shape = ArrangementShape::kTogether;
+    at += together;
   } else {
     const std::size_t preposition =
         longestPhraseAt(words, at, {{"in"}, {"into"}, {"to"}, {"as"}, {"on"}, {"forming"}, {"to", "form"}, {"so", "they", "form"}});
@@ -153,7 +177,9 @@ void StepParser::parseArrangementPlace(Step& step, ShapePhrase& phrase) {
     if (matchesAt(words, at, {"around"}) || matchesAt(words, at, {"round"}) || matchesAt(words, at, {"surrounding"})) {
       const std::optional<NounPhrase> centre = reader_.read(words, at + 1);
       if (!centre) failStep(step, "expected an object after \"" + words[at] + "\"");
-      if (phrase.shape == ArrangementShape::kLine || phrase.shape == ArrangementShape::kSpreadOut) failStep(step, "only a circle, triangle or square goes around something");
+      if (phrase.shape == ArrangementShape::kLine || phrase.shape == ArrangementShape::kSpreadOut || phrase.shape == ArrangementShape::kTogether) {
+        failStep(step, "only a circle, triangle or square goes around something");
+      }
       phrase.around = groundTarget(step, *centre, false);
       at = centre->end;
       continue;

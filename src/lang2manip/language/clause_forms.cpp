@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "lang2manip/language/clause_parser.hpp"
+#include "lang2manip/language/region_phrases.hpp"
 #include "lang2manip/language/clause_step.hpp"
 #include "lang2manip/symbolic/task_planner.hpp"
 
@@ -71,8 +72,12 @@ std::optional<Words> StepParser::inArrangementOrder(const Words& words) const {
 std::optional<Words> StepParser::spreadOrLinedUp(const Words& words) const {
   static const std::vector<Words> spreadVerbs{{"spread"}, {"spread", "out"}, {"space"}, {"space", "out"}, {"scatter"}, {"distribute"}};
   static const std::vector<Words> lineVerbs{{"line"}, {"line", "up"}};
+  static const std::vector<Words> groupVerbs{{"group"}, {"gather"}, {"cluster"}, {"bunch"}, {"collect"}, {"bring", "together"},
+                                             {"push", "together"}, {"move", "together"}};
+  static const std::vector<Words> sideBySide{{"side", "by", "side"}, {"next", "to", "each", "other"}, {"next", "to", "one", "another"}};
   const std::size_t spread = longestPhraseAt(words, 0, spreadVerbs);
-  const std::size_t verb = spread > 0 ? spread : longestPhraseAt(words, 0, lineVerbs);
+  const std::size_t group = spread > 0 ? 0 : longestPhraseAt(words, 0, groupVerbs);
+  const std::size_t verb = spread > 0 ? spread : group > 0 ? group : longestPhraseAt(words, 0, lineVerbs);
   const std::vector<NounPhrase> list = verb > 0 ? reader_.readList(words, verb) : std::vector<NounPhrase>{};
   if (list.empty()) return std::nullopt;
   std::size_t rest = list.back().end;
@@ -85,6 +90,16 @@ std::optional<Words> StepParser::spreadOrLinedUp(const Words& words) const {
     return rewritten;
   };
   if (spread > 0) return append({"spread", "out"}, rest);
+  if (group > 0) {  // "gather the blocks (together, up)": next to each other; "gather X in the bowl" puts them there
+    const bool together = matchesAt(words, list.back().end, {"together"});
+    const std::size_t regionWords = regionPreposition(words, rest);
+    const bool inRegion = regionWords > 0 && matchRegionPhrase(words, rest + regionWords);
+    if (together || inRegion || rest == words.size() || matchesAt(words, rest, {"on"})) {
+      return append({"together"}, together ? list.back().end + 1 : rest);
+    }
+    return std::nullopt;
+  }
+  if (const std::size_t side = longestPhraseAt(words, rest, sideBySide)) return append({"in", "a", "line"}, rest + side);
   // "line up the blocks (along the front edge, horizontally, in a column)"; "line up X with Y" points.
   if (rest == words.size() || matchesAt(words, rest, {"along"})) return append({"in", "a", "line"}, rest);
   if (matchesAt(words, rest, {"horizontally"})) return append({"in", "a", "horizontal", "line"}, rest + 1);

@@ -84,6 +84,7 @@ std::size_t NounPhraseReader::readModifier(const Words& words, std::size_t at, N
       return p + length + robot.size();
     }
   }
+  if (matchesAt(words, p + length, {"each", "other"}) || matchesAt(words, p + length, {"one", "another"})) return at;  // an arrangement
   const std::optional<NounPhrase> reference = read(words, p + length);
   if (!reference) return at;
   // A plural phrase's place is where they go ("put the blocks next to the box") unless the

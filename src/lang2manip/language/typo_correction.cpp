@@ -37,7 +37,7 @@ const std::set<std::string>& functionWords() {
       "now", "right", "here", "there", "sort", "sorted", "colored", "coloured", "same", "wrong", "own", "four", "three", "five", "zero",
       "gray", "violet", "magenta", "navy", "crimson", "scarlet", "teal", "turquoise", "beige", "gold", "silver", "lime", "maroon",
       "olive", "dark", "light", "bright", "pale", "circle", "circles", "ring", "triangle", "triangles", "squares", "circular",
-      "triangular", "shape", "shapes", "formation", "pattern", "arrangement", "layout", "row", "rows", "spread", "scatter",
+      "triangular", "shape", "shapes", "group", "grouped", "cluster", "clustered", "bunch", "formation", "pattern", "arrangement", "layout", "row", "rows", "spread", "scatter",
       "scattered", "space", "distribute", "distributed", "equally", "equal", "equidistant", "form", "forming", "create", "build",
       "surrounding", "horizontally", "vertically", "single", "straight", "perfect", "tidy", "regular", "equilateral"};
   return words;

@@ -35,12 +35,13 @@ constexpr NameTable<GraspDirection, 4> kGraspNames{{
     {GraspDirection::kFront, "front"},
 }};
 
-constexpr NameTable<ArrangementShape, 5> kShapeNames{{
+constexpr NameTable<ArrangementShape, 6> kShapeNames{{
     {ArrangementShape::kLine, "line"},
     {ArrangementShape::kCircle, "circle"},
     {ArrangementShape::kTriangle, "triangle"},
     {ArrangementShape::kSquare, "square"},
     {ArrangementShape::kSpreadOut, "spread_out"},
+    {ArrangementShape::kTogether, "together"},
 }};
 
 template <typename Enum, std::size_t N>
@@ -132,6 +133,7 @@ std::string describeGoal(const Goal& goal) {
     case GoalKind::kArranged:
       for (std::size_t i = 0; i < goal.members.size(); ++i) text << (i == 0 ? "" : ", ") << goal.members[i];
       if (goal.shape == ArrangementShape::kSpreadOut) text << " spread out";
+      else if (goal.shape == ArrangementShape::kTogether) text << " next to each other";
       else text << " in a " << (goal.shape ? arrangementShapeName(*goal.shape) : std::string("?"));
       if (goal.heading) text << " along yaw " << std::round(*goal.heading * 1800.0 / 3.14159265358979323846) / 10.0 << " deg";
       if (goal.evenlySpaced) text << ", evenly spaced";

@@ -115,9 +115,12 @@ enum class ArrangementShape {
   kSquare,
   /// No two of them next to each other.
   kSpreadOut,
+  /// Next to each other, as one group: each next_to another, and every member reached from any
+  /// other through members next_to each other.
+  kTogether,
 };
 
-/// "line", "circle", "triangle", "square", "spread_out".
+/// "line", "circle", "triangle", "square", "spread_out", "together".
 std::string arrangementShapeName(ArrangementShape shape);
 std::optional<ArrangementShape> arrangementShapeFromName(const std::string& name);
 std::vector<std::string> arrangementShapeNames();

@@ -134,17 +134,42 @@ const SceneObject& memberNamed(const Scene& scene, const std::string& name) {
   throw InputError("goal member: unknown object \"" + name + "\" (objects: " + names + ")");
 }
 
+/// The gap between two members' boxes seen from above.
+double gapFromAbove(AlignedBox3 a, AlignedBox3 b) {
+  a.min().z() = b.min().z() = 0.0;
+  a.max().z() = b.max().z() = 0.0;
+  return boxGap(a, b);
+}
+
 GoalCheck checkSpreadOut(const std::vector<AlignedBox3>& boxes, double nearDistance) {
   double closest = 1e9;
   for (std::size_t i = 0; i < boxes.size(); ++i) {
-    for (std::size_t j = i + 1; j < boxes.size(); ++j) {
-      AlignedBox3 a = boxes[i], b = boxes[j];
-      a.min().z() = b.min().z() = 0.0;  // seen from above
-      a.max().z() = b.max().z() = 0.0;
-      closest = std::min(closest, boxGap(a, b));
-    }
+    for (std::size_t j = i + 1; j < boxes.size(); ++j) closest = std::min(closest, gapFromAbove(boxes[i], boxes[j]));
   }
   return {closest >= nearDistance, "the closest two are " + metres(closest) + " apart (spread out: at least " + metres(nearDistance) + ")"};
+}
+
+/// One group: grown from the first member through gaps within `nearDistance` (Prim's order), the
+/// widest gap it has to cross is the one that decides.
+GoalCheck checkTogether(const std::vector<AlignedBox3>& boxes, double nearDistance) {
+  const std::size_t n = boxes.size();
+  std::vector<bool> joined(n, false);
+  std::vector<double> link(n, 1e9);
+  link[0] = 0.0;
+  double widest = 0.0;
+  for (std::size_t step = 0; step < n; ++step) {
+    std::size_t next = n;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!joined[i] && (next == n || link[i] < link[next])) next = i;
+    }
+    joined[next] = true;
+    widest = std::max(widest, link[next]);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!joined[i]) link[i] = std::min(link[i], gapFromAbove(boxes[next], boxes[i]));
+    }
+  }
+  return {widest <= nearDistance, "the widest gap that joins them into one group is " + metres(widest) +
+                                      " (next to each other: at most " + metres(nearDistance) + ")"};
 }
 
 }  // namespace
@@ -166,6 +191,7 @@ GoalCheck checkArrangedBoxes(const Goal& goal, const std::vector<AlignedBox3>& b
       return checkPolygon(centres, tolerance);
     }
     case ArrangementShape::kSpreadOut: return checkSpreadOut(boxes, spatial.nearDistance);
+    case ArrangementShape::kTogether: return checkTogether(boxes, spatial.nearDistance);
   }
   return {false, "unknown shape"};
 }

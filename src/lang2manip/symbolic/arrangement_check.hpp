@@ -23,6 +23,8 @@ inline constexpr double kLineHeadingTolerance = 0.349065850398866;
 /// - triangle, square: every centre within tol of its own corner of the regular polygon fitted to
 ///   them (about their centroid, the mean radius, the rotation that fits best);
 /// - spread_out: no two boxes within spatial.nearDistance of each other.
+/// - together: one group, each box within spatial.nearDistance of another and every member
+///   reached from any other through such neighbours.
 /// The explanation states the measured numbers.
 GoalCheck checkArrangedBoxes(const Goal& goal, const std::vector<AlignedBox3>& boxes, const SpatialOptions& spatial);
 

@@ -289,7 +289,7 @@ nlohmann::json goalStatementSchema() {
         {"position", nullableOf(vector, "at_position: where the object frame's origin ends up, metres, robot base frame (x and y are checked); turned: where it stands turned when the plan moved it first (null: where it stood)")},
         {"region", nullableOf({{"type", "string"}, {"enum", surfaceRegionNames()}}, "relation on a support, or arranged on a target: the region of its top face the object's centre ends up in (corners, edges, centre, halves, quadrants of the reachable part)")},
         {"members", nullableOf({{"type", "array"}, {"items", {{"type", "string"}}}}, "arranged: the objects arranged together")},
-        {"shape", nullableOf({{"type", "string"}, {"enum", arrangementShapeNames()}}, "arranged: line, circle, triangle (3 members), square (4 members) or spread_out (no two next_to)")},
+        {"shape", nullableOf({{"type", "string"}, {"enum", arrangementShapeNames()}}, "arranged: line, circle, triangle (3 members), square (4 members), spread_out (no two next_to) or together (next to each other: one group of members next_to one another)")},
         {"heading", nullableOf(number, "arranged line: its direction, radians, base frame (0 = front, pi/2 = left), when the task names one")},
         {"evenly_spaced", nullableOf({{"type", "boolean"}}, "arranged line: neighbours equally far apart")},
         {"angle", nullableOf(number, "turned: the turn about the vertical from where it started, radians, counter-clockwise seen from above; facing without a target: the heading of the long side, radians, base frame (0 = front)")}}},
