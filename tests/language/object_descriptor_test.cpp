@@ -7,6 +7,10 @@
 #include "lang2manip/language/object_descriptor.hpp"
 #include "lang2manip/language/planner_names.hpp"
 #include "language/language_test_scenes.hpp"
+#include "test_paths.hpp"
+#include "language/language_test_support.hpp"
+#include "lang2manip/language/instruction.hpp"
+#include "lang2manip/model/mesh_loader.hpp"
 
 namespace lang2manip {
 namespace {
@@ -68,6 +72,30 @@ TEST(ObjectDescriptorTest, SizeClassesRankVolumesAmongMovableObjects) {
   const std::vector<ObjectDescriptor> bench = describeObjects(test::workbenchScene());
   EXPECT_EQ(find(bench, "red_block").sizeClass, "small");
   EXPECT_EQ(find(bench, "box").sizeClass, "large");
+}
+
+TEST(ObjectDescriptorTest, AMeshWithoutAUrdfMaterialHasItsFilesColour) {
+  // Two pieces whose meshes give their colours (no URDF material, no colour in the name):
+  // "the white piece" finds the one whose Inventor material is ivory.
+  Scene scene = test::deskScene();
+  const auto addPiece = [&](const std::string& name, const std::string& file, double y) {
+    SceneObject piece;
+    piece.name = name;
+    piece.kind = "piece";
+    piece.movable = true;
+    Shape shape;
+    shape.geometry = MeshGeometry{MeshCache::global().get((test::testDataDirectory() / "meshes" / file).string()), Vector3::Ones(), file};
+    piece.visuals.push_back(shape);
+    piece.collisions.push_back(shape);
+    piece.pose.translation() = Vector3(0.1, y, 0.75);
+    scene.addObject(piece);
+  };
+  addPiece("piece_1", "tetrahedron_binary.stl", -0.3);
+  addPiece("piece_2", "white_piece.iv", 0.3);
+  const std::vector<ObjectDescriptor> all = describeObjects(scene);
+  EXPECT_EQ(find(all, "piece_2").colours, std::vector<std::string>{"white"});
+  EXPECT_TRUE(find(all, "piece_1").colours.empty());
+  EXPECT_EQ(test::summarize(understandInstruction("put the white piece in the holder", all)), "piece_2 in holder");
 }
 
 TEST(ObjectDescriptorTest, ColourWordsInTheNameCount) {

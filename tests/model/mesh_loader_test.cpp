@@ -96,6 +96,26 @@ TEST(MeshLoader, ColladaUnitAndNodeTransformsAppliedUpAxisIgnored) {
   expectBounds(mesh.bounds(), Vector3(-1, 0, 2), Vector3(0, 1, 3));
 }
 
+// ------------------------------------------------------------------------------ colours
+
+/// The mesh file's colour as a string ("none" without one), rounded to 1/255.
+std::string colourOf(const std::string& name) {
+  const TriangleMesh mesh = loadTestMesh(name);
+  if (!mesh.colour) return "none";
+  const Vector3 c = (*mesh.colour * 255.0).array().round();
+  return std::to_string(static_cast<int>(c.x())) + " " + std::to_string(static_cast<int>(c.y())) + " " + std::to_string(static_cast<int>(c.z()));
+}
+
+TEST(MeshLoader, TheColourCoveringMostOfTheSurfaceIsTheMeshesOwn) {
+  EXPECT_EQ(colourOf("white_piece.iv"), "242 240 229");  // ivory over a thin black base
+  EXPECT_EQ(colourOf("two_colours.dae"), "204 26 26");   // red 4 m2 over blue 1 m2, bound by <bind_material>
+  EXPECT_EQ(colourOf("green_cube.obj"), "26 178 51");    // from its .mtl
+  // Files that name no colour have none (not the reader's default grey).
+  EXPECT_EQ(colourOf("box_ascii.stl"), "none");
+  EXPECT_EQ(colourOf("cube_v1.wrl"), "none");
+  EXPECT_EQ(colourOf("tetrahedron_mm.dae"), "none");
+}
+
 TEST(MeshLoader, InventorTransformsAndPrimitives) {
   const TriangleMesh mesh = loadTestMesh("scene.iv");
   expectValidIndices(mesh);

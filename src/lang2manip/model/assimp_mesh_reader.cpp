@@ -2,6 +2,7 @@
 
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
+#include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -10,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 #include <iterator>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -63,6 +65,20 @@ void addAssimpMesh(const aiMesh& mesh, const Eigen::Affine3d& X_RN, MeshBuilder&
   }
 }
 
+/// The diffuse colour of `mesh`'s material; none for assimp's default material (a format
+/// without materials, such as STL) or a material without one.
+std::optional<Vector3> diffuseColour(const aiScene& scene, const aiMesh& mesh) {
+  if (scene.mMaterials == nullptr || mesh.mMaterialIndex >= scene.mNumMaterials || scene.mMaterials[mesh.mMaterialIndex] == nullptr) {
+    return std::nullopt;
+  }
+  const aiMaterial& material = *scene.mMaterials[mesh.mMaterialIndex];
+  aiString name;
+  if (material.Get(AI_MATKEY_NAME, name) == AI_SUCCESS && std::string(name.C_Str()) == AI_DEFAULT_MATERIAL_NAME) return std::nullopt;
+  aiColor4D colour;
+  if (material.Get(AI_MATKEY_COLOR_DIFFUSE, colour) != AI_SUCCESS) return std::nullopt;
+  return Vector3(colour.r, colour.g, colour.b);
+}
+
 /// Adds the meshes of every node, each in the root frame R (node transforms applied), walking
 /// the tree with an explicit stack so that a deep hierarchy cannot overflow the call stack.
 void addAssimpScene(const aiScene& scene, MeshBuilder& builder) {
@@ -74,6 +90,7 @@ void addAssimpScene(const aiScene& scene, MeshBuilder& builder) {
     for (unsigned m = 0; m < node->mNumMeshes; ++m) {
       const unsigned meshIndex = node->mMeshes[m];
       if (meshIndex < scene.mNumMeshes && scene.mMeshes[meshIndex] != nullptr) {
+        builder.setColour(diffuseColour(scene, *scene.mMeshes[meshIndex]));
         addAssimpMesh(*scene.mMeshes[meshIndex], X_RN, builder);
       }
     }

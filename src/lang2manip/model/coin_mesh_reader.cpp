@@ -5,9 +5,14 @@
 #include <Inventor/SoInput.h>
 #include <Inventor/SoPrimitiveVertex.h>
 #include <Inventor/actions/SoCallbackAction.h>
+#include <Inventor/actions/SoSearchAction.h>
 #include <Inventor/errors/SoDebugError.h>
 #include <Inventor/errors/SoMemoryError.h>
 #include <Inventor/errors/SoReadError.h>
+#include <Inventor/VRMLnodes/SoVRMLMaterial.h>
+#include <Inventor/nodes/SoBaseColor.h>
+#include <Inventor/nodes/SoMaterial.h>
+#include <Inventor/nodes/SoPackedColor.h>
 #include <Inventor/nodes/SoSeparator.h>
 #include <Inventor/nodes/SoShape.h>
 
@@ -165,12 +170,31 @@ void addCoinTriangle(void* data, SoCallbackAction* action, const SoPrimitiveVert
   auto& traversal = *static_cast<CoinTraversal*>(data);
   if (++traversal.triangles > kMaxTriangles) return;  // refused after the traversal
   MeshBuilder& builder = traversal.builder;
+  SbColor ambient, diffuse, specular, emission;
+  float shininess = 0.0F, transparency = 0.0F;
+  action->getMaterial(ambient, diffuse, specular, emission, shininess, transparency, 0);  // materials are bound OVERALL (coin_scene_safety)
+  builder.setColour(Vector3(diffuse[0], diffuse[1], diffuse[2]));
   builder.addTriangle(builder.mergedVertex(rootPoint(v1)), builder.mergedVertex(rootPoint(v2)),
                       builder.mergedVertex(rootPoint(v3)));
 }
 
 // ---------------------------------------------------------------------------------------------
 // Reading
+
+/// True when the scene gives a colour of its own (without one, Coin's default grey is no colour
+/// of the file).
+bool declaresMaterial(SoNode* scene) {
+  for (const SoType type : {SoMaterial::getClassTypeId(), SoBaseColor::getClassTypeId(), SoPackedColor::getClassTypeId(),
+                            SoVRMLMaterial::getClassTypeId()}) {
+    SoSearchAction search;
+    search.setType(type);
+    search.setInterest(SoSearchAction::FIRST);
+    search.setSearchingAll(TRUE);
+    search.apply(scene);
+    if (search.getPath() != nullptr) return true;
+  }
+  return false;
+}
 
 /// Reads the scene graph; throws with Coin's reason (and line) when it is malformed.
 SoSeparator* readCoinScene(const fs::path& path, const CoinMessages& messages) {
@@ -217,6 +241,7 @@ TriangleMesh readMeshWithCoin(const fs::path& path) {
   coin::checkTraversalSize(scene, path.string());
   coin::dropNormalsAndTextureCoordinates(scene);
   MeshBuilder builder = collectTriangles(scene, path.string());
+  if (!declaresMaterial(scene)) builder.forgetColours();
   for (const std::string& warning : messages.warnings) {
     logWarning(path.string() + ": " + oneLine(warning));
   }

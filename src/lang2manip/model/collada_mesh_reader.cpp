@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -222,9 +223,11 @@ class ColladaReader {
         addNode(instanced, X_RN, depth + 1);
       } else if (isNamed(child, "instance_geometry")) {
         countInstance(child, depth + 1);
+        instance_ = child;
         addGeometry(target(child, "url"), X_RN);
       } else if (isNamed(child, "instance_controller")) {
         countInstance(child, depth + 1);
+        instance_ = child;
         addController(target(child, "url"), X_RN);
       }
     }
@@ -291,7 +294,38 @@ class ColladaReader {
     return points;
   }
 
+  /// The element `url` ("#id") names, or an empty node.
+  pugi::xml_node named(const std::string& url) const {
+    if (url.size() < 2 || url[0] != '#') return {};
+    const auto found = ids_.find(url.substr(1));
+    return found == ids_.end() ? pugi::xml_node() : found->second;
+  }
+
+  /// The diffuse colour of the material `primitive` names: the symbol bound by the instance's
+  /// <bind_material> (else the symbol as the material's id), its <instance_effect>, the effect's
+  /// <diffuse><color>. None when a link is missing or the diffuse is a texture.
+  std::optional<Vector3> diffuseColour(const pugi::xml_node& primitive) const {
+    const std::string symbol = primitive.attribute("material").value();
+    if (symbol.empty()) return std::nullopt;
+    std::string material = "#" + symbol;
+    for (const pugi::xml_node& bound : instance_.child("bind_material").child("technique_common").children("instance_material")) {
+      if (symbol == bound.attribute("symbol").value()) material = bound.attribute("target").value();
+    }
+    const pugi::xml_node effect = named(named(material).child("instance_effect").attribute("url").value());
+    for (const pugi::xml_node& technique : effect.child("profile_COMMON").children("technique")) {
+      for (const pugi::xml_node& model : technique.children()) {
+        const pugi::xml_node colour = model.child("diffuse").child("color");
+        if (!colour) continue;
+        const std::vector<double> rgba = numbers(colour);
+        if (rgba.size() < 3) fail(colour, "<color> needs 3 or 4 numbers, has " + std::to_string(rgba.size()));
+        return Vector3(rgba[0], rgba[1], rgba[2]);
+      }
+    }
+    return std::nullopt;
+  }
+
   void addPrimitive(const pugi::xml_node& primitive, const Eigen::Affine3d& X_RG) {
+    builder_.setColour(diffuseColour(primitive));
     IndexLayout layout;
     pugi::xml_node vertexInput;
     for (const pugi::xml_node& input : primitive.children("input")) {
@@ -386,6 +420,8 @@ class ColladaReader {
   XmlDocument document_;
   std::unordered_map<std::string, pugi::xml_node> ids_;
   MeshBuilder builder_;
+  /// The <instance_geometry> or <instance_controller> being read (its <bind_material>).
+  pugi::xml_node instance_;
   int instances_ = 0;
   long corners_ = 0;
 };

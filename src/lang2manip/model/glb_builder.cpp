@@ -123,7 +123,12 @@ struct GlbBuilder::Impl {
 
   /// The glTF mesh of a shape's geometry and colour (built once per geometry and colour).
   int meshIndex(const Shape& shape) {
-    const Vector4 rgba = shape.material ? shape.material->rgba : Vector4(0.7, 0.7, 0.7, 1.0);
+    Vector4 rgba(0.7, 0.7, 0.7, 1.0);
+    if (shape.material) {
+      rgba = shape.material->rgba;
+    } else if (const auto* mesh = std::get_if<MeshGeometry>(&shape.geometry); mesh != nullptr && mesh->mesh && mesh->mesh->colour) {
+      rgba.head<3>() = *mesh->mesh->colour;  // the mesh file's own colour
+    }
     const auto [position, indices] = geometryAccessors(shape.geometry);
     if (position < 0) return -1;
     const auto key = std::make_tuple(position, rgba.x(), rgba.y(), rgba.z(), rgba.w());

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <climits>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -92,6 +93,12 @@ void MeshBuilder::addTriangle(int a, int b, int c) {
     return;
   }
   mesh_.triangles.push_back({a, b, c});
+  if (colour_ && colour_->allFinite()) {
+    const Vector3 rgb = colour_->cwiseMax(0.0).cwiseMin(1.0);
+    const std::array<double, 3> key{std::round(rgb.x() * 255.0), std::round(rgb.y() * 255.0), std::round(rgb.z() * 255.0)};
+    const Vector3& p = mesh_.vertices[static_cast<std::size_t>(a)];
+    colourAreas_[key] += 0.5 * (mesh_.vertices[static_cast<std::size_t>(b)] - p).cross(mesh_.vertices[static_cast<std::size_t>(c)] - p).norm();
+  }
 }
 
 std::string MeshBuilder::problem() const {
@@ -103,6 +110,12 @@ std::string MeshBuilder::problem() const {
 
 TriangleMesh MeshBuilder::take(std::string source) {
   mesh_.source = std::move(source);
+  double largest = -1.0;
+  std::array<double, 3> best{};
+  for (const auto& [key, area] : colourAreas_) {
+    if (area > largest || (area == largest && key < best)) largest = area, best = key;  // ties: the smaller key, whatever the map's order
+  }
+  if (largest >= 0.0) mesh_.colour = Vector3(best[0], best[1], best[2]) / 255.0;
   return std::move(mesh_);
 }
 

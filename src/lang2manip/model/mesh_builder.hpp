@@ -6,6 +6,7 @@
 #include <array>
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <unordered_map>
 
@@ -26,8 +27,17 @@ class MeshBuilder {
   /// The index of a vertex with exactly these coordinates, appending one if there is none.
   int mergedVertex(const Vector3& point);
 
-  /// Adds a triangle unless an index is invalid or it has no area (nothing to collide with).
+  /// Adds a triangle unless an index is invalid or it has no area (nothing to collide with); its
+  /// area counts for the colour set last.
   void addTriangle(int a, int b, int c);
+
+  /// The diffuse colour (RGB, 0..1) of the triangles added next; none: no colour of the file.
+  void setColour(const std::optional<Vector3>& rgb) { colour_ = rgb; }
+  /// Forgets the colours of the triangles added so far (they were no colour of the file).
+  void forgetColours() {
+    colour_.reset();
+    colourAreas_.clear();
+  }
 
   /// What makes the collected mesh unusable, or "" when it is fine.
   [[nodiscard]] std::string problem() const;
@@ -46,6 +56,9 @@ class MeshBuilder {
 
   TriangleMesh mesh_;
   std::unordered_map<std::array<double, 3>, int, KeyHash> merged_;
+  std::optional<Vector3> colour_;
+  /// Surface area per colour (RGB rounded to 1/255).
+  std::unordered_map<std::array<double, 3>, double, KeyHash> colourAreas_;
   bool nonFinite_ = false;
   bool tooLarge_ = false;
 };

@@ -2,6 +2,7 @@
 /// @file An indexed triangle mesh, in the units of the file it came from (scale not applied).
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,10 @@ struct TriangleMesh {
   std::vector<std::array<int, 3>> triangles;
   /// The file it was read from (absolute path), for messages.
   std::string source;
+  /// The diffuse colour (RGB, 0..1) that covers most of its surface, from the file's own
+  /// materials (Inventor/VRML Material, COLLADA effects, OBJ/PLY materials); none when the file
+  /// gives none.
+  std::optional<Vector3> colour;
 
   /// Axis-aligned bounds of the vertices (empty box when there are none).
   [[nodiscard]] AlignedBox3 bounds() const;

@@ -38,15 +38,22 @@ constexpr std::array<ColourPrototype, 37> kColourPrototypes{{
 double boxVolume(const AlignedBox3& box) { return box.isEmpty() ? 0.0 : box.sizes().prod(); }
 
 /// The material of the visual (or collision) shape with the largest bounding box.
-const Material* mainMaterial(const SceneObject& object) {
+/// The colour of the largest shape that has one: its URDF material, else its mesh file's own.
+std::optional<Vector3> mainColour(const SceneObject& object) {
   const std::vector<Shape>& shapes = object.visuals.empty() ? object.collisions : object.visuals;
-  const Material* best = nullptr;
+  std::optional<Vector3> best;
   double bestVolume = -1.0;
   for (const Shape& shape : shapes) {
-    if (!shape.material) continue;
+    std::optional<Vector3> colour;
+    if (shape.material) {
+      colour = shape.material->rgba.head<3>();
+    } else if (const auto* mesh = std::get_if<MeshGeometry>(&shape.geometry); mesh != nullptr && mesh->mesh) {
+      colour = mesh->mesh->colour;
+    }
+    if (!colour) continue;
     const double volume = boxVolume(shapeBounds(shape));
     if (volume > bestVolume) {
-      best = &*shape.material;
+      best = colour;
       bestVolume = volume;
     }
   }
@@ -105,9 +112,7 @@ std::vector<std::string> objectColours(const SceneObject& object) {
     const bool isColour = std::find(known.begin(), known.end(), word) != known.end();
     if (isColour && std::find(colours.begin(), colours.end(), word) == colours.end()) colours.push_back(word);
   }
-  if (const Material* material = mainMaterial(object); material != nullptr && colours.empty()) {
-    colours.push_back(nearestColourName(material->rgba.head<3>()));
-  }
+  if (const std::optional<Vector3> colour = mainColour(object); colour && colours.empty()) colours.push_back(nearestColourName(*colour));
   return colours;
 }
 
