@@ -141,7 +141,7 @@ TEST(GraspPlanner, FlatEraserCannotBeHeldLevelFromTheSide) {
   const AlignedBox3 eraser = reach.scene().object("eraser").worldBounds();
   for (const GraspCandidate& c : side.candidates) {
     EXPECT_LT(c.approachDirection.z(), -0.4) << c.label;
-    const AlignedBox3 fingers = transformedBox(reach.gripper().fingerBoundsBetween(c.objectWidth, c.opening), c.graspPose);
+    const AlignedBox3 fingers = transformedBox(reach.gripper().fingerBounds, c.graspPose);
     EXPECT_GT(fingers.min().z(), eraser.min().z()) << c.label;
     EXPECT_LT(fingers.min().z(), eraser.max().z() - GraspSettings{}.minimumEngagement + 1e-9) << c.label;
   }

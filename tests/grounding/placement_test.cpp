@@ -10,6 +10,7 @@
 #include "lang2manip/grounding/placement.hpp"
 #include "lang2manip/grounding/object_geometry.hpp"
 #include "lang2manip/symbolic/spatial_relations.hpp"
+#include "lang2manip/symbolic/surface_region.hpp"
 #include "lang2manip/symbolic/symbolic_state.hpp"
 
 namespace lang2manip::test {
@@ -185,6 +186,29 @@ TEST(Placement, ObjectsKnownToFollowAllKeepAPlace) {
     const PlacementPlan plan = planPlacement(reach, request);
     ASSERT_TRUE(plan.success()) << blocks[i] << ": " << plan.reason;
     scene = placed(reach, plan);
+  }
+}
+
+TEST(Placement, TheNearCornersOfTheReachablePartOfTheDeskArePlaceableOnEveryRobot) {
+  // The reach stated to planners is measured without the arm hitting itself (the UR5's wrist
+  // folds into its forearm near its base): a block standing in the near corners of the reachable
+  // part of the desk is placeable.
+  for (const char* robot : {"panda", "ur5", "iiwa14", "tx90", "yumi"}) {
+    Scene scene = deskScene(robot);
+    scene.removeObject("holder");
+    scene.addObject(boxObject("block", Vector3::Constant(0.04), scene.object("eraser").pose.translation() + Vector3(0.0, 0.0, 0.0)));
+    scene.removeObject("eraser");
+    const std::string arm = scene.robots().front().model->semantics().manipulators.front().name;
+    const auto area = supportArea(scene, "desk", "", nullptr, arm);
+    ASSERT_TRUE(area);
+    const ReachabilityChecker reach = reachFor(robot, scene);
+    for (const double y : {area->reachable.min().y() + 0.02, area->reachable.max().y() - 0.02}) {
+      SCOPED_TRACE(std::string(robot) + " y " + std::to_string(y));
+      PlacementTarget target;
+      target.position = Vector3(area->reachable.min().x() + 0.02, y, area->top.max().z());
+      const PlacementPlan plan = place(reach, "block", target);
+      EXPECT_TRUE(plan.success()) << plan.reason;
+    }
   }
 }
 

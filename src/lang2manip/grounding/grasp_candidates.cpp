@@ -165,7 +165,11 @@ void addGrasps(const GraspGeometryInput& in, const GripperGeometry& gripper, con
                                 object.name + ": a finger would have to pass under it, through its support"});
       continue;
     }
-    if (p.z() + fingerLowest(fingers, R) > top - settings.minimumEngagement) {
+    // Lifted across the closing axis within that play, the object is off the pads' middle: then
+    // the TCP itself must be below the top; otherwise the fingertips must be.
+    const bool centred = std::abs(lift * c.z()) <= kCentringTolerance;
+    const double lowestHold = centred ? p.z() + fingerLowest(fingers, R) : p.z() + (R * Vector3(0.0, 0.0, pads)).z();
+    if (lowestHold > top - settings.minimumEngagement) {
       out.rejections.push_back({label, GraspFailure::kNotGraspable,
                                 object.name + ": the fingers cannot close below its top without touching its support"});
       continue;

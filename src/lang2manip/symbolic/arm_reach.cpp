@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -11,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "lang2manip/collision/fcl_collision_checker.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/kinematics/ik_solver.hpp"
 #include "lang2manip/model/geometry.hpp"
@@ -32,6 +34,11 @@ constexpr double kHeights[] = {0.02, 0.12};
 constexpr int kFirstAttempts = 24;
 constexpr int kNextAttempts = 3;
 constexpr std::uint64_t kIkSeed = 11;
+/// Restarts (other random seeds) of a search whose solution hits the robot itself.
+constexpr std::uint64_t kSelfCollisionRetries = 3;
+
+/// True when a configuration keeps the robot clear of itself.
+using FreeOfItself = std::function<bool(const VectorX&)>;
 
 /// What the measurement needs of one arm: chain frames, the hand's axis and the shoulder.
 struct ArmFrames {
@@ -88,7 +95,8 @@ std::optional<ArmFrames> armFrames(const SceneRobot& robot, const Pose& base, co
 /// Solves IK for the tool frame at `point` (base frame) with the hand pointing straight down, as
 /// it places what a top grasp holds (a grasp that leans at the pick keeps its lean, so a lean is
 /// no reach the place can count on); updates `seed` to the solution when there is one.
-bool reachDown(const IkSolver& solver, const SceneRobot& robot, const ArmFrames& arm, const Vector3& point, VectorX& seed, int attempts) {
+bool reachDown(const IkSolver& solver, const SceneRobot& robot, const ArmFrames& arm, const FreeOfItself& free, const Vector3& point,
+               VectorX& seed, int attempts) {
   IkRequest request;
   request.model = robot.model.get();
   request.manipulator = arm.manipulator->name;
@@ -100,15 +108,23 @@ bool reachDown(const IkSolver& solver, const SceneRobot& robot, const ArmFrames&
   request.orientationTolerance = 1e-2;
   request.randomSeed = kIkSeed;
   request.target = IkTarget::positionAndAxis(chainToBase * point, chainToBase.linear() * -Vector3::UnitZ(), arm.handAxis);
-  const IkResult result = solver.solve(request);
-  if (result.status != IkStatus::kSuccess) return false;
-  seed = result.solutions.front();
-  return true;
+  // A solution the arm cannot take without hitting itself (a wrist folded into its forearm near
+  // the base) is no reach: other restarts are tried for one it can.
+  for (std::uint64_t restart = 0; restart < kSelfCollisionRetries; ++restart) {
+    request.randomSeed = kIkSeed + restart;
+    const IkResult result = solver.solve(request);
+    if (result.status != IkStatus::kSuccess) return false;
+    if (free(result.solutions.front())) {
+      seed = result.solutions.front();
+      return true;
+    }
+  }
+  return false;
 }
 
 /// [inner, outer] reached along one ray at one height (inner > outer when nothing is).
-std::pair<double, double> measureRay(const IkSolver& solver, const SceneRobot& robot, const ArmFrames& arm, double azimuth,
-                                     double z) {
+std::pair<double, double> measureRay(const IkSolver& solver, const SceneRobot& robot, const ArmFrames& arm, const FreeOfItself& free,
+                                     double azimuth, double z) {
   const Vector3 direction(std::cos(azimuth), std::sin(azimuth), 0.0);
   const Vector3 origin(arm.shoulder.x(), arm.shoulder.y(), z);
   const auto point = [&](double r) -> Vector3 { return origin + r * direction; };
@@ -117,7 +133,7 @@ std::pair<double, double> measureRay(const IkSolver& solver, const SceneRobot& r
   std::optional<int> start;
   for (const double share : {0.5, 0.35, 0.65, 0.2, 0.8}) {  // a first reached point, near the middle first
     const int step = static_cast<int>(std::lround(share * steps));
-    if (reachDown(solver, robot, arm, point(kNearestRadius + step * kRadiusStep), seed, kFirstAttempts)) {
+    if (reachDown(solver, robot, arm, free, point(kNearestRadius + step * kRadiusStep), seed, kFirstAttempts)) {
       start = step;
       break;
     }
@@ -128,9 +144,9 @@ std::pair<double, double> measureRay(const IkSolver& solver, const SceneRobot& r
   // middle with restarts, so that the boundary is where the arm stops, not where one descent did.
   const auto reachedAt = [&](int step) {
     const Vector3 target = point(kNearestRadius + step * kRadiusStep);
-    if (reachDown(solver, robot, arm, target, seed, kNextAttempts)) return true;
+    if (reachDown(solver, robot, arm, free, target, seed, kNextAttempts)) return true;
     seed = robot.model->middleConfiguration();
-    return reachDown(solver, robot, arm, target, seed, kFirstAttempts);
+    return reachDown(solver, robot, arm, free, target, seed, kFirstAttempts);
   };
   int outer = *start, inner = *start;
   while (outer + 1 <= steps && reachedAt(outer + 1)) ++outer;
@@ -164,6 +180,12 @@ std::vector<AlignedBox3> bodyOnTop(const SceneRobot& robot, const Pose& base, do
 }
 
 ArmReach measureArm(const IkSolver& solver, const SceneRobot& robot, const Pose& base, const ArmFrames& arm, double topZ) {
+  // The robot alone: its own links are what a reached configuration must keep clear of.
+  Scene alone;
+  alone.addRobot(robot);
+  const FclCollisionChecker self(std::move(alone));
+  const std::unique_ptr<CollisionContext> context = self.makeContext();
+  const FreeOfItself free = [&](const VectorX& q) { return self.isStateValid(0, q, *context); };
   ArmReach reach;
   reach.body = bodyOnTop(robot, base, topZ);
   reach.manipulator = arm.manipulator->name;
@@ -172,7 +194,7 @@ ArmReach measureArm(const IkSolver& solver, const SceneRobot& robot, const Pose&
     const double azimuth = kRayFirst + ray * kRayStep;
     double inner = 0.0, outer = std::numeric_limits<double>::infinity();
     for (const double height : kHeights) {
-      const auto [near, far] = measureRay(solver, robot, arm, azimuth, topZ + height);
+      const auto [near, far] = measureRay(solver, robot, arm, free, azimuth, topZ + height);
       inner = std::max(inner, near);
       outer = std::min(outer, far);
     }
