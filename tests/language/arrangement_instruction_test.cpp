@@ -120,6 +120,41 @@ TEST(ArrangementInstruction, ObjectsNextToEachOtherFormOneGroup) {
               HasSubstr("only a circle, triangle or square goes around something"));
 }
 
+TEST(ArrangementInstruction, ALineBetweenTwoObjectsIsEvenlySpacedAlongThem) {
+  const char* instruction = "put the red and green blocks in a line between the white cup and the box";
+  const TaskSpecification specification = arrangementOf(instruction);
+  ASSERT_EQ(specification.goals.size(), 1u);
+  const Goal& line = specification.goals.front();
+  ASSERT_TRUE(line.heading.has_value());
+  EXPECT_TRUE(line.evenlySpaced);
+  expectPlacesMakeTheArrangement(instruction);
+  // The places are a third and two thirds of the way from one end's centre to the other's.
+  const std::vector<ObjectDescriptor> objects = describeObjects(test::workbenchScene());
+  const auto centreOf = [&](const std::string& name) {
+    for (const ObjectDescriptor& o : objects) {
+      if (o.name == name) return Eigen::Vector2d(o.position.head<2>());
+    }
+    return Eigen::Vector2d(0.0, 0.0);
+  };
+  const Eigen::Vector2d a = centreOf("white_cup"), b = centreOf("box");
+  std::vector<double> shares;
+  for (const Goal& step : specification.steps) {
+    const Eigen::Vector2d at = step.position->head<2>();  // a block's frame is under its centre
+    shares.push_back((at - a).dot(b - a) / (b - a).squaredNorm());
+  }
+  ASSERT_EQ(shares.size(), 2u);
+  std::sort(shares.begin(), shares.end());
+  EXPECT_NEAR(shares[0], 1.0 / 3.0, 0.05);
+  EXPECT_NEAR(shares[1], 2.0 / 3.0, 0.05);
+  EXPECT_THAT(arrangementRefusal("put the blocks in a circle between the white cup and the box"), HasSubstr("only a line goes between two objects"));
+  // "The blocks" between the red block and the box are the others; naming it among them is refused.
+  EXPECT_EQ(test::summarize(arrangementOf("put the blocks in a line between the red block and the box")).rfind("blue_block, green_block in a line", 0), 0u);
+  EXPECT_THAT(arrangementRefusal("put the red and green blocks in a line between the red block and the box"),
+              HasSubstr("cannot relate red_block to itself"));
+  EXPECT_THAT(arrangementRefusal("put the blocks in a line 10 cm apart between the white cup and the box"),
+              HasSubstr("a line between two objects takes their direction and spacing"));
+}
+
 TEST(ArrangementInstruction, ArrangementsThatCannotBeAreRefusedSayingWhy) {
   EXPECT_THAT(arrangementRefusal("make a triangle with the blocks and the markers"), HasSubstr("a triangle has 3 members, not 5"));
   EXPECT_THAT(arrangementRefusal("put the blocks in a square"), HasSubstr("a square has 4 members, not 3"));

@@ -147,7 +147,33 @@ std::vector<Vector3> leastTravel(const std::vector<AlignedBox3>& members, const 
   return result;
 }
 
+/// Evenly spaced on the segment between the two objects' centres (the ends excluded), in the
+/// order the members stand along it, clear of both ends and of what else stands there.
+std::optional<std::vector<Vector3>> layOutBetween(const ArrangementLayoutRequest& request, const Layout& layout, std::string& why) {
+  const Vector3 a = flattened(request.between->first.center()), b = flattened(request.between->second.center());
+  const Vector3 direction = (b - a).normalized();
+  const std::size_t n = request.members.size();
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
+    return request.members[i].center().dot(direction) < request.members[j].center().dot(direction);
+  });
+  std::vector<Vector3> spots;
+  for (std::size_t i = 0; i < n; ++i) spots.push_back(a + (b - a) * static_cast<double>(i + 1) / static_cast<double>(n + 1));
+  const double pitch = (b - a).norm() / static_cast<double>(n + 1);
+  if (pitch >= layout.widest() + kTightSpacingGap) {
+    for (const Clearance clearance : kClearances) {
+      if (layout.fits(spots, clearance)) return inMemberOrder(spots, order);
+    }
+  }
+  why = std::to_string(n) + " objects between the two are " + std::to_string(static_cast<int>(std::round(pitch * 100.0))) +
+        " cm apart, and need " + std::to_string(static_cast<int>(std::round((layout.widest() + kTightSpacingGap) * 100.0))) +
+        " cm each clear of the ends and of what stands between them";
+  return std::nullopt;
+}
+
 std::optional<std::vector<Vector3>> layOutLine(const ArrangementLayoutRequest& request, const Layout& layout, std::string& why) {
+  if (request.between) return layOutBetween(request, layout, why);
   const Vector3 direction = flattened(request.direction).normalized();
   const std::size_t n = request.members.size();
   const double length = layout.pitch() * static_cast<double>(n - 1);

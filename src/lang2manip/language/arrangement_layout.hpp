@@ -36,6 +36,8 @@ struct ArrangementLayoutRequest {
   std::optional<AlignedBox3> around;
   /// spread_out: the least gap between two members' boxes.
   double spreadGap = 0.10;
+  /// A line between two objects: their boxes; the members go evenly spaced between their centres.
+  std::optional<std::pair<AlignedBox3, AlignedBox3>> between;
 };
 
 /// The centre (x, y; z = 0) each member goes to, in the members' order: for a line, in the

@@ -83,6 +83,8 @@ bool alreadyArranged(const Goal& arranged, const ArrangementLayoutRequest& reque
   return checkArrangedBoxes(arranged, request.members, SpatialOptions{}).holds;
 }
 
+Vector3 flattened3(const Vector3& v) { return {v.x(), v.y(), 0.0}; }
+
 std::vector<Vector3> standingCentres(const ArrangementLayoutRequest& request) {
   std::vector<Vector3> centres;
   for (const AlignedBox3& box : request.members) centres.emplace_back(box.center().x(), box.center().y(), 0.0);
@@ -184,6 +186,16 @@ void StepParser::parseArrangementPlace(Step& step, ShapePhrase& phrase) {
       at = centre->end;
       continue;
     }
+    if (matchesAt(words, at, {"between"})) {  // "between the red bowl and the blue bowl"
+      const std::optional<NounPhrase> first = reader_.read(words, at + 1);
+      const std::optional<NounPhrase> second = first && matchesAt(words, first->end, {"and"}) ? reader_.read(words, first->end + 1) : std::nullopt;
+      if (!second) failStep(step, "expected \"between X and Y\"");
+      if (phrase.shape != ArrangementShape::kLine) failStep(step, "only a line goes between two objects");
+      phrase.between = {groundTarget(step, *first, false), groundTarget(step, *second, false)};
+      if (phrase.between[0] == phrase.between[1]) failStep(step, "a line between " + phrase.between[0] + " and itself");
+      at = second->end;
+      continue;
+    }
     const std::size_t on = longestPhraseAt(words, at, {{"on"}, {"of"}, {"across"}, {"over"}, {"on", "top", "of"}});
     const std::optional<NounPhrase> support = on > 0 ? reader_.read(words, at + on) : std::nullopt;
     if (support) {  // "on the table", "across the desk"
@@ -230,6 +242,11 @@ void StepParser::arrange(Step& step, const ShapePhrase& phrase) {
     request.onSupport.push_back(standsOn(member, support));
   }
   if (!phrase.around.empty()) request.around = reader_.descriptor(phrase.around).bounds;
+  if (!phrase.between.empty()) {
+    if (phrase.spacing || phrase.direction || phrase.diagonal) failStep(step, "a line between two objects takes their direction and spacing");
+    request.between = std::make_pair(reader_.descriptor(phrase.between[0]).bounds, reader_.descriptor(phrase.between[1]).bounds);
+    request.direction = flattened3(request.between->second.center() - request.between->first.center()).normalized();
+  }
   for (const ObjectDescriptor& other : reader_.objects()) {
     const bool below = other.bounds.max().z() < top.bounds.max().z() - 0.01;  // what the support stands on
     if (other.name == support || below || containsWord(step.objects, other.name)) continue;
@@ -237,6 +254,10 @@ void StepParser::arrange(Step& step, const ShapePhrase& phrase) {
     request.othersMovable.push_back(other.movable);
   }
   Goal arranged = arrangedGoal(step.objects, phrase, support, request.direction);
+  if (!phrase.between.empty()) {  // evenly spaced along the segment's direction
+    arranged.heading = std::atan2(request.direction.y(), request.direction.x());
+    arranged.evenlySpaced = true;
+  }
   std::string why;
   const std::optional<std::vector<Vector3>> spots = alreadyArranged(arranged, request) ? standingCentres(request) : layOutArrangement(request, why);
   if (!spots) failStep(step, why + " on " + support);

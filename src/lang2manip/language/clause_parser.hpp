@@ -48,6 +48,8 @@ struct ShapePhrase {
   std::optional<SurfaceRegion> region{};
   std::string around{};
   std::string support{};
+  /// A line "between X and Y": the two objects it runs between.
+  std::vector<std::string> between{};
 };
 
 /// The shape phrase at words[at] (after "in", "into", "as", "forming"), or nullopt.
