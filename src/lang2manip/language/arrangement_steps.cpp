@@ -76,11 +76,14 @@ Goal arrangedGoal(const std::vector<std::string>& members, const ShapePhrase& ph
 }
 
 /// True when the members stand on the support in the arrangement already (outside any region
-/// asked for it is not).
+/// asked for it is not), clearly: within half the check's distance tolerance, so that what is
+/// left standing is not at the edge of what the words allow.
 bool alreadyArranged(const Goal& arranged, const ArrangementLayoutRequest& request) {
-  if (request.centreArea || request.around) return false;
+  if (request.centreArea || request.around || request.between) return false;
   if (!std::all_of(request.onSupport.begin(), request.onSupport.end(), [](bool on) { return on; })) return false;
-  return checkArrangedBoxes(arranged, request.members, SpatialOptions{}).holds;
+  SpatialOptions clearly;
+  clearly.distanceTolerance /= 2.0;
+  return checkArrangedBoxes(arranged, request.members, clearly).holds;
 }
 
 Vector3 flattened3(const Vector3& v) { return {v.x(), v.y(), 0.0}; }
