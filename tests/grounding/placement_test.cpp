@@ -142,16 +142,22 @@ TEST(Placement, AWideContainerIsEnteredAndANarrowOneIsDroppedInto) {
   }
 }
 
-TEST(Placement, ObjectsPutInOneAtATimeArePackedSoThatTheLastStillFits) {
-  // Four 4.5 cm blocks fit a 11.6 cm tray only two by two: each one, placed without knowing
-  // what follows, leaves the most room for more like it (a corner, not the middle).
+/// The Panda desk with an 11.6 cm tray and four 4.5 cm blocks ("block0".."block3") beside it.
+Scene trayAndFourBlocks() {
   Scene scene = deskScene("panda");
   scene.removeObject("marker");
   scene.removeObject("eraser");
   scene.addObject(tray(Vector3(0.116, 0.116, 0.0), 0.04, Vector3(0.15, -0.15, 0.75)));
   const std::vector<Vector3> starts{{-0.05, 0.1, 0.75}, {-0.05, 0.2, 0.75}, {0.05, 0.2, 0.75}, {-0.05, -0.05, 0.75}};
   for (std::size_t i = 0; i < starts.size(); ++i) scene.addObject(boxObject("block" + std::to_string(i), Vector3::Constant(0.045), starts[i]));
-  for (std::size_t i = 0; i < starts.size(); ++i) {
+  return scene;
+}
+
+TEST(Placement, ObjectsPutInOneAtATimeArePackedSoThatTheLastStillFits) {
+  // Four 4.5 cm blocks fit a 11.6 cm tray only two by two: each one, placed without knowing
+  // what follows, leaves the most room for more like it (a corner, not the middle).
+  Scene scene = trayAndFourBlocks();
+  for (std::size_t i = 0; i < 4; ++i) {
     const std::string block = "block" + std::to_string(i);
     const ReachabilityChecker reach = reachFor("panda", scene);
     const PlacementPlan plan = place(reach, block, relation(SpatialRelation::kIn, "tray"));
@@ -166,16 +172,8 @@ TEST(Placement, ObjectsPutInOneAtATimeArePackedSoThatTheLastStillFits) {
 TEST(Placement, ObjectsKnownToFollowAllKeepAPlace) {
   // The same four blocks put in by one plan: each placement leaves one free position for every
   // block that follows it, all at once (each alone would find one in the middle's way).
-  Scene scene = deskScene("panda");
-  scene.removeObject("marker");
-  scene.removeObject("eraser");
-  scene.addObject(tray(Vector3(0.116, 0.116, 0.0), 0.04, Vector3(0.15, -0.15, 0.75)));
-  const std::vector<Vector3> starts{{-0.05, 0.1, 0.75}, {-0.05, 0.2, 0.75}, {0.05, 0.2, 0.75}, {-0.05, -0.05, 0.75}};
-  std::vector<std::string> blocks;
-  for (std::size_t i = 0; i < starts.size(); ++i) {
-    blocks.push_back("block" + std::to_string(i));
-    scene.addObject(boxObject(blocks.back(), Vector3::Constant(0.045), starts[i]));
-  }
+  Scene scene = trayAndFourBlocks();
+  const std::vector<std::string> blocks{"block0", "block1", "block2", "block3"};
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     const ReachabilityChecker reach = reachFor("panda", scene);
     PlacementRequest request;
