@@ -110,6 +110,7 @@ TEST(MeshLoader, TheColourCoveringMostOfTheSurfaceIsTheMeshesOwn) {
   EXPECT_EQ(colourOf("white_piece.iv"), "242 240 229");  // ivory over a thin black base
   EXPECT_EQ(colourOf("two_colours.dae"), "204 26 26");   // red 4 m2 over blue 1 m2, bound by <bind_material>
   EXPECT_EQ(colourOf("green_cube.obj"), "26 178 51");    // from its .mtl
+  EXPECT_EQ(colourOf("red_box_v2.wrl"), "229 26 26");     // a VRML 2 Appearance
   // Files that name no colour have none (not the reader's default grey).
   EXPECT_EQ(colourOf("box_ascii.stl"), "none");
   EXPECT_EQ(colourOf("cube_v1.wrl"), "none");

@@ -114,6 +114,15 @@ std::vector<Vector3> inMemberOrder(const std::vector<Vector3>& spots, const std:
   return result;
 }
 
+/// The members' indices in the order they stand along `direction`.
+std::vector<std::size_t> orderAlong(const std::vector<AlignedBox3>& members, const Vector3& direction) {
+  std::vector<std::size_t> order(members.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return members[a].center().dot(direction) < members[b].center().dot(direction); });
+  return order;
+}
+
 /// The assignment of members to spots that moves them least in total (every order for up to seven,
 /// else each member in turn to its nearest free spot).
 std::vector<Vector3> leastTravel(const std::vector<AlignedBox3>& members, const std::vector<Vector3>& spots) {
@@ -153,11 +162,7 @@ std::optional<std::vector<Vector3>> layOutBetween(const ArrangementLayoutRequest
   const Vector3 a = flattened(request.between->first.center()), b = flattened(request.between->second.center());
   const Vector3 direction = (b - a).normalized();
   const std::size_t n = request.members.size();
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
-    return request.members[i].center().dot(direction) < request.members[j].center().dot(direction);
-  });
+  const std::vector<std::size_t> order = orderAlong(request.members, direction);
   std::vector<Vector3> spots;
   for (std::size_t i = 0; i < n; ++i) spots.push_back(a + (b - a) * static_cast<double>(i + 1) / static_cast<double>(n + 1));
   const double pitch = (b - a).norm() / static_cast<double>(n + 1);
@@ -177,11 +182,7 @@ std::optional<std::vector<Vector3>> layOutLine(const ArrangementLayoutRequest& r
   const Vector3 direction = flattened(request.direction).normalized();
   const std::size_t n = request.members.size();
   const double length = layout.pitch() * static_cast<double>(n - 1);
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return request.members[a].center().dot(direction) < request.members[b].center().dot(direction);
-  });
+  const std::vector<std::size_t> order = orderAlong(request.members, direction);
   const std::vector<Vector3> centres = layout.centres();
   for (const double pitch : layout.pitches()) {
     const double span = pitch * static_cast<double>(n - 1);
@@ -202,10 +203,7 @@ std::optional<std::vector<Vector3>> layOutLine(const ArrangementLayoutRequest& r
 /// along it, each `gap` from the next (boxes of any size: the gaps, not the pitch, are equal).
 std::vector<Vector3> rowOf(const std::vector<AlignedBox3>& members, const Vector3& direction, const Vector3& centre, double gap) {
   const std::size_t n = members.size();
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return members[a].center().dot(direction) < members[b].center().dot(direction); });
+  const std::vector<std::size_t> order = orderAlong(members, direction);
   const auto halfAlong = [&](const AlignedBox3& box) { return box.sizes().head<2>().dot(direction.head<2>().cwiseAbs()) / 2.0; };
   std::vector<double> offsets;
   double at = 0.0;

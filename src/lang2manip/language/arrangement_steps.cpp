@@ -86,8 +86,6 @@ bool alreadyArranged(const Goal& arranged, const ArrangementLayoutRequest& reque
   return checkArrangedBoxes(arranged, request.members, clearly).holds;
 }
 
-Vector3 flattened3(const Vector3& v) { return {v.x(), v.y(), 0.0}; }
-
 std::vector<Vector3> standingCentres(const ArrangementLayoutRequest& request) {
   std::vector<Vector3> centres;
   for (const AlignedBox3& box : request.members) centres.emplace_back(box.center().x(), box.center().y(), 0.0);
@@ -248,7 +246,9 @@ void StepParser::arrange(Step& step, const ShapePhrase& phrase) {
   if (!phrase.between.empty()) {
     if (phrase.spacing || phrase.direction || phrase.diagonal) failStep(step, "a line between two objects takes their direction and spacing");
     request.between = std::make_pair(reader_.descriptor(phrase.between[0]).bounds, reader_.descriptor(phrase.between[1]).bounds);
-    request.direction = flattened3(request.between->second.center() - request.between->first.center()).normalized();
+    Vector3 along = request.between->second.center() - request.between->first.center();
+    along.z() = 0.0;
+    request.direction = along.normalized();
   }
   for (const ObjectDescriptor& other : reader_.objects()) {
     const bool below = other.bounds.max().z() < top.bounds.max().z() - 0.01;  // what the support stands on
