@@ -59,6 +59,27 @@ TEST(TabletopLanguage, DifferentCornersGiveEachObjectACornerOfItsOwn) {
   EXPECT_THAT(meaning("put all the movable objects in different corners"), HasSubstr("objects cannot each have a corner of their own: table has 4"));
 }
 
+TEST(TabletopLanguage, OneObjectInEachPlaceIsADistributiveAssignment) {
+  // "one X in each Y": every Y gets an X of its own, the X chosen so that they move least.
+  EXPECT_EQ(meaning("put one marker in each cup"), "marker_1 in white_cup; marker_2 in yellow_cup");
+  EXPECT_EQ(meaning("put a marker in every cup"), "marker_1 in white_cup; marker_2 in yellow_cup");
+  const std::string twoOfThree = meaning("put a block in each cup");
+  EXPECT_THAT(twoOfThree, HasSubstr("white_cup"));
+  EXPECT_THAT(twoOfThree, HasSubstr("yellow_cup"));
+  EXPECT_EQ(std::count(twoOfThree.begin(), twoOfThree.end(), ';'), 1) << twoOfThree;
+  EXPECT_THAT(meaning("put one block in each corner"), HasSubstr("3 objects for the 4 corners of table"));
+  EXPECT_THAT(meaning("put a cup in each corner of the table"), HasSubstr("2 objects for the 4 corners of table"));
+  const std::string fourOfMany = meaning("put a movable object in each corner");
+  for (const char* corner : {"far_left_corner", "far_right_corner", "near_left_corner", "near_right_corner"}) {
+    EXPECT_THAT(fourOfMany, HasSubstr(corner));
+  }
+  EXPECT_EQ(std::count(fourOfMany.begin(), fourOfMany.end(), ';'), 3) << fourOfMany;
+  EXPECT_THAT(meaning("put one block per cup"), Not(HasSubstr("refused")));
+  EXPECT_THAT(meaning("put one cup in each block"), HasSubstr("refused"));
+  // A named object stays one object: "the block in each cup" is not distributive.
+  EXPECT_THAT(meaning("put the red block in each cup"), HasSubstr("refused"));
+}
+
 TEST(TabletopLanguage, ACornerLeftOpenIsOneWithRoomForTheObject) {
   // The holder stands in the desk's far left corner and fills it.
   std::vector<ObjectDescriptor> objects = describeObjects(test::deskScene());

@@ -7,6 +7,8 @@
 #include <limits>
 #include <numeric>
 
+#include "lang2manip/core/assignment.hpp"
+
 #include "lang2manip/language/clause_parser.hpp"
 #include "lang2manip/language/clause_step.hpp"
 #include "lang2manip/language/region_phrases.hpp"
@@ -60,12 +62,87 @@ bool shareColour(const ObjectDescriptor& a, const ObjectDescriptor& b) {
 
 double distance(const ObjectDescriptor& a, const ObjectDescriptor& b) { return (a.position - b.position).head<2>().norm(); }
 
+/// The length of "each", "every", "each of the", "every one of the" at words[at]; 0 when none.
+std::size_t eachWord(const Words& words, std::size_t at) {
+  static const std::vector<Words> each{{"each"}, {"every"}, {"each", "of", "the"}, {"every", "one", "of", "the"}, {"each", "one", "of", "the"}};
+  return longestPhraseAt(words, at, each);
+}
+
+/// The length of the preposition of a distributive place ("in", "into", "on", "per"); 0 when none.
+std::size_t eachPlacePreposition(const Words& words, std::size_t at) {
+  if (at < words.size() && words[at] == "per") return 1;
+  return regionPreposition(words, at);
+}
+
 }  // namespace
+
+bool eachPlaceFollows(const Words& words, std::size_t at) {
+  const std::size_t preposition = eachPlacePreposition(words, at);
+  if (preposition == 0) return false;
+  return words[at] == "per" ? at + 1 < words.size() : eachWord(words, at + preposition) > 0;
+}
+
+void StepParser::assignOnePerPlace(Step& step, std::size_t at) {
+  const Words& words = step.words;
+  const bool per = words[at] == "per";
+  const std::string preposition = words[at];
+  at += eachPlacePreposition(words, at);
+  at += eachWord(words, at);
+  if (at < words.size() && (words[at] == "corner" || words[at] == "corners")) {
+    step.at = at + 1;
+    std::string support = defaultRegionSupport(step);
+    if (step.at < words.size() && words[step.at] == "of") {
+      const std::optional<NounPhrase> of = reader_.read(words, step.at + 1);
+      if (!of) failStep(step, "expected a table or desk after \"of\"");
+      support = groundTarget(step, *of, false);
+      step.at = of->end;
+    }
+    assignCorners(step, support);
+    return;
+  }
+  std::optional<NounPhrase> places = reader_.read(words, at);
+  if (!places || !places->noun) failStep(step, "expected the places that each get one after \"" + joinWords(words, 0, at) + "\"");
+  places->quantity = Quantity::kAll;
+  std::vector<std::string> targets = reader_.ground(*places, discourse_, true, step.objects);
+  std::erase_if(targets, [&](const std::string& name) { return containsWord(step.objects, name); });
+  if (targets.empty()) failStep(step, "no place to put them in or on: " + places->text);
+  const bool into = per || preposition == "in" || preposition == "into";
+  for (const std::string& target : targets) {
+    const ObjectDescriptor& place = reader_.descriptor(target);
+    if (into && place.role != ObjectRole::kContainer && !per) failStep(step, target + " is not a container: nothing goes in it");
+  }
+  if (step.objects.size() < targets.size()) {
+    failStep(step, "one in each needs " + std::to_string(targets.size()) + ": there are only " + std::to_string(step.objects.size()) +
+                       " objects for the " + std::to_string(targets.size()) + " places (" + joinNames(targets) + ")");
+  }
+  // Each place the object that makes the moves least in total.
+  std::vector<std::vector<double>> costs(targets.size(), std::vector<double>(step.objects.size()));
+  for (std::size_t t = 0; t < targets.size(); ++t) {
+    for (std::size_t o = 0; o < step.objects.size(); ++o) costs[t][o] = distance(reader_.descriptor(step.objects[o]), reader_.descriptor(targets[t]));
+  }
+  const std::vector<std::size_t> chosen = cheapestAssignment(costs);
+  std::vector<std::string> moved;
+  for (std::size_t o = 0; o < step.objects.size(); ++o) {
+    const auto it = std::find(chosen.begin(), chosen.end(), o);
+    if (it == chosen.end()) continue;
+    const std::string& target = targets[static_cast<std::size_t>(it - chosen.begin())];
+    const SpatialRelation relation = reader_.descriptor(target).role == ObjectRole::kContainer ? SpatialRelation::kIn : SpatialRelation::kOn;
+    addGoal(step.objects[o], RelationSpec{relation, target, std::nullopt, std::nullopt});
+    moved.push_back(step.objects[o]);
+  }
+  step.objects = moved;
+  step.at = places->end;
+  step.target = targets.front();
+}
 
 bool StepParser::parseAssignment(Step& step) {
   if (step.objects.empty()) return false;
   const Words& words = step.words;
   std::size_t at = step.at;
+  if (step.distributive && eachPlaceFollows(words, at)) {
+    assignOnePerPlace(step, at);
+    return true;
+  }
   bool different = false;
   bool ruleFirst = false;
   if (const std::size_t rule = colourRule(words, at, different); rule > 0 && words[at] == "by") {
@@ -149,8 +226,12 @@ void StepParser::assignByColour(Step& step, const std::vector<std::string>& targ
 
 void StepParser::assignCorners(Step& step, const std::string& support) {
   constexpr std::size_t kCorners = 4;
-  if (step.objects.size() > kCorners) {
+  if (!step.distributive && step.objects.size() > kCorners) {
     failStep(step, std::to_string(step.objects.size()) + " objects cannot each have a corner of their own: " + support + " has 4");
+  }
+  if (step.distributive && step.objects.size() < kCorners) {
+    failStep(step, "one in each corner needs 4: there are only " + std::to_string(step.objects.size()) + " objects for the 4 corners of " +
+                       support);
   }
   const ObjectDescriptor& top = reader_.descriptor(support);
   const AlignedBox3 area = top.reachableTop.value_or(top.bounds);
@@ -158,8 +239,7 @@ void StepParser::assignCorners(Step& step, const std::string& support) {
   for (int depth : {1, -1}) {
     for (int side : {1, -1}) corners.push_back({SurfaceRegion::Kind::kCorner, depth, side});
   }
-  // A corner without room for an object (taken by something that stays) costs more than any move;
-  // the costs are measured once, before the orders are tried.
+  // A corner without room for an object (taken by something that stays) costs more than any move.
   constexpr double kNoRoom = 100.0;
   std::vector<std::vector<double>> costs(step.objects.size(), std::vector<double>(kCorners));
   for (std::size_t i = 0; i < step.objects.size(); ++i) {
@@ -170,19 +250,26 @@ void StepParser::assignCorners(Step& step, const std::string& support) {
       costs[i][c] = regionHasRoom(step.objects[i], support, corner, step.objects) ? move : move + kNoRoom;
     }
   }
-  // The assignment that moves the objects least, over every order of the corners (4! at most).
-  std::vector<std::size_t> order(kCorners);
-  std::iota(order.begin(), order.end(), 0);
-  std::vector<std::size_t> best = order;
-  double bestCost = std::numeric_limits<double>::infinity();
-  do {
-    double total = 0.0;
-    for (std::size_t i = 0; i < step.objects.size(); ++i) total += costs[i][order[i]];
-    if (total < bestCost - 1e-12) bestCost = total, best = order;
-  } while (std::next_permutation(order.begin(), order.end()));
-  for (std::size_t i = 0; i < step.objects.size(); ++i) {
-    addGoal(step.objects[i], RelationSpec{SpatialRelation::kOn, support, std::nullopt, corners[best[i]]});
+  // The assignment that moves the objects least: each object a corner, or (distributive, more
+  // objects than corners) each corner an object.
+  std::vector<std::size_t> cornerOf(step.objects.size(), kCorners);
+  if (step.objects.size() <= kCorners) {
+    cornerOf = cheapestAssignment(costs);
+  } else {
+    std::vector<std::vector<double>> byCorner(kCorners, std::vector<double>(step.objects.size()));
+    for (std::size_t i = 0; i < step.objects.size(); ++i) {
+      for (std::size_t c = 0; c < kCorners; ++c) byCorner[c][i] = costs[i][c];
+    }
+    const std::vector<std::size_t> objectOf = cheapestAssignment(byCorner);
+    for (std::size_t c = 0; c < kCorners; ++c) cornerOf[objectOf[c]] = c;
   }
+  std::vector<std::string> moved;
+  for (std::size_t i = 0; i < step.objects.size(); ++i) {
+    if (cornerOf[i] == kCorners) continue;
+    addGoal(step.objects[i], RelationSpec{SpatialRelation::kOn, support, std::nullopt, corners[cornerOf[i]]});
+    moved.push_back(step.objects[i]);
+  }
+  step.objects = moved;
   step.target = support;
 }
 

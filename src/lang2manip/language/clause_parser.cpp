@@ -192,7 +192,11 @@ void StepParser::parseObjects(Step& step) {
 std::vector<std::string> StepParser::groundList(Step& step, const std::vector<NounPhrase>& list) {
   std::vector<std::string> objects;
   const std::vector<std::string> destinations = peekDestinations(step, list.back().end);
-  for (const NounPhrase& phrase : list) {
+  const NounPhrase& only = list.front();
+  step.distributive = list.size() == 1 && only.quantity == Quantity::kIndefinite && !only.other && !only.isPlural() &&
+                      only.pronoun == Pronoun::kNone && eachPlaceFollows(step.words, only.end);
+  for (NounPhrase phrase : list) {
+    if (step.distributive) phrase.quantity = Quantity::kAll;  // every candidate; the places choose
     const std::vector<std::string> grounded = groundMoved(phrase, destinations);
     const bool group = phrase.isPlural() && phrase.pronoun == Pronoun::kNone;
     if (group && list.size() == 1) step.listedExplicitly = false;

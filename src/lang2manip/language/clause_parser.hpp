@@ -143,11 +143,16 @@ class StepParser {
   /// colour", "with mismatched colours", "in different corners": a goal per object of the step,
   /// chosen by a matching (assignment_steps.cpp). False when none follows.
   bool parseAssignment(Step& step);
+  /// For a distributive step ("one block in each bowl", "a block per corner"): each place named
+  /// after the preposition at `at` gets one object of the step, those that move least; refused
+  /// when there are fewer objects than places.
+  void assignOnePerPlace(Step& step, std::size_t at);
   /// Each object of the step in or on the target of (or, `different`, not of) its colour: the
   /// nearest such target, unused ones first when `different`. Refused when an object has none.
   void assignByColour(Step& step, const std::vector<std::string>& targets, bool different);
   /// Each object of the step in a corner of its own of `support`'s top: the assignment that moves
-  /// them least. Refused for more than four objects.
+  /// them least. Refused for more than four objects; for a distributive step, each corner gets
+  /// one of the objects, refused for fewer than four.
   void assignCorners(Step& step, const std::string& support);
   /// "in a horizontal line", "in a circle around the bowl", "in a triangle", "spread out", with
   /// where ("along the top edge", "in the middle", "on the table"): an arranged goal and an

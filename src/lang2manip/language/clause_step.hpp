@@ -18,6 +18,9 @@ struct StepParser::Step {
   /// Objects that came from plural phrases ("all the cups"): a target among them is left out.
   std::vector<std::string> groupObjects;
   bool listedExplicitly = true;
+  /// "one block in each bowl": the objects are every candidate of a singular indefinite phrase,
+  /// and each place that follows gets one of them (parseAssignment).
+  bool distributive = false;
   bool putsDown = false;
   /// No verb: the step repeats the previous verb (and its place, when it names none).
   bool elliptical = false;
@@ -27,5 +30,9 @@ struct StepParser::Step {
   [[nodiscard]] bool atEnd() const { return at >= words.size(); }
   [[nodiscard]] bool next(const char* word) const { return !atEnd() && words[at] == word; }
 };
+
+/// Whether words[at] starts a place given to each object in turn: "in each bowl", "into every
+/// cup", "per corner", "in each of the corners" (assignment_steps.cpp).
+bool eachPlaceFollows(const Words& words, std::size_t at);
 
 }  // namespace lang2manip::language_detail
