@@ -44,6 +44,33 @@ TEST_P(ActionsOnRobot, PickThenPlaceInTheHolder) {
   EXPECT_GT(record.counters.ikCalls, 0);
 }
 
+TEST(ActionsOnPanda, APlaceTheGraspLeavesNoRoomForIsPickedAgainWithAGraspThatFits) {
+  // A 6 x 3.5 cm bar goes lengthwise, as it stands now, between two low walls at its ends: held
+  // across its length (the grasp the planner prefers) the fingers hit the walls; held across its
+  // narrow side they fit. The pick is grounded again with the grasps that leave the place room.
+  Scene scene = deskScene("panda");
+  scene.removeObject("marker");
+  scene.removeObject("eraser");
+  scene.removeObject("holder");
+  const Vector3 slot(0.15, 0.0, 0.75);
+  scene.addObject(boxObject("bar", Vector3(0.06, 0.035, 0.04), Vector3(0.0, -0.2, 0.75)));
+  scene.addObject(fixedBox("near_wall", Vector3(0.02, 0.12, 0.025), slot + Vector3(0.0465, 0.0, 0.0)));
+  scene.addObject(fixedBox("far_wall", Vector3(0.02, 0.12, 0.025), slot + Vector3(-0.0465, 0.0, 0.0)));
+  TaskExecutor executor(scene, testSettings());
+  SymbolicAction place;
+  place.type = ActionType::kPlace;
+  place.object = "bar";
+  const Pose base = robotBaseFrame(scene, "");
+  place.params.position = base.inverse() * slot;
+  place.params.orientation = Quaternion(base.linear().transpose());  // lengthwise along the world's x, as it stands
+  const auto failure = executor.execute(planOf({pickAction("bar"), place}), StopCondition::never());
+  ASSERT_FALSE(failure.has_value()) << failure->stage + ": " + failure->reason;
+  const ExecutionRecord& record = executor.lastExecution();
+  EXPECT_EQ(record.counters.graspPlans, 2);  // the first grasp's place failed
+  EXPECT_NEAR((record.finalScene.object("bar").pose.translation() - slot).head<2>().norm(), 0.0, 0.005);
+  expectContinuousMotion(executor, record);
+}
+
 TEST_P(ActionsOnRobot, ReleasedObjectsComeToRestOnWhatIsUnderThem) {
   // Released a few millimetres above the holder's floor and the desk (so that nothing scrapes),
   // each object is then where it rests, not floating where the hand let go.

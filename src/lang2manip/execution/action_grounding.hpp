@@ -45,6 +45,10 @@ struct GroundingContext {
   /// The plan being executed (placements leave room for what it puts in the same place later);
   /// null when actions are executed on their own.
   const Plan* plan = nullptr;
+  /// The place that follows a pick, when the grasp chosen first left it no placement: the pick
+  /// then tries first the grasps with which planPlacement() finds one (null: the grasp planner's
+  /// order).
+  const SymbolicAction* placeAfterPick = nullptr;
 };
 
 /// Moves the tool in a straight line from the end of `attempt` to the first of `targets` that

@@ -110,6 +110,50 @@ std::optional<GroundingAttempt> firstThatMoves(const GroundingContext& c, const 
   return std::nullopt;
 }
 
+/// The objects `plan` places in the same relation to the same target after action `index`.
+std::vector<std::string> placedAfter(const Plan* plan, std::size_t index, const SymbolicAction& action) {
+  std::vector<std::string> later;
+  if (plan == nullptr || !action.params.relation) return later;
+  for (std::size_t i = index + 1; i < plan->actions.size(); ++i) {
+    const SymbolicAction& next = plan->actions[i];
+    if (next.type == ActionType::kPlace && next.params.relation == action.params.relation &&
+        next.params.target == action.params.target && next.object != action.object) {
+      later.push_back(next.object);
+    }
+  }
+  return later;
+}
+
+/// `grasps` with those that leave `place` a placement first (in the order of the placements
+/// found), then the others; as they were when none does.
+std::vector<GraspCandidate> graspsForPlace(const GroundingContext& c, const ReachabilityChecker& reach, const std::vector<GraspCandidate>& grasps,
+                                           const SymbolicAction& place, const VectorX& seed, std::size_t placeIndex, ActionExecution& record) {
+  const auto began = std::chrono::steady_clock::now();
+  PlacementRequest request;
+  request.object = place.object;
+  request.target = placementTargetFromParams(place.params);
+  for (const GraspCandidate& grasp : grasps) request.grasps.push_back(grasp.objectToGripper);
+  request.seed = seed;
+  request.placedAfter = placedAfter(c.plan, placeIndex, place);
+  request.settings = c.arm.settings().placement;
+  request.settings.seed = c.arm.settings().seed;
+  const PlacementPlan places = planPlacement(reach, request);
+  ++c.counters.placementPlans;
+  record.times.placement += secondsSince(began);
+  std::vector<GraspCandidate> ordered;
+  std::vector<bool> taken(grasps.size(), false);
+  for (const PlacementCandidate& candidate : places.candidates) {
+    if (candidate.graspIndex < grasps.size() && !taken[candidate.graspIndex]) {
+      taken[candidate.graspIndex] = true;
+      ordered.push_back(grasps[candidate.graspIndex]);
+    }
+  }
+  for (std::size_t g = 0; g < grasps.size(); ++g) {
+    if (!taken[g]) ordered.push_back(grasps[g]);
+  }
+  return ordered;
+}
+
 }  // namespace
 
 std::optional<GroundingAttempt> groundPick(const GroundingContext& c, const Scene& world, const SymbolicAction& action,
@@ -139,7 +183,9 @@ std::optional<GroundingAttempt> groundPick(const GroundingContext& c, const Scen
       if (record.objectUngraspable) break;
       continue;
     }
-    auto done = firstThatMoves(c, grasps.candidates, arm.settings().maxGraspAttempts, "pick " + object.name, record,
+    const std::vector<GraspCandidate> candidates =
+        c.placeAfterPick ? graspsForPlace(c, reach, grasps.candidates, *c.placeAfterPick, seed, record.index + 1, record) : grasps.candidates;
+    auto done = firstThatMoves(c, candidates, arm.settings().maxGraspAttempts, "pick " + object.name, record,
                                [&](const GraspCandidate& grasp) { return tryPick(c, world, grasp, action, record); });
     if (done) {
       countReach(reach, c.counters);
@@ -150,23 +196,6 @@ std::optional<GroundingAttempt> groundPick(const GroundingContext& c, const Scen
   return std::nullopt;
 }
 
-namespace {
-
-/// The objects `plan` places in the same relation to the same target after action `index`.
-std::vector<std::string> placedAfter(const Plan* plan, std::size_t index, const SymbolicAction& action) {
-  std::vector<std::string> later;
-  if (plan == nullptr || !action.params.relation) return later;
-  for (std::size_t i = index + 1; i < plan->actions.size(); ++i) {
-    const SymbolicAction& next = plan->actions[i];
-    if (next.type == ActionType::kPlace && next.params.relation == action.params.relation &&
-        next.params.target == action.params.target && next.object != action.object) {
-      later.push_back(next.object);
-    }
-  }
-  return later;
-}
-
-}  // namespace
 
 std::optional<GroundingAttempt> groundPlace(const GroundingContext& c, const Scene& world, const SymbolicAction& action,
                                             ActionExecution& record) {

@@ -32,6 +32,34 @@ std::optional<std::pair<std::size_t, std::string>> firstUnholdablePick(const Pla
   return std::nullopt;
 }
 
+/// True when action `index` of `plan` places the object that action `index - 1` picked.
+bool placesWhatWasJustPicked(const Plan& plan, std::size_t index) {
+  return index > 0 && plan.actions[index].type == ActionType::kPlace && plan.actions[index - 1].type == ActionType::kPick &&
+         plan.actions[index].object == plan.actions[index - 1].object;
+}
+
+/// The pick before a failed place grounded again from `beforePick`, its grasps ordered for the
+/// place, and the place after it: both records when the place then succeeds (and `world` the
+/// world after them), none when it still fails or the same grasp came first again. The times of
+/// the retry are added to `spent`, but for the place's when it succeeds.
+std::optional<std::pair<ActionExecution, ActionExecution>> pickAgainForPlace(const GroundingContext& context, const Plan& plan, std::size_t place,
+                                                                              const Scene& beforePick, const ActionExecution& firstPick, Scene& world,
+                                                                              StageTimes& spent) {
+  GroundingContext forPlace = context;
+  forPlace.placeAfterPick = &plan.actions[place];
+  Scene retried = beforePick;
+  ActionExecution pick = executeAction(forPlace, retried, plan.actions[place - 1], place - 1);
+  spent += pick.times;
+  if (pick.status != ActionStatus::kSucceeded || pick.choice == firstPick.choice) return std::nullopt;
+  ActionExecution placed = executeAction(context, retried, plan.actions[place], place);
+  if (placed.status != ActionStatus::kSucceeded) {
+    spent += placed.times;
+    return std::nullopt;
+  }
+  world = std::move(retried);
+  return std::make_pair(std::move(pick), std::move(placed));
+}
+
 }  // namespace
 
 std::optional<GroundingFailure> TaskExecutor::execute(const Plan& plan, const StopCondition& stop) {
@@ -57,6 +85,7 @@ std::optional<GroundingFailure> TaskExecutor::execute(const Plan& plan, const St
     executions_.push_back(std::move(record));
     return executions_.back().failure;
   }
+  Scene beforePick;
   for (std::size_t i = 0; i < plan.actions.size(); ++i) {
     if (record.failure) {
       ActionExecution skipped;
@@ -67,7 +96,19 @@ std::optional<GroundingFailure> TaskExecutor::execute(const Plan& plan, const St
     }
     const int index = static_cast<int>(i);
     report(progress_, {ProgressStage::kActionStarted, 0, index, "", describeAction(plan.actions[i])});
+    if (plan.actions[i].type == ActionType::kPick) beforePick = world;
     ActionExecution action = executeAction(context, world, plan.actions[i], i);
+    if (action.status == ActionStatus::kFailed && placesWhatWasJustPicked(plan, i)) {
+      // The grasp kept from the pick may be what the place cannot do: the pick again, with the
+      // grasps that leave the place a placement first.
+      StageTimes spent;
+      if (auto again = pickAgainForPlace(context, plan, i, beforePick, record.actions.back(), world, spent)) {
+        record.times += action.times;
+        record.actions.back() = std::move(again->first);
+        action = std::move(again->second);  // its times are counted below
+      }
+      record.times += spent;
+    }
     report(progress_, {ProgressStage::kActionFinished, 0, index, actionStatusName(action.status),
                        action.status == ActionStatus::kFailed ? action.reason : action.choice});
     record.times += action.times;
