@@ -1,6 +1,8 @@
 // Placement on the built-in desk scenes: in the holder, on the desk, beside other objects, at an
 // explicit pose; a full holder, a too-large object and a blocked pose are refused with reasons.
 
+#include <cmath>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -151,6 +153,80 @@ Scene trayAndFourBlocks() {
   const std::vector<Vector3> starts{{-0.05, 0.1, 0.75}, {-0.05, 0.2, 0.75}, {0.05, 0.2, 0.75}, {-0.05, -0.05, 0.75}};
   for (std::size_t i = 0; i < starts.size(); ++i) scene.addObject(boxObject("block" + std::to_string(i), Vector3::Constant(0.045), starts[i]));
   return scene;
+}
+
+// The yaw of the object placed at `spot` among four slabs `distance` from it on each side, with
+// the one top grasp square to its faces kept from the pick.
+double yawPlacedAmongSlabs(double distance) {
+  Scene scene = deskScene("panda");
+  scene.removeObject("marker");
+  scene.removeObject("eraser");
+  scene.removeObject("holder");
+  const Vector3 spot(0.15, 0.0, 0.75);
+  scene.addObject(boxObject("piece", Vector3::Constant(0.04), Vector3(0.0, -0.2, 0.75)));
+  const std::vector<Vector3> around{{distance, 0, 0}, {-distance, 0, 0}, {0, distance, 0}, {0, -distance, 0}};
+  for (std::size_t i = 0; i < around.size(); ++i) {
+    const Vector3 slab = i < 2 ? Vector3(0.02, 0.04, 0.04) : Vector3(0.04, 0.02, 0.04);
+    scene.addObject(boxObject("n" + std::to_string(i), slab, spot + around[i]));
+  }
+  const ReachabilityChecker reach = reachFor("panda", scene);
+  PlacementTarget at;
+  at.position = robotBaseFrame(scene, "").inverse() * spot;
+  PlacementRequest request;
+  request.object = "piece";
+  request.target = at;
+  for (const Pose& grasp : graspsOf(reach, "piece")) {
+    const double graspYaw = std::atan2(grasp.linear()(1, 0), grasp.linear()(0, 0));
+    const bool square = std::abs(grasp.linear()(2, 2)) > 0.99 && std::abs(std::remainder(graspYaw, M_PI / 2.0)) < 1e-6;
+    if (square && request.grasps.empty()) request.grasps.push_back(grasp);
+  }
+  EXPECT_EQ(request.grasps.size(), 1u);
+  const PlacementPlan plan = planPlacement(reach, request);
+  EXPECT_TRUE(plan.success()) << plan.reason;
+  if (!plan.success()) return std::nan("");
+  const Matrix3 turned = plan.candidates.front().objectPose.linear();
+  return std::atan2(turned(1, 0), turned(0, 0));
+}
+
+TEST(Placement, AtAPositionAmongNeighboursTheHandMayTurnAnEighth) {
+  // Slabs 5.5 cm from the spot leave no room for a finger along either axis; between them,
+  // diagonally, the fingers fit. 7 cm away a quarter turn fits, and is preferred.
+  EXPECT_NEAR(std::abs(std::remainder(yawPlacedAmongSlabs(0.055), M_PI / 2.0)), M_PI / 4.0, 1e-6);
+  EXPECT_NEAR(std::abs(std::remainder(yawPlacedAmongSlabs(0.07), M_PI / 2.0)), 0.0, 1e-6);
+}
+
+TEST(Placement, AtAPositionOverTwoBlocksItRestsOnBoth) {
+  // Two 4 cm blocks 1 cm apart, the third asked for over the gap between them at their height:
+  // it goes onto both (the top of a pyramid), the symbolic state sees it on one of them.
+  Scene scene = deskScene("panda");
+  scene.removeObject("marker");
+  scene.removeObject("eraser");
+  scene.removeObject("holder");
+  const Vector3 middle(0.15, 0.0, 0.75);
+  scene.addObject(boxObject("left", Vector3::Constant(0.04), middle + Vector3(0.0, 0.025, 0.0)));
+  scene.addObject(boxObject("right", Vector3::Constant(0.04), middle + Vector3(0.0, -0.025, 0.0)));
+  scene.addObject(boxObject("top", Vector3::Constant(0.04), Vector3(0.0, -0.2, 0.75)));
+  const double baseTop = scene.object("left").worldBounds().max().z();
+  const ReachabilityChecker reach = reachFor("panda", scene);
+  PlacementTarget at;
+  const SceneObject& top = scene.object("top");
+  at.position = robotBaseFrame(scene, "").inverse() * Vector3(middle.x(), middle.y(), top.pose.translation().z() + baseTop - top.worldBounds().min().z());
+  const PlacementPlan plan = place(reach, "top", at);
+  ASSERT_TRUE(plan.success()) << plan.reason;
+  const PlacementCandidate& candidate = plan.candidates.front();
+  EXPECT_TRUE(candidate.support == "left" || candidate.support == "right") << candidate.support;
+  const Scene after = placed(reach, plan);
+  EXPECT_NEAR(after.object("top").worldBounds().min().z(), baseTop, 0.005);
+  const SceneObject* support = currentSupport(after, after.object("top"), kSupportTolerance);
+  ASSERT_NE(support, nullptr);
+  EXPECT_TRUE(support->name == "left" || support->name == "right");
+  const SymbolicState state = observeSymbolicState(after);
+  ASSERT_TRUE(state.onTopOf.count("top"));
+  EXPECT_EQ(state.onTopOf.at("top"), support->name);
+
+  // Over one block's edge only (its centre beyond the gap), nothing holds it there.
+  at.position = robotBaseFrame(scene, "").inverse() * Vector3(middle.x(), middle.y() + 0.05, top.pose.translation().z() + baseTop - top.worldBounds().min().z());
+  EXPECT_FALSE(place(reach, "top", at).success());
 }
 
 TEST(Placement, ObjectsPutInOneAtATimeArePackedSoThatTheLastStillFits) {

@@ -168,6 +168,26 @@ TEST(ArrangementInstruction, ArrangementsThatCannotBeAreRefusedSayingWhy) {
   EXPECT_THAT(arrangementRefusal("put the blocks, the cups, the box and the markers in a line 30 cm apart"), HasSubstr("objects in a line need"));
 }
 
+TEST(ArrangementInstruction, APyramidPutsEachHigherBlockOnTwoOfTheRowBelow) {
+  for (const char* instruction : {"build a pyramid with the three blocks", "arrange the blocks in a pyramid", "stack the blocks into a pyramid",
+                                  "put the blocks in a pyramid in the far right corner of the table"}) {
+    Scene scene = test::workbenchScene();
+    const TaskSpecification specification = arrangementOf(instruction, scene);
+    EXPECT_THAT(test::summarize(specification), HasSubstr("red_block, blue_block, green_block in a pyramid on table")) << instruction;
+    ASSERT_EQ(specification.steps.size(), 3u) << instruction;
+    // The base row first, then the block that rests on both, raised by a block's height.
+    EXPECT_NEAR(specification.steps[0].position->z(), specification.steps[1].position->z(), 1e-9) << instruction;
+    EXPECT_GT(specification.steps[2].position->z(), specification.steps[0].position->z() + 0.03) << instruction;
+    for (const Goal& step : specification.steps) scene.object(step.object).pose.translation() = *step.position;
+    for (const Goal& goal : specification.goals) {
+      const GoalCheck check = checkGoalInScene(scene, goal);
+      EXPECT_TRUE(check.holds) << instruction << ": " << check.explanation;
+    }
+  }
+  EXPECT_THAT(arrangementRefusal("make a pyramid with the blocks and the red marker"), HasSubstr("take 3, 6 or 10 objects, not 4"));
+  EXPECT_THAT(arrangementRefusal("put the blocks in a pyramid around the yellow cup"), HasSubstr("only a circle, triangle or square goes around"));
+}
+
 TEST(ArrangementInstruction, ALayoutGoesOverMovableObjectsOnlyWhenNothingElseIsFree) {
   // A 30 cm strip with a bowl across its middle: three 4 cm blocks in a line need 20 cm.
   language_detail::ArrangementLayoutRequest request;

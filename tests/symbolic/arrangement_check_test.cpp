@@ -119,6 +119,40 @@ TEST(ArrangementCheck, TogetherMeansOneGroupOfNeighbours) {
   EXPECT_EQ(describeGoal(goals.front()), "block0, block1 next to each other");
 }
 
+/// A 4 cm block's box centred at (x, y) with its bottom at z.
+AlignedBox3 blockAt(double x, double y, double z) { return {Vector3(x - 0.02, y - 0.02, z), Vector3(x + 0.02, y + 0.02, z + 0.04)}; }
+
+TEST(ArrangementCheck, APyramidIsRowsEachMemberRestingOnTwoOfTheRowBelow) {
+  const Goal pyramid = arranged(ArrangementShape::kPyramid, 3);
+  // Two 4 cm blocks 1 cm apart, the third over the middle on both (in any order of the members).
+  const GoalCheck three = checkArrangedBoxes(pyramid, {blockAt(0.5, 0.0, 0.04), blockAt(0.5, -0.025, 0.0), blockAt(0.5, 0.025, 0.0)}, {});
+  EXPECT_TRUE(three.holds) << three.explanation;
+  EXPECT_THAT(three.explanation, HasSubstr("a base of 2"));
+  const GoalCheck offCentre = checkArrangedBoxes(pyramid, {blockAt(0.5, -0.025, 0.0), blockAt(0.5, 0.025, 0.0), blockAt(0.5, 0.02, 0.04)}, {});
+  EXPECT_FALSE(offCentre.holds);  // on one block only
+  EXPECT_THAT(offCentre.explanation, HasSubstr("does not rest on two members of the row below"));
+  const GoalCheck floating = checkArrangedBoxes(pyramid, {blockAt(0.5, -0.025, 0.0), blockAt(0.5, 0.025, 0.0), blockAt(0.5, 0.0, 0.08)}, {});
+  EXPECT_FALSE(floating.holds);
+  const GoalCheck flat = checkArrangedBoxes(pyramid, {blockAt(0.5, -0.05, 0.0), blockAt(0.5, 0.0, 0.0), blockAt(0.5, 0.05, 0.0)}, {});
+  EXPECT_FALSE(flat.holds);  // three in a row is no pyramid
+  EXPECT_FALSE(checkArrangedBoxes(arranged(ArrangementShape::kPyramid, 4), {block(0.4, 0.0), block(0.5, 0.0), block(0.6, 0.0), block(0.7, 0.0)}, {}).holds);
+
+  // Six: a base of three in a line, two on it, one on top.
+  std::vector<AlignedBox3> six{blockAt(0.5, -0.05, 0.0), blockAt(0.5, 0.0, 0.0), blockAt(0.5, 0.05, 0.0),
+                               blockAt(0.5, -0.025, 0.04), blockAt(0.5, 0.025, 0.04), blockAt(0.5, 0.0, 0.08)};
+  EXPECT_TRUE(checkArrangedBoxes(arranged(ArrangementShape::kPyramid, 6), six, {}).holds);
+  six[1] = blockAt(0.56, 0.0, 0.0);  // the base bent out of line
+  const GoalCheck bent = checkArrangedBoxes(arranged(ArrangementShape::kPyramid, 6), six, {});
+  EXPECT_FALSE(bent.holds);
+  EXPECT_THAT(bent.explanation, HasSubstr("the base row"));
+
+  std::vector<std::string> problems;
+  readGoalStatement(json::array({{{"kind", "arranged"}, {"members", {"marker", "eraser"}}, {"shape", "pyramid"}}}), "goals",
+                    {"marker", "eraser"}, problems);
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_THAT(problems[0], HasSubstr("goals[0].members: a pyramid has 3, 6 or 10 members (rows of k, k - 1, ..., 1), not 2"));
+}
+
 TEST(ArrangementCheck, OnASceneMembersMustStandOnTheTargetAndNotBeHeld) {
   Scene scene = readKauthamProblem(resolveProblem("panda_desk")).scene;
   Goal line;
@@ -161,7 +195,7 @@ TEST(ArrangementCheck, TheGoalStatementReadsAndWritesArrangementsAndNamesEachMis
   readGoalStatement(wrong, "goals", objects, problems);
   ASSERT_EQ(problems.size(), 8u);
   EXPECT_THAT(problems[0], HasSubstr("goals[0].members[1]: unknown object \"cup\""));
-  EXPECT_THAT(problems[1], HasSubstr("goals[1].shape: unknown shape string \"hexagon\" (shapes: line, circle, triangle, square, spread_out, together)"));
+  EXPECT_THAT(problems[1], HasSubstr("goals[1].shape: unknown shape string \"hexagon\" (shapes: line, circle, triangle, square, spread_out, together, pyramid)"));
   EXPECT_THAT(problems[2], HasSubstr("goals[2].members: a triangle has 3 members, not 2"));
   EXPECT_THAT(problems[3], HasSubstr("goals[3].members[1]: \"marker\" is named twice"));
   EXPECT_THAT(problems[4], HasSubstr("goals[4]: heading, evenly_spaced and distance are of a line only"));

@@ -1,6 +1,6 @@
 // Arrangement families of issue 23 (class 2), this project's own, in the style of the benchmarks'
 // templates: lines along an edge, evenly spaced; circles (around a bowl); triangles and squares;
-// blocks spread out. Each has its own check of the final world, written from what the words mean
+// blocks spread out; a pyramid of three. Each has its own check of the final world, written from what the words mean
 // to a person (not from the product's arranged-goal check), and a reference plan laid out here.
 
 #include <algorithm>
@@ -126,6 +126,40 @@ Check togetherCheck(std::vector<std::string> blocks) {
     for (std::size_t j = 0; j < blocks.size(); ++j) {
       if (!joined[j]) return failure(blocks[j] + " is more than 0.10 m from every block of " + blocks[0] + "'s group");
     }
+    return pass();
+  };
+}
+
+/// Two blocks on the desk and the third held up by both: its bottom within 1 cm of their tops,
+/// its footprint over each of them by at least 5 mm, its centre over the gap between theirs
+/// (within 1.5 cm of the segment joining them, not beyond either).
+Check pyramidOf(std::vector<std::string> blocks) {
+  return [blocks = std::move(blocks)](const Scene& final, const Scene&) {
+    std::vector<AlignedBox3> boxes;
+    for (const std::string& block : blocks) boxes.push_back(footprintInBase(final, block));
+    std::size_t top = 0;
+    for (std::size_t i = 1; i < boxes.size(); ++i) top = boxes[i].min().z() > boxes[top].min().z() ? i : top;
+    std::vector<std::string> base;
+    for (std::size_t i = 0; i < blocks.size(); ++i) {
+      if (i != top) base.push_back(blocks[i]);
+    }
+    std::string why;
+    if (!centresOnDesk(final, base, why)) return failure(why);
+    const AlignedBox3& upper = boxes[top];
+    std::vector<Point> under;
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      if (i == top) continue;
+      const AlignedBox3& lower = boxes[i];
+      if (std::abs(upper.min().z() - lower.max().z()) > 0.01) return failure(blocks[top] + " does not sit on " + blocks[i]);
+      const Point overlap = upper.max().head<2>().cwiseMin(lower.max().head<2>()) - upper.min().head<2>().cwiseMax(lower.min().head<2>());
+      if (overlap.minCoeff() < 0.005) return failure(blocks[top] + " is not over " + blocks[i]);
+      under.push_back(lower.center().head<2>());
+    }
+    const Point along = under[1] - under[0];
+    const Point centre = upper.center().head<2>();
+    const double t = (centre - under[0]).dot(along) / along.squaredNorm();
+    const double off = (centre - (under[0] + t * along)).norm();
+    if (t <= 0.0 || t >= 1.0 || off > 0.015) return failure(blocks[top] + " is not over the gap between the other two");
     return pass();
   };
 }
@@ -301,6 +335,19 @@ std::optional<FamilyInstance> together(const Scene& desk, Random& random) {
   return withPlan(result, blocks, freeSpots(*scene, offsets, deskReach(*scene)));
 }
 
+std::optional<FamilyInstance> pyramid(const Scene& desk, Random& random) {
+  auto scene = blocksAndBowls(desk, 3, drawCount(0, 1, random), random);
+  if (!scene) return std::nullopt;
+  const auto blocks = objectsOfKind(*scene, "block");
+  const std::vector<std::string> wordings{"build a pyramid with the three blocks", "stack the blocks into a pyramid", "make a pyramid out of the blocks",
+                                          "arrange the blocks in a pyramid", "put the blocks in a pyramid shape"};
+  FamilyInstance result{"own_pyramid", drawOne(wordings, random), *scene, pyramidOf(blocks), {}};
+  // The reference: two side by side 1 cm apart, the third on both.
+  std::optional<std::vector<Vector3>> spots = freeSpots(*scene, {{0.0, -0.025}, {0.0, 0.025}, {0.0, 0.0}}, deskReach(*scene));
+  if (spots) (*spots)[2].z() += scene->object(blocks[0]).dimensions().z();
+  return withPlan(result, blocks, spots);
+}
+
 }  // namespace
 
 std::vector<InstructionFamily> arrangementFamilies() {
@@ -308,7 +355,8 @@ std::vector<InstructionFamily> arrangementFamilies() {
           {"own_circle", "own", notYetDone(circle)},
           {"own_triangle_square", "own", notYetDone(polygon)},
           {"own_spread_out", "own", notYetDone(spreadOut)},
-          {"own_together", "own", notYetDone(together)}};
+          {"own_together", "own", notYetDone(together)},
+          {"own_pyramid", "own", notYetDone(pyramid)}};
 }
 
 }  // namespace lang2manip::families

@@ -6,6 +6,7 @@
 #include <variant>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/symbolic/support_surface.hpp"
 
 namespace lang2manip {
 namespace {
@@ -99,10 +100,23 @@ const SceneObject* supportUnder(const Scene& scene, const Vector3& point, double
   return best;
 }
 
-const SceneObject* currentSupport(const Scene& scene, const SceneObject& object, double tolerance) {
-  const AlignedBox3 bounds = object.worldBounds();
+const SceneObject* supportUnderBody(const Scene& scene, const AlignedBox3& bounds, double tolerance,
+                                    const std::vector<std::string>& exclude) {
   const Vector3 bottom(bounds.center().x(), bounds.center().y(), bounds.min().z());
-  return supportUnder(scene, bottom, tolerance, {object.name});
+  if (const SceneObject* under = supportUnder(scene, bottom, tolerance, exclude)) return under;
+  std::vector<AlignedBox3> below;
+  std::vector<const SceneObject*> owners;
+  for (const SceneObject& candidate : scene.objects()) {
+    if (std::find(exclude.begin(), exclude.end(), candidate.name) != exclude.end() || scene.findAttachment(candidate.name) != nullptr) continue;
+    below.push_back(candidate.worldBounds());
+    owners.push_back(&candidate);
+  }
+  const std::optional<std::size_t> bridged = bridgedSupport(bounds, below, tolerance);
+  return bridged ? owners[*bridged] : nullptr;
+}
+
+const SceneObject* currentSupport(const Scene& scene, const SceneObject& object, double tolerance) {
+  return supportUnderBody(scene, object.worldBounds(), tolerance, {object.name});
 }
 
 Pose currentObjectPose(const Scene& scene, const std::string& name) {

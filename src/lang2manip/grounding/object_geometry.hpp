@@ -36,7 +36,13 @@ std::vector<Quaternion> restingOrientations(const Quaternion& current);
 const SceneObject* supportUnder(const Scene& scene, const Vector3& point, double tolerance,
                                 const std::vector<std::string>& exclude);
 
-/// The object `object` currently rests on (see supportUnder()), from its world bounds.
+/// The object a body of world bounds `bounds` rests on: supportUnder() its bottom centre, else
+/// the one of the objects it bridges (see bridgedSupport(), the top of a pyramid), other than
+/// those in `exclude` and held ones. nullptr when there is none.
+const SceneObject* supportUnderBody(const Scene& scene, const AlignedBox3& bounds, double tolerance,
+                                    const std::vector<std::string>& exclude);
+
+/// The object `object` currently rests on (see supportUnderBody()), from its world bounds.
 const SceneObject* currentSupport(const Scene& scene, const SceneObject& object, double tolerance);
 
 /// How far an object's bottom may be from its support's top (m) for it to rest there.

@@ -297,7 +297,7 @@ PoseSampling atPoseTurned(const PoseSamplingInput& in, const PlacementTarget& ta
   pose.translation() = in.robotBase * *target.position;
   const AlignedBox3 bounds = boundsAtPose(*in.object, pose);
   const Vector3 bottom(bounds.center().x(), bounds.center().y(), bounds.min().z());
-  const SceneObject* support = supportUnder(*in.scene, bottom, s.supportTolerance, {in.object->name});
+  const SceneObject* support = supportUnderBody(*in.scene, bounds, s.supportTolerance, {in.object->name});
   if (support == nullptr || bottom.z() < support->worldBounds().max().z() - 1e-3) {
     return failure(PlacementFailure::kNoSupport, in.object->name + ": nothing to rest on at " + pointText(bottom.x(), bottom.y(), bottom.z()) + " (world)");
   }
@@ -314,8 +314,13 @@ PoseSampling atPose(const PoseSamplingInput& in, const PlacementTarget& target, 
   if (target.orientation) {
     return atPoseTurned(in, target, in.robotBase.linear() * target.orientation->normalized().toRotationMatrix(), s);
   }
+  // The quarter turns first, then the eighth turns between them: at a fixed position among other
+  // objects (an arrangement), the hand may fit between neighbours only diagonally.
+  std::vector<Quaternion> yaws = uprightYaws(in.orientation);
+  const Quaternion eighth(Eigen::AngleAxisd(M_PI / 4.0, Vector3::UnitZ()));
+  for (std::size_t k = 0, quarters = yaws.size(); k < quarters; ++k) yaws.push_back(eighth * yaws[k]);
   PoseSampling sampling;
-  for (const Quaternion& q : uprightYaws(in.orientation)) {
+  for (const Quaternion& q : yaws) {
     PoseSampling one = atPoseTurned(in, target, q.toRotationMatrix(), s);
     if (one.poses.empty()) return one;
     sampling.poses.insert(sampling.poses.end(), one.poses.begin(), one.poses.end());

@@ -21,6 +21,10 @@ constexpr double kSpreadSlack = 0.01;
 /// The least gap between neighbours of a line or ring that does not fit with kSpacingGap.
 constexpr double kTightSpacingGap = 0.025;
 constexpr double kGridStep = 0.02;
+/// Between neighbours of a pyramid's row: a higher member rests on both.
+constexpr double kPyramidGap = 0.01;
+/// How far (m) the heights of a pyramid row's members may differ.
+constexpr double kLevelTolerance = 0.003;
 /// Rotations of a circle or polygon tried, over one corner's share of the turn.
 constexpr int kRotations = 6;
 
@@ -244,6 +248,83 @@ std::optional<std::vector<Vector3>> layOutTogether(const ArrangementLayoutReques
   return std::nullopt;
 }
 
+/// The members row by row from a pyramid's base of `base` (indices): each row but the top of
+/// members of one height (within kLevelTolerance), so that the row above lies level; of those,
+/// the largest footprints first. None, with why, when some row has no such members.
+std::optional<std::vector<std::size_t>> pyramidRows(const std::vector<AlignedBox3>& members, std::size_t base, std::string& why) {
+  std::vector<std::size_t> left(members.size());
+  std::iota(left.begin(), left.end(), 0);
+  const auto footprint = [&](std::size_t i) { return members[i].sizes().head<2>().prod(); };
+  std::stable_sort(left.begin(), left.end(), [&](std::size_t a, std::size_t b) { return footprint(a) > footprint(b); });
+  std::vector<std::size_t> rows;
+  for (std::size_t size = base; size >= 2; --size) {
+    std::optional<std::vector<std::size_t>> best;
+    double bestArea = 0.0;
+    for (const std::size_t first : left) {  // the members as tall as `first`, largest first
+      std::vector<std::size_t> row;
+      double area = 0.0;
+      for (const std::size_t other : left) {
+        if (row.size() < size && std::abs(members[other].sizes().z() - members[first].sizes().z()) <= kLevelTolerance) {
+          row.push_back(other);
+          area += footprint(other);
+        }
+      }
+      if (row.size() == size && area > bestArea) best = row, bestArea = area;
+    }
+    if (!best) {
+      why = "a pyramid's row of " + std::to_string(size) + " needs " + std::to_string(size) + " objects of one height for the row above to lie level";
+      return std::nullopt;
+    }
+    rows.insert(rows.end(), best->begin(), best->end());
+    left.erase(std::remove_if(left.begin(), left.end(), [&](std::size_t i) { return std::find(best->begin(), best->end(), i) != best->end(); }),
+               left.end());
+  }
+  rows.insert(rows.end(), left.begin(), left.end());
+  return rows;
+}
+
+/// A pyramid: its base row (pyramidRows()) `kPyramidGap` apart (sideways, else away from the
+/// robot), each higher member over the middle of two neighbours of the row below; z is how far its
+/// bottom rises above the support's top.
+std::optional<std::vector<Vector3>> layOutPyramid(const ArrangementLayoutRequest& request, const Layout& layout, std::string& why) {
+  const std::size_t n = request.members.size();
+  std::size_t base = 2;
+  while (base * (base + 1) / 2 < n) ++base;
+  const std::optional<std::vector<std::size_t>> bySize = pyramidRows(request.members, base, why);
+  if (!bySize) return std::nullopt;
+  std::vector<AlignedBox3> baseMembers;
+  for (std::size_t i = 0; i < base; ++i) baseMembers.push_back(request.members[(*bySize)[i]]);
+  for (const Clearance clearance : kClearances) {
+    for (const Vector3& centre : layout.centres()) {
+      for (const Vector3& direction : {flattened(request.direction).normalized(), Vector3(Vector3::UnitX())}) {
+        const std::vector<Vector3> row = rowOf(baseMembers, direction, centre, kPyramidGap);
+        if (!layout.fits(row, clearance)) continue;
+        std::vector<std::size_t> along = orderAlong(baseMembers, direction);  // the base row from one end
+        std::vector<Vector3> below;
+        std::vector<double> tops;
+        for (const std::size_t k : along) below.push_back(row[k]), tops.push_back(baseMembers[k].sizes().z());
+        std::vector<Vector3> spots(n);
+        for (std::size_t k = 0; k < base; ++k) spots[(*bySize)[k]] = row[k];
+        for (std::size_t next = base; next < n;) {
+          std::vector<Vector3> above;
+          std::vector<double> aboveTops;
+          for (std::size_t k = 0; k + 1 < below.size(); ++k, ++next) {
+            const double rise = std::max(tops[k], tops[k + 1]);
+            above.push_back(Vector3((below[k].x() + below[k + 1].x()) / 2.0, (below[k].y() + below[k + 1].y()) / 2.0, rise));
+            aboveTops.push_back(rise + request.members[(*bySize)[next]].sizes().z());
+            spots[(*bySize)[next]] = above.back();
+          }
+          below = std::move(above);
+          tops = std::move(aboveTops);
+        }
+        return spots;
+      }
+    }
+  }
+  why = "a pyramid of " + std::to_string(n) + " objects needs a row of " + std::to_string(base) + " side by side free, and the reachable top has none";
+  return std::nullopt;
+}
+
 std::optional<std::vector<Vector3>> layOutRing(const ArrangementLayoutRequest& request, const Layout& layout, std::string& why) {
   const std::size_t n = request.members.size();
   const double share = 2.0 * std::numbers::pi / static_cast<double>(n);
@@ -341,6 +422,7 @@ std::optional<std::vector<Vector3>> layOutArrangement(const ArrangementLayoutReq
     case ArrangementShape::kSquare: return layOutRing(request, layout, why);
     case ArrangementShape::kSpreadOut: return layOutSpread(request, layout, why);
     case ArrangementShape::kTogether: return layOutTogether(request, layout, why);
+    case ArrangementShape::kPyramid: return layOutPyramid(request, layout, why);
   }
   why = "unknown shape";
   return std::nullopt;

@@ -1,6 +1,6 @@
 #pragma once
 /// @file Where the members of an arrangement go (internal to the language module): a line, a
-/// circle, a triangle or a square laid out on a support's reachable top clear of the other
+/// circle, a triangle, a square or a pyramid laid out on a support's reachable top clear of the other
 /// objects, or the members spread out with the fewest moves. Deterministic.
 
 #include <optional>
@@ -41,7 +41,8 @@ struct ArrangementLayoutRequest {
 };
 
 /// The centre (x, y; z = 0) each member goes to, in the members' order: for a line, in the
-/// order they stand along it; for a circle or polygon, the assignment that moves them least. None
+/// order they stand along it; for a circle or polygon, the assignment that moves them least; for a
+/// pyramid (the largest at the base), z is how far the member's bottom rises above the support. None
 /// when no layout fits: `why` then says what it needs.
 std::optional<std::vector<Vector3>> layOutArrangement(const ArrangementLayoutRequest& request, std::string& why);
 

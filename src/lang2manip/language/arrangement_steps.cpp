@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "lang2manip/language/arrangement_layout.hpp"
 #include "lang2manip/language/clause_parser.hpp"
@@ -52,6 +53,7 @@ std::size_t shapeNoun(const Words& words, std::size_t i, ShapePhrase& phrase) {
   else if (word == "circle" || word == "ring") phrase.shape = ArrangementShape::kCircle;
   else if (word == "triangle") phrase.shape = ArrangementShape::kTriangle;
   else if (word == "square") phrase.shape = ArrangementShape::kSquare;
+  else if (word == "pyramid") phrase.shape = ArrangementShape::kPyramid;
   else if ((word == "circular" || word == "round" || word == "triangular") && longestPhraseAt(words, i + 1, kShapeNouns) > 0) {
     phrase.shape = word == "triangular" ? ArrangementShape::kTriangle : ArrangementShape::kCircle;
     length = 2;
@@ -180,7 +182,8 @@ void StepParser::parseArrangementPlace(Step& step, ShapePhrase& phrase) {
     if (matchesAt(words, at, {"around"}) || matchesAt(words, at, {"round"}) || matchesAt(words, at, {"surrounding"})) {
       const std::optional<NounPhrase> centre = reader_.read(words, at + 1);
       if (!centre) failStep(step, "expected an object after \"" + words[at] + "\"");
-      if (phrase.shape == ArrangementShape::kLine || phrase.shape == ArrangementShape::kSpreadOut || phrase.shape == ArrangementShape::kTogether) {
+      if (phrase.shape == ArrangementShape::kLine || phrase.shape == ArrangementShape::kSpreadOut || phrase.shape == ArrangementShape::kTogether ||
+          phrase.shape == ArrangementShape::kPyramid) {
         failStep(step, "only a circle, triangle or square goes around something");
       }
       phrase.around = groundTarget(step, *centre, false);
@@ -226,6 +229,9 @@ void StepParser::arrange(Step& step, const ShapePhrase& phrase) {
                        (members > corners ? "; say which of them, or a circle or line" : ""));
   }
   if (phrase.shape == ArrangementShape::kCircle && members < 3) failStep(step, "a circle needs at least three objects");
+  if (phrase.shape == ArrangementShape::kPyramid && members != 3 && members != 6 && members != 10) {
+    failStep(step, "a pyramid's rows (k, k - 1, ..., 1 objects) take 3, 6 or 10 objects, not " + std::to_string(members));
+  }
   ArrangementLayoutRequest request;
   request.shape = phrase.shape;
   request.area = top.reachableTop.value_or(top.bounds);
@@ -266,6 +272,7 @@ void StepParser::arrange(Step& step, const ShapePhrase& phrase) {
   if (!spots) failStep(step, why + " on " + support);
 
   bool inRegion = phrase.region.has_value();
+  std::vector<Goal> memberGoals;
   for (std::size_t i = 0; i < step.objects.size(); ++i) {
     const ObjectDescriptor& object = reader_.descriptor(step.objects[i]);
     const Vector3& spot = (*spots)[i];
@@ -274,9 +281,21 @@ void StepParser::arrange(Step& step, const ShapePhrase& phrase) {
     Goal goal;
     goal.kind = GoalKind::kAtPosition;
     goal.object = step.objects[i];
-    goal.position = Vector3(spot.x() + object.origin.x() - object.position.x(), spot.y() + object.origin.y() - object.position.y(), object.origin.z());
-    specification_.goals.push_back(goal);
+    // A pyramid's member rises onto the row below; the others keep the height they stand at.
+    const double height = phrase.shape == ArrangementShape::kPyramid ? top.bounds.max().z() + spot.z() + object.origin.z() - object.bounds.min().z()
+                                                                     : object.origin.z();
+    goal.position = Vector3(spot.x() + object.origin.x() - object.position.x(), spot.y() + object.origin.y() - object.position.y(), height);
+    memberGoals.push_back(goal);
   }
+  if (phrase.shape == ArrangementShape::kPyramid) {  // row by row from the base up
+    std::vector<std::size_t> order(memberGoals.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return (*spots)[a].z() < (*spots)[b].z(); });
+    std::vector<Goal> rows;
+    for (const std::size_t i : order) rows.push_back(memberGoals[i]);
+    memberGoals = std::move(rows);
+  }
+  specification_.goals.insert(specification_.goals.end(), memberGoals.begin(), memberGoals.end());
   if (inRegion) arranged.region = phrase.region;
   specification_.goals.push_back(arranged);
   step.target = support;

@@ -78,9 +78,21 @@ std::vector<std::string> standingIn(const std::map<std::string, ObjectLayout>& l
         std::find(ignored.begin(), ignored.end(), name) != ignored.end()) {
       continue;
     }
-    if (footprintsOverlap(at->second.bounds, spot, 0.0) && at->second.bounds.max().z() >= spot.min().z()) standing.push_back(name);
+    if (footprintsOverlap(at->second.bounds, spot, 0.0) && at->second.bounds.max().z() > spot.min().z() + kRestingContact) standing.push_back(name);
   }
   return standing;
+}
+
+std::optional<std::string> restingUnder(const std::map<std::string, ObjectLayout>& layout, const AlignedBox3& spot, const std::string& object) {
+  std::optional<std::string> most;
+  double mostArea = 0.0;
+  for (const auto& [name, other] : layout) {
+    if (name == object || other.placeUnknown || std::abs(other.bounds.max().z() - spot.min().z()) > kRaisedPosition) continue;
+    const Eigen::AlignedBox2d overlap = Eigen::AlignedBox2d(spot.min().head<2>(), spot.max().head<2>())
+                                            .intersection(Eigen::AlignedBox2d(other.bounds.min().head<2>(), other.bounds.max().head<2>()));
+    if (!overlap.isEmpty() && overlap.volume() > mostArea) most = name, mostArea = overlap.volume();
+  }
+  return most;
 }
 
 std::vector<AlignedBox3> placesTaken(const std::map<std::string, ObjectLayout>& layout, const std::vector<Goal>& goals,

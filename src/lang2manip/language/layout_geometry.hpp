@@ -41,11 +41,22 @@ std::optional<double> facingTurn(const std::map<std::string, ObjectLayout>& layo
 void moveLayout(std::map<std::string, ObjectLayout>& layout, const std::string& object, const Vector3& origin,
                 std::optional<double> turn);
 
+/// How far (m) a position's height may be above where an object stands and still be where it
+/// stands; higher, it is put onto what stands there (restingUnder()).
+inline constexpr double kRaisedPosition = 0.01;
+/// How far (m) an object's top may reach into a spot's bottom and still be what the spot rests on.
+inline constexpr double kRestingContact = 0.001;
+
 /// The objects of `objects` (in that order) standing where `spot` is (footprints overlapping, not
-/// below it), other than `ignored` and the supports.
+/// below it: their tops above its bottom by more than kRestingContact), other than `ignored` and
+/// the supports.
 std::vector<std::string> standingIn(const std::map<std::string, ObjectLayout>& layout, const AlignedBox3& spot,
                                     const std::vector<std::string>& objects, const std::vector<std::string>& ignored,
                                     const std::set<std::string>& supports);
+
+/// What a body at `spot` rests on: of the objects of `layout` (other than `object`) whose tops are
+/// within kRaisedPosition of its bottom, the one whose footprint it overlaps most; none when none.
+std::optional<std::string> restingUnder(const std::map<std::string, ObjectLayout>& layout, const AlignedBox3& spot, const std::string& object);
 
 /// What a free spot for `object` must keep clear of: the footprint of every object standing
 /// (other than `object`, the `held` one and the supports) and every place an at_position goal of

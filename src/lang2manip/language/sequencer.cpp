@@ -16,6 +16,8 @@ using language_detail::footprintsOverlap;
 using language_detail::freeSpots;
 using language_detail::moveLayout;
 using language_detail::placesTaken;
+using language_detail::kRaisedPosition;
+using language_detail::restingUnder;
 using language_detail::shifted;
 using language_detail::standingIn;
 using language_detail::validatePoseGoal;
@@ -237,7 +239,10 @@ class Sequencer {
   /// Puts the object where the goal says, setting aside first whatever stands there.
   void moveToPosition(const Goal& goal, World& world) {
     const ObjectLayout& mine = layoutOf(world, goal.object);
-    const Vector3 shift(goal.position->x() - mine.origin.x(), goal.position->y() - mine.origin.y(), 0.0);
+    // A position well above where it stands puts it onto what stands there (a pyramid's top).
+    const double rise = goal.position->z() - mine.origin.z();
+    const bool raised = rise > kRaisedPosition;
+    const Vector3 shift(goal.position->x() - mine.origin.x(), goal.position->y() - mine.origin.y(), raised ? rise : 0.0);
     const AlignedBox3 spot = shifted(mine.bounds, shift);
     for (const std::string& other : standingIn(world.layout, spot, initial_.objects, {goal.object, world.state.held}, initial_.supports)) {
       if (!world.state.movable.count(other)) {
@@ -245,7 +250,8 @@ class Sequencer {
       }
       setAside(world, other);
     }
-    const std::string support = supportBelow(world.state, goal.object);
+    const std::optional<std::string> below = raised ? restingUnder(world.layout, spot, goal.object) : std::nullopt;
+    const std::string support = below ? *below : supportBelow(world.state, goal.object);
     hold(world, goal.object);
     placeAt(world, goal.object, *goal.position, std::nullopt, support);
   }

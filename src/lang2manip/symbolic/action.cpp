@@ -35,13 +35,14 @@ constexpr NameTable<GraspDirection, 4> kGraspNames{{
     {GraspDirection::kFront, "front"},
 }};
 
-constexpr NameTable<ArrangementShape, 6> kShapeNames{{
+constexpr NameTable<ArrangementShape, 7> kShapeNames{{
     {ArrangementShape::kLine, "line"},
     {ArrangementShape::kCircle, "circle"},
     {ArrangementShape::kTriangle, "triangle"},
     {ArrangementShape::kSquare, "square"},
     {ArrangementShape::kSpreadOut, "spread_out"},
     {ArrangementShape::kTogether, "together"},
+    {ArrangementShape::kPyramid, "pyramid"},
 }};
 
 template <typename Enum, std::size_t N>

@@ -118,9 +118,12 @@ enum class ArrangementShape {
   /// Next to each other, as one group: each next_to another, and every member reached from any
   /// other through members next_to each other.
   kTogether,
+  /// Rows resting on rows: a base of k members in a line, then k - 1 members each resting on two
+  /// of the row below, up to one on top (3, 6, 10, ... members).
+  kPyramid,
 };
 
-/// "line", "circle", "triangle", "square", "spread_out", "together".
+/// "line", "circle", "triangle", "square", "spread_out", "together", "pyramid".
 std::string arrangementShapeName(ArrangementShape shape);
 std::optional<ArrangementShape> arrangementShapeFromName(const std::string& name);
 std::vector<std::string> arrangementShapeNames();

@@ -4,12 +4,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <numeric>
 
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/model/scene.hpp"
 #include "lang2manip/symbolic/object_heading.hpp"
+#include "lang2manip/symbolic/support_surface.hpp"
 
 namespace lang2manip {
 namespace {
@@ -172,6 +174,43 @@ GoalCheck checkTogether(const std::vector<AlignedBox3>& boxes, double nearDistan
                                       " (next to each other: at most " + metres(nearDistance) + ")"};
 }
 
+/// The rows of a pyramid of `members` (3, 6, 10, ...): k members at the base, then k - 1, ..., 1.
+std::optional<std::size_t> pyramidBase(std::size_t members) {
+  for (std::size_t k = 2, total = 3; total <= members; total += ++k) {
+    if (total == members) return k;
+  }
+  return std::nullopt;
+}
+
+/// Row by row from the lowest bottoms up: the base in a line, each member of a higher row resting
+/// on two members of the row below (bridgedSupport()).
+GoalCheck checkPyramid(const std::vector<AlignedBox3>& boxes, double tolerance) {
+  const std::optional<std::size_t> base = pyramidBase(boxes.size());
+  if (!base) return {false, "a pyramid has 3, 6, 10, ... members (rows of k, k - 1, ..., 1), not " + std::to_string(boxes.size())};
+  std::vector<AlignedBox3> byHeight = boxes;
+  std::sort(byHeight.begin(), byHeight.end(), [](const AlignedBox3& a, const AlignedBox3& b) { return a.min().z() < b.min().z(); });
+  const std::vector<AlignedBox3> baseRow(byHeight.begin(), byHeight.begin() + static_cast<std::ptrdiff_t>(*base));
+  const double baseSpread = baseRow.back().min().z() - baseRow.front().min().z();
+  if (baseSpread > tolerance) return {false, "the " + std::to_string(*base) + " lowest members' bottoms are " + metres(baseSpread) + " apart in height: no base row"};
+  Goal line;
+  line.shape = ArrangementShape::kLine;
+  GoalCheck check = checkLine(line, centresOf(baseRow), tolerance);
+  if (!check.holds) return {false, "the base row: " + check.explanation};
+  std::vector<AlignedBox3> below = baseRow;
+  for (std::size_t row = *base - 1, first = *base; row >= 1; first += row, --row) {
+    std::vector<AlignedBox3> current(byHeight.begin() + static_cast<std::ptrdiff_t>(first), byHeight.begin() + static_cast<std::ptrdiff_t>(first + row));
+    for (const AlignedBox3& box : current) {
+      if (!bridgedSupport(box, below, tolerance)) {
+        return {false, "the member at (" + fixed(box.center().x(), 3) + ", " + fixed(box.center().y(), 3) + ", " + metres(box.min().z()) +
+                           " high) does not rest on two members of the row below"};
+      }
+    }
+    below = std::move(current);
+  }
+  return {true, "a base of " + std::to_string(*base) + " within " + check.explanation.substr(std::string("the centres lie within ").size()) +
+                    "; each higher member rests on two of the row below"};
+}
+
 }  // namespace
 
 GoalCheck checkArrangedBoxes(const Goal& goal, const std::vector<AlignedBox3>& boxes, const SpatialOptions& spatial) {
@@ -192,6 +231,7 @@ GoalCheck checkArrangedBoxes(const Goal& goal, const std::vector<AlignedBox3>& b
     }
     case ArrangementShape::kSpreadOut: return checkSpreadOut(boxes, spatial.nearDistance);
     case ArrangementShape::kTogether: return checkTogether(boxes, spatial.nearDistance);
+    case ArrangementShape::kPyramid: return checkPyramid(boxes, tolerance);
   }
   return {false, "unknown shape"};
 }
@@ -199,22 +239,26 @@ GoalCheck checkArrangedBoxes(const Goal& goal, const std::vector<AlignedBox3>& b
 GoalCheck checkArranged(const Scene& scene, const Goal& goal, const GoalCheckOptions& options) {
   const Pose toBase = robotBaseFrame(scene, options.robot).inverse();
   std::vector<AlignedBox3> boxes;
+  double lowest = std::numeric_limits<double>::infinity();
   for (const std::string& member : goal.members) {
     const SceneObject& object = memberNamed(scene, member);
     if (scene.findAttachment(member) != nullptr) return {false, member + " is held, not standing in the arrangement"};
-    if (!goal.target.empty()) {
-      Goal resting;
-      resting.object = member;
-      resting.relation = SpatialRelation::kOn;
-      resting.target = goal.target;
-      resting.region = goal.region;
-      const GoalCheck on = checkGoalInScene(scene, resting, options);
-      if (!on.holds) return on;
-    }
     AlignedBox3 box;
     const AlignedBox3 world = object.worldBounds();
     for (int corner = 0; corner < 8; ++corner) box.extend(toBase * world.corner(static_cast<AlignedBox3::CornerType>(corner)));
     boxes.push_back(box);
+    lowest = std::min(lowest, box.min().z());
+  }
+  for (std::size_t i = 0; i < goal.members.size() && !goal.target.empty(); ++i) {
+    // A pyramid's higher rows rest on its members, not on the target.
+    if (goal.shape == ArrangementShape::kPyramid && boxes[i].min().z() > lowest + options.spatial.distanceTolerance) continue;
+    Goal resting;
+    resting.object = goal.members[i];
+    resting.relation = SpatialRelation::kOn;
+    resting.target = goal.target;
+    resting.region = goal.region;
+    const GoalCheck on = checkGoalInScene(scene, resting, options);
+    if (!on.holds) return on;
   }
   GoalCheck check = checkArrangedBoxes(goal, boxes, options.spatial);
   check.explanation = describeGoal(goal) + ": " + check.explanation;

@@ -25,11 +25,15 @@ inline constexpr double kLineHeadingTolerance = 0.349065850398866;
 /// - spread_out: no two boxes within spatial.nearDistance of each other.
 /// - together: one group, each box within spatial.nearDistance of another and every member
 ///   reached from any other through such neighbours.
+/// - pyramid: 3, 6, 10, ... members in rows by the height of their bottoms, the lowest k in a
+///   line (within tol, their bottoms within tol of each other), each member of a higher row
+///   resting on two of the row below (bridgedSupport() with tol).
 /// The explanation states the measured numbers.
 GoalCheck checkArrangedBoxes(const Goal& goal, const std::vector<AlignedBox3>& boxes, const SpatialOptions& spatial);
 
 /// checkArrangedBoxes() on the members' bounds in `scene` (base frame of options.robot), after
-/// each member is standing (not held), on goal.target when set, and in its goal.region when set.
+/// each member is standing (not held), on goal.target when set (a pyramid's base row), and in its
+/// goal.region when set.
 GoalCheck checkArranged(const Scene& scene, const Goal& goal, const GoalCheckOptions& options);
 
 }  // namespace lang2manip

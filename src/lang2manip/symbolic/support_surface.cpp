@@ -75,4 +75,23 @@ bool footprintFits(const Vector3& size, const AlignedBox3& top) {
   return (size.x() <= room.x() && size.y() <= room.y()) || (size.y() <= room.x() && size.x() <= room.y());
 }
 
+std::optional<std::size_t> bridgedSupport(const AlignedBox3& item, const std::vector<AlignedBox3>& candidates, double gap) {
+  std::optional<std::size_t> most;
+  double mostArea = 0.0;
+  int touching = 0;
+  Eigen::AlignedBox2d contacts;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const AlignedBox3& below = candidates[i];
+    if (std::abs(below.max().z() - item.min().z()) > gap) continue;
+    const Eigen::AlignedBox2d overlap = Eigen::AlignedBox2d(item.min().head<2>(), item.max().head<2>())
+                                            .intersection(Eigen::AlignedBox2d(below.min().head<2>(), below.max().head<2>()));
+    if (overlap.isEmpty() || (overlap.sizes().array() < kLeastBridgeOverlap).any()) continue;
+    ++touching;
+    contacts.extend(overlap);
+    if (overlap.volume() > mostArea) most = i, mostArea = overlap.volume();
+  }
+  if (touching < 2 || !contacts.contains(Eigen::Vector2d(item.center().head<2>()))) return std::nullopt;
+  return most;
+}
+
 }  // namespace lang2manip

@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "lang2manip/model/scene.hpp"
 
@@ -31,5 +32,15 @@ inline constexpr double kFootprintSlack = 0.01;
 /// True when a footprint of `size` (x, y; any yaw of 90-degree steps) fits inside `top`, up to
 /// kFootprintSlack.
 bool footprintFits(const Vector3& size, const AlignedBox3& top);
+
+/// How far two footprints must overlap on each axis (m) for one to rest on the other's top.
+inline constexpr double kLeastBridgeOverlap = 0.005;
+
+/// Where a body with world bounds `item` rests when nothing is under its bottom centre: on two or
+/// more of `candidates` (world bounds) whose tops lie within `gap` of its bottom and whose
+/// footprints overlap its own by kLeastBridgeOverlap, when its centre lies within the rectangle
+/// spanned by those overlaps (an object bridging two, as the top of a pyramid does). The index of
+/// the candidate it overlaps most; none when it bridges nothing.
+std::optional<std::size_t> bridgedSupport(const AlignedBox3& item, const std::vector<AlignedBox3>& candidates, double gap);
 
 }  // namespace lang2manip

@@ -51,7 +51,16 @@ std::optional<std::string> supportOf(const Scene& scene, const SceneObject& item
       bestTop = otherBounds.max().z();
     }
   }
-  return best;
+  if (best) return best;
+  std::vector<AlignedBox3> below;
+  std::vector<const SceneObject*> owners;
+  for (const SceneObject& other : scene.objects()) {
+    if (other.name == item.name) continue;
+    below.push_back(other.worldBounds());
+    owners.push_back(&other);
+  }
+  if (const auto bridged = bridgedSupport(bounds, below, tolerances.contactGap)) return owners[*bridged]->name;
+  return std::nullopt;
 }
 
 bool isArmJoint(const RobotModel& model, const std::string& joint) {
