@@ -342,8 +342,8 @@ std::optional<FamilyInstance> pyramid(const Scene& desk, Random& random) {
   const std::vector<std::string> wordings{"build a pyramid with the three blocks", "stack the blocks into a pyramid", "make a pyramid out of the blocks",
                                           "arrange the blocks in a pyramid", "put the blocks in a pyramid shape"};
   FamilyInstance result{"own_pyramid", drawOne(wordings, random), *scene, pyramidOf(blocks), {}};
-  // The reference: two side by side 1 cm apart, the third on both.
-  std::optional<std::vector<Vector3>> spots = freeSpots(*scene, {{0.0, -0.025}, {0.0, 0.025}, {0.0, 0.0}}, deskReach(*scene));
+  // The reference: two side by side 2 cm apart (room for the fingers), the third on both.
+  std::optional<std::vector<Vector3>> spots = freeSpots(*scene, {{0.0, -0.03}, {0.0, 0.03}, {0.0, 0.0}}, deskReach(*scene));
   if (spots) (*spots)[2].z() += scene->object(blocks[0]).dimensions().z();
   return withPlan(result, blocks, spots);
 }

@@ -21,8 +21,8 @@ constexpr double kSpreadSlack = 0.01;
 /// The least gap between neighbours of a line or ring that does not fit with kSpacingGap.
 constexpr double kTightSpacingGap = 0.025;
 constexpr double kGridStep = 0.02;
-/// Between neighbours of a pyramid's row: a higher member rests on both.
-constexpr double kPyramidGap = 0.01;
+/// Between neighbours of a pyramid's row: a higher member rests on both, and a finger fits.
+constexpr double kPyramidGap = 0.02;
 /// How far (m) the heights of a pyramid row's members may differ.
 constexpr double kLevelTolerance = 0.003;
 /// Rotations of a circle or polygon tried, over one corner's share of the turn.
