@@ -77,4 +77,7 @@ std::function<std::optional<FamilyInstance>(const Scene&, Random&)> notYetDone(s
 /// triangles and squares, blocks spread out.
 std::vector<InstructionFamily> arrangementFamilies();
 
+/// The families of VIMA-Bench and LIBERO that pick and place can do (peer_families.cpp).
+std::vector<InstructionFamily> peerFamilies();
+
 }  // namespace lang2manip::families

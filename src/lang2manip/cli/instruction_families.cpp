@@ -399,6 +399,7 @@ const std::vector<InstructionFamily>& instructionFamilies() {
   };
   static const std::vector<InstructionFamily> all = [] {
     std::vector<InstructionFamily> list = families;
+    for (InstructionFamily& family : peerFamilies()) list.push_back(std::move(family));
     for (InstructionFamily& family : arrangementFamilies()) list.push_back(std::move(family));
     return list;
   }();

@@ -195,9 +195,13 @@ std::vector<std::string> StepParser::groundList(Step& step, const std::vector<No
   const NounPhrase& only = list.front();
   step.distributive = list.size() == 1 && only.quantity == Quantity::kIndefinite && !only.other && !only.isPlural() &&
                       only.pronoun == Pronoun::kNone && eachPlaceFollows(step.words, only.end);
+  discourse_.stepReferences.clear();
   for (NounPhrase phrase : list) {
     if (step.distributive) phrase.quantity = Quantity::kAll;  // every candidate; the places choose
     const std::vector<std::string> grounded = groundMoved(phrase, destinations);
+    for (const NounPhrase& reference : phrase.modifier ? phrase.modifier->reference : std::vector<NounPhrase>{}) {
+      for (const std::string& object : reader_.ground(reference, discourse_, true, {})) discourse_.stepReferences.push_back(object);
+    }
     const bool group = phrase.isPlural() && phrase.pronoun == Pronoun::kNone;
     if (group && list.size() == 1) step.listedExplicitly = false;
     for (const std::string& object : grounded) {

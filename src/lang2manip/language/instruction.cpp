@@ -5,6 +5,7 @@
 #include <map>
 
 #include "lang2manip/language/clause_parser.hpp"
+#include "lang2manip/language/stack_order.hpp"
 #include "lang2manip/language/goal_conflicts.hpp"
 #include "lang2manip/language/noun_phrase.hpp"
 #include "lang2manip/language/typo_correction.hpp"
@@ -189,7 +190,9 @@ TaskSpecification understandInstruction(const std::string& text,
   refuseWhatCannotBeGrounded(words);
   const language_detail::NounPhraseReader reader(objects);
   language_detail::StepParser parser(reader, specification);
-  for (Words& step : splitSteps(withoutFillers(words), specification.orderGiven)) {
+  Words said = withoutFillers(words);
+  if (std::optional<Words> tower = language_detail::orderedStack(said, reader)) said = std::move(*tower);
+  for (Words& step : splitSteps(said, specification.orderGiven)) {
     const language_detail::StepModifiers modifiers = language_detail::extractModifiers(step);
     parser.parse(step, modifiers);
   }

@@ -210,6 +210,10 @@ std::size_t NounPhraseReader::readDeterminer(const Words& words, std::size_t at,
     phrase.other = best->other;
     length = best->words.size();
   }
+  if (best && best->words == Words{"the"} && matchesAt(words, at + 1, {"same"})) {
+    phrase.same = true;  // "the same bowl"
+    ++length;
+  }
   // "the two markers", "three blocks"
   if (at + length < words.size() && phrase.quantity != Quantity::kExactly) {
     const std::optional<double> number = numberValue(words[at + length]);

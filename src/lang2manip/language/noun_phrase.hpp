@@ -39,15 +39,18 @@ struct NounMatch {
 struct NounPhrase;
 
 /// What follows a noun to pick among its objects: "closest to the holder", "farthest from the
-/// robot's base", "to the left of the marker", "next to the eraser".
+/// robot's base", "to the left of the marker", "next to the eraser", "between the bowl and the
+/// box" (two references), "with the same colour as the bowl".
 struct NounModifier {
-  enum class Kind { kNearestTo, kFarthestFrom, kRelation };
+  enum class Kind { kNearestTo, kFarthestFrom, kRelation, kBetween, kSameAs };
   Kind kind = Kind::kRelation;
   /// For kRelation: left_of, right_of, in_front_of, behind or next_to.
   SpatialRelation relation = SpatialRelation::kNextTo;
-  /// The object the modifier refers to (one phrase), empty when it is the robot ("the robot",
-  /// "you": the origin of its base frame).
+  /// The object the modifier refers to (one phrase; two for kBetween), empty when it is the robot
+  /// ("the robot", "you": the origin of its base frame).
   std::vector<NounPhrase> reference;
+  /// For kSameAs: what is the same, "colour", "shape", "size" or "kind".
+  std::string property;
 };
 
 /// A noun phrase as read, before grounding.
@@ -58,6 +61,8 @@ struct NounPhrase {
   Quantity quantity = Quantity::kDefinite;
   int count = 0;
   bool other = false;
+  /// "the same bowl": the one of its noun mentioned last (as a target, the latest target first).
+  bool same = false;
   bool everything = false;
   Pronoun pronoun = Pronoun::kNone;
   std::vector<std::string> colours;
@@ -96,9 +101,17 @@ struct Discourse {
   /// adjectives narrowed them: "one" stands for the noun said last in the same role.
   std::vector<std::string> lastObjectNoun;
   std::vector<std::string> lastTargetNoun;
+  /// The objects the modifiers of the current step's objects name ("with the same colour as the
+  /// bowl", "next to the box"): a target "it" of the same step means them first ("... into it").
+  std::vector<std::string> stepReferences;
 
   void mention(const std::vector<std::string>& objects);
 };
+
+/// How far (m) an object may stand from the segment between two others to be "between" them, and
+/// how much closer than the next it must be to be the one meant.
+inline constexpr double kBetweenWidth = 0.10;
+inline constexpr double kClearlyCloser = 0.02;
 
 class NounPhraseReader {
  public:
@@ -168,6 +181,15 @@ class NounPhraseReader {
   [[nodiscard]] bool headIsAmbiguous(const NounPhrase& phrase) const;
   [[nodiscard]] std::vector<std::string> applyModifier(const NounPhrase& phrase, std::vector<std::string> names,
                                                        const Discourse& discourse) const;
+  /// "to its left (before)", "in front of it" at words[p] into `phrase`: a relation to what "it"
+  /// means; the position after it, or 0 when none is there.
+  [[nodiscard]] static std::size_t readBesidePronoun(const Words& words, std::size_t p, NounPhrase& phrase, bool selects);
+  /// "between X and Y", "with the same colour as X" at words[p] into `phrase`; the position after
+  /// it, or 0 when neither is there.
+  [[nodiscard]] std::size_t readBetweenOrSameAs(const Words& words, std::size_t p, NounPhrase& phrase, bool selects) const;
+  /// The one of `names` (all when plural) between the two references, or with the reference's property.
+  [[nodiscard]] std::vector<std::string> between(const NounPhrase& phrase, std::vector<std::string> names, const Discourse& discourse) const;
+  [[nodiscard]] std::vector<std::string> sameAs(const NounPhrase& phrase, std::vector<std::string> names, const Discourse& discourse) const;
   [[nodiscard]] std::string describe(const std::vector<std::string>& names) const;
 
   std::vector<ObjectDescriptor> objects_;

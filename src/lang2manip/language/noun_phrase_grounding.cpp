@@ -51,6 +51,8 @@ bool standsIn(const ObjectDescriptor& a, SpatialRelation relation, const ObjectD
 std::vector<std::string> NounPhraseReader::applyModifier(const NounPhrase& phrase, std::vector<std::string> names,
                                                          const Discourse& discourse) const {
   const NounModifier& modifier = *phrase.modifier;
+  if (modifier.kind == NounModifier::Kind::kBetween) return between(phrase, std::move(names), discourse);
+  if (modifier.kind == NounModifier::Kind::kSameAs) return sameAs(phrase, std::move(names), discourse);
   ObjectDescriptor robot;
   robot.name = "the robot";
   robot.bounds.extend(Vector3::Zero());
@@ -85,6 +87,54 @@ std::vector<std::string> NounPhraseReader::applyModifier(const NounPhrase& phras
   return names;
 }
 
+std::vector<std::string> NounPhraseReader::between(const NounPhrase& phrase, std::vector<std::string> names, const Discourse& discourse) const {
+  std::vector<Eigen::Vector2d> ends;
+  for (const NounPhrase& end : phrase.modifier->reference) {
+    const std::vector<std::string> named = ground(end, discourse, true, {});
+    if (named.size() != 1) throwGroundingError(end.text, "names " + std::to_string(named.size()) + " objects; \"between\" needs one at each end");
+    std::erase(names, named.front());
+    ends.push_back(descriptor(named.front()).position.head<2>());
+  }
+  const Eigen::Vector2d along = ends[1] - ends[0];
+  if (along.norm() < 1e-3) throwGroundingError(phrase.text, "its two ends stand at the same place");
+  // Between: over the middle 90 % of the segment joining the ends' centres, within kBetweenWidth of it.
+  std::vector<std::pair<double, std::string>> offSegment;
+  for (const std::string& name : names) {
+    const Eigen::Vector2d p = descriptor(name).position.head<2>();
+    const double t = (p - ends[0]).dot(along) / along.squaredNorm();
+    const double off = (p - (ends[0] + t * along)).norm();
+    if (t > 0.05 && t < 0.95 && off <= kBetweenWidth) offSegment.emplace_back(off, name);
+  }
+  std::stable_sort(offSegment.begin(), offSegment.end());
+  if (offSegment.empty()) throwGroundingError(phrase.text, "nothing of that kind stands between them");
+  if (phrase.isPlural()) {
+    names.clear();
+    for (const auto& [off, name] : offSegment) names.push_back(name);
+    return names;
+  }
+  if (offSegment.size() > 1 && offSegment[1].first - offSegment[0].first < kClearlyCloser) {
+    throwGroundingError(phrase.text, "it is ambiguous: " + offSegment[0].second + " and " + offSegment[1].second + " both stand between them; say which");
+  }
+  return {offSegment.front().second};
+}
+
+std::vector<std::string> NounPhraseReader::sameAs(const NounPhrase& phrase, std::vector<std::string> names, const Discourse& discourse) const {
+  const NounModifier& modifier = *phrase.modifier;
+  const std::vector<std::string> named = ground(modifier.reference.front(), discourse, true, {});
+  if (named.size() != 1) throwGroundingError(modifier.reference.front().text, "names " + std::to_string(named.size()) + " objects; \"the same as\" compares with one");
+  const ObjectDescriptor& reference = descriptor(named.front());
+  std::erase(names, reference.name);
+  std::erase_if(names, [&](const std::string& name) {
+    const ObjectDescriptor& object = descriptor(name);
+    if (modifier.property == "colour") return object.colours.empty() || reference.colours.empty() || object.colours.front() != reference.colours.front();
+    if (modifier.property == "shape") return object.shape != reference.shape;
+    if (modifier.property == "size") return object.sizeClass != reference.sizeClass;
+    return object.category != reference.category;
+  });
+  if (names.empty()) throwGroundingError(phrase.text, "nothing else has the same " + modifier.property + " as " + reference.name);
+  return names;
+}
+
 std::vector<std::string> NounPhraseReader::ground(const NounPhrase& phrase,
                                                   const Discourse& discourse, bool asTarget,
                                                   const std::vector<std::string>& actedOn,
@@ -104,7 +154,7 @@ std::vector<std::string> NounPhraseReader::ground(const NounPhrase& phrase,
   std::erase_if(byNoun, [&](const std::string& name) {
     return containsWord(excluded, name) || containsWord(exceptions, name) || (phrase.movableOnly && !descriptor(name).movable);
   });
-  const bool relative = phrase.modifier && phrase.modifier->kind == NounModifier::Kind::kRelation;
+  const bool relative = phrase.modifier && (phrase.modifier->kind == NounModifier::Kind::kRelation || phrase.modifier->kind == NounModifier::Kind::kSameAs);
   std::vector<std::string> names = narrow(phrase, relative ? applyModifier(phrase, byNoun, discourse) : byNoun);
   if (phrase.modifier && !relative && !names.empty()) names = applyModifier(phrase, names, discourse);
   if (byNoun.empty() && phrase.other) {
@@ -155,7 +205,16 @@ std::vector<std::string> NounPhraseReader::groundPronoun(
     }
     return discourse.lastObjects;
   }
-  // "it": the object acted on last, else the latest target; as the target of "in", a container.
+  // "it": as a target, what the step's objects were named by ("all objects the colour of the
+  // bowl into it"); else the object acted on last, else the latest target; as the target of
+  // "in", a container.
+  if (asTarget) {
+    std::vector<std::string> referred;
+    for (const std::string& object : discourse.stepReferences) {
+      if (!containsWord(actedOn, object)) referred.push_back(object);
+    }
+    if (referred.size() == 1) return referred;
+  }
   std::vector<std::string> previous;
   for (const std::string& object : discourse.lastObjects) {
     if (!asTarget || !containsWord(actedOn, object)) previous.push_back(object);
@@ -198,6 +257,13 @@ std::vector<std::string> NounPhraseReader::candidates(const NounPhrase& phrase,
     if (phrase.everything || !asTarget) {
       std::erase_if(names, [this](const std::string& name) { return !descriptor(name).movable; });
     }
+  }
+  if (phrase.same) {  // the one named before: as a target, the latest target; else the latest mentioned
+    if (asTarget && containsWord(names, discourse.lastTarget)) return {discourse.lastTarget};
+    for (auto it = discourse.mentioned.rbegin(); it != discourse.mentioned.rend(); ++it) {
+      if (containsWord(names, *it)) return {*it};
+    }
+    throwGroundingError(phrase.text, "nothing of that kind was named before");
   }
   if (phrase.other) {
     const auto mentioned = [&discourse](const std::string& name) { return containsWord(discourse.mentioned, name); };

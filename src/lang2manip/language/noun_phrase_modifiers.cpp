@@ -28,7 +28,11 @@ std::size_t NounPhraseReader::readModifier(const Words& words, std::size_t at, N
   static const std::vector<Words> leads{{"that", "is"},     {"which", "is"},   {"that", "are"},     {"which", "are"},  {"lying"},
                                         {"sitting"},        {"standing"},      {"resting"},         {"located"},       {"placed"},
                                         {"that", "lies"},   {"that", "sits"},  {"that", "stands"},  {"that", "rests"}, {"that", "is", "lying"},
-                                        {"that", "is", "sitting"}, {"that", "is", "standing"}, {"that", "are", "lying"}};
+                                        {"that", "is", "sitting"}, {"that", "is", "standing"}, {"that", "are", "lying"},
+                                        // where it stood before the instruction began: references are read on the initial scene
+                                        {"that", "was"}, {"which", "was"}, {"that", "were"}, {"which", "were"}, {"that", "was", "previously"},
+                                        {"which", "was", "previously"}, {"that", "was", "originally"}, {"previously"}, {"originally"},
+                                        {"that", "used", "to", "be"}, {"that", "stood"}, {"that", "was", "standing"}};
   std::size_t leadLength = 0;
   for (const Words& lead : leads) {
     if (lead.size() > leadLength && matchesAt(words, p, lead)) leadLength = lead.size();
@@ -52,6 +56,10 @@ std::size_t NounPhraseReader::readModifier(const Words& words, std::size_t at, N
       return p + side.size();
     }
   }
+  const bool selects = headIsAmbiguous(phrase) || phrase.isPlural();
+  if (const std::size_t after = readBetweenOrSameAs(words, p, phrase, selects)) return after;
+  if (const std::size_t after = p != at ? readBetweenOrSameAs(words, at, phrase, selects) : 0) return after;  // "that has the same colour as"
+  if (const std::size_t after = readBesidePronoun(words, p, phrase, selects)) return after;
   NounModifier modifier;
   std::size_t length = 0;
   for (const Words& nearest : {Words{"closest", "to"}, Words{"nearest", "to"}, Words{"nearest"}}) {
@@ -93,6 +101,60 @@ std::size_t NounPhraseReader::readModifier(const Words& words, std::size_t at, N
       !vocabulary::matchRelation(words, reference->end)) {
     return at;
   }
+  modifier.reference = {*reference};
+  phrase.modifier = std::move(modifier);
+  return reference->end;
+}
+
+std::size_t NounPhraseReader::readBesidePronoun(const Words& words, std::size_t p, NounPhrase& phrase, bool selects) {
+  static const std::vector<std::pair<Words, SpatialRelation>> sides{
+      {{"to", "its", "left"}, SpatialRelation::kLeftOf},      {{"on", "its", "left"}, SpatialRelation::kLeftOf},
+      {{"to", "its", "right"}, SpatialRelation::kRightOf},    {{"on", "its", "right"}, SpatialRelation::kRightOf},
+      {{"in", "front", "of", "it"}, SpatialRelation::kInFrontOf}, {{"behind", "it"}, SpatialRelation::kBehind},
+      {{"next", "to", "it"}, SpatialRelation::kNextTo},       {{"beside", "it"}, SpatialRelation::kNextTo}};
+  if (!selects) return 0;
+  for (const auto& [side, relation] : sides) {
+    if (!matchesAt(words, p, side)) continue;
+    NounPhrase it;
+    it.begin = p + side.size() - 1;
+    it.end = p + side.size();
+    it.text = "it";
+    it.pronoun = Pronoun::kIt;
+    NounModifier modifier;
+    modifier.relation = relation;
+    modifier.reference = {it};
+    phrase.modifier = std::move(modifier);
+    const std::size_t after = p + side.size();
+    return after + longestPhraseAt(words, after, {{"before"}, {"previously"}, {"earlier"}, {"originally"}, {"at", "first"}, {"at", "the", "start"}});
+  }
+  return 0;
+}
+
+std::size_t NounPhraseReader::readBetweenOrSameAs(const Words& words, std::size_t p, NounPhrase& phrase, bool selects) const {
+  NounModifier modifier;
+  if (const std::size_t between = longestPhraseAt(words, p, {{"between"}, {"in", "between"}}); between > 0 && selects) {
+    // "the block between the red bowl and the blue bowl"; without several to choose from it is a place
+    const std::optional<NounPhrase> first = read(words, p + between);
+    const std::optional<NounPhrase> second = first && matchesAt(words, first->end, {"and"}) ? read(words, first->end + 1) : std::nullopt;
+    if (!second) return 0;
+    modifier.kind = NounModifier::Kind::kBetween;
+    modifier.reference = {*first, *second};
+    phrase.modifier = std::move(modifier);
+    return second->end;
+  }
+  static const std::vector<Words> leads{{"with", "the", "same"}, {"of", "the", "same"}, {"in", "the", "same"}, {"having", "the", "same"},
+                                        {"that", "has", "the", "same"}, {"that", "have", "the", "same"}, {"which", "has", "the", "same"},
+                                        {"which", "have", "the", "same"}, {"that", "is", "the", "same"}, {"that", "are", "the", "same"},
+                                        {"the", "same"}};
+  const std::size_t lead = longestPhraseAt(words, p, leads);
+  if (lead == 0 || p + lead + 1 >= words.size()) return 0;
+  const std::string& property = words[p + lead];
+  const std::string named = property == "color" ? "colour" : property == "type" ? "kind" : property;
+  if ((named != "colour" && named != "shape" && named != "size" && named != "kind") || !matchesAt(words, p + lead + 1, {"as"})) return 0;
+  const std::optional<NounPhrase> reference = read(words, p + lead + 2);
+  if (!reference) return 0;
+  modifier.kind = NounModifier::Kind::kSameAs;
+  modifier.property = named;
   modifier.reference = {*reference};
   phrase.modifier = std::move(modifier);
   return reference->end;
