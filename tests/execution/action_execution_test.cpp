@@ -48,10 +48,7 @@ TEST(ActionsOnPanda, APlaceTheGraspLeavesNoRoomForIsPickedAgainWithAGraspThatFit
   // A 6 x 3.5 cm bar goes lengthwise, as it stands now, between two low walls at its ends: held
   // across its length (the grasp the planner prefers) the fingers hit the walls; held across its
   // narrow side they fit. The pick is grounded again with the grasps that leave the place room.
-  Scene scene = deskScene("panda");
-  scene.removeObject("marker");
-  scene.removeObject("eraser");
-  scene.removeObject("holder");
+  Scene scene = emptyDeskScene("panda");
   const Vector3 slot(0.15, 0.0, 0.75);
   scene.addObject(boxObject("bar", Vector3(0.06, 0.035, 0.04), Vector3(0.0, -0.2, 0.75)));
   scene.addObject(fixedBox("near_wall", Vector3(0.02, 0.12, 0.025), slot + Vector3(0.0465, 0.0, 0.0)));

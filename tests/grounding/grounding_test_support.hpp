@@ -17,6 +17,13 @@ inline Scene deskScene(const std::string& robot) {
   return readKauthamProblem(resolveProblem(robot + "_desk")).scene;
 }
 
+/// The robot's desk scene with the desk alone on it (marker, eraser and holder taken away).
+inline Scene emptyDeskScene(const std::string& robot) {
+  Scene scene = deskScene(robot);
+  for (const char* object : {"marker", "eraser", "holder"}) scene.removeObject(object);
+  return scene;
+}
+
 /// A reachability checker for `scene` (robot arm `manipulator`), seeded, reusing the collision
 /// matrices computed for the robot's desk problem.
 /// `ikTimeoutSeconds`: IK's time budget per pose; rankings are deterministic only while IK ends

@@ -158,10 +158,7 @@ Scene trayAndFourBlocks() {
 // The yaw of the object placed at `spot` among four slabs `distance` from it on each side, with
 // the one top grasp square to its faces kept from the pick.
 double yawPlacedAmongSlabs(double distance) {
-  Scene scene = deskScene("panda");
-  scene.removeObject("marker");
-  scene.removeObject("eraser");
-  scene.removeObject("holder");
+  Scene scene = emptyDeskScene("panda");
   const Vector3 spot(0.15, 0.0, 0.75);
   scene.addObject(boxObject("piece", Vector3::Constant(0.04), Vector3(0.0, -0.2, 0.75)));
   const std::vector<Vector3> around{{distance, 0, 0}, {-distance, 0, 0}, {0, distance, 0}, {0, -distance, 0}};
@@ -198,10 +195,7 @@ TEST(Placement, AtAPositionAmongNeighboursTheHandMayTurnAnEighth) {
 TEST(Placement, AtAPositionOverTwoBlocksItRestsOnBoth) {
   // Two 4 cm blocks 1 cm apart, the third asked for over the gap between them at their height:
   // it goes onto both (the top of a pyramid), the symbolic state sees it on one of them.
-  Scene scene = deskScene("panda");
-  scene.removeObject("marker");
-  scene.removeObject("eraser");
-  scene.removeObject("holder");
+  Scene scene = emptyDeskScene("panda");
   const Vector3 middle(0.15, 0.0, 0.75);
   scene.addObject(boxObject("left", Vector3::Constant(0.04), middle + Vector3(0.0, 0.025, 0.0)));
   scene.addObject(boxObject("right", Vector3::Constant(0.04), middle + Vector3(0.0, -0.025, 0.0)));
