@@ -3,6 +3,8 @@
 // check and whose check fails on the scene as it was; `bench families` reports per family and
 // refuses bad arguments.
 
+#include <algorithm>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -18,6 +20,9 @@
 #include "lang2manip/cli/task_run.hpp"
 #include "lang2manip/execution/task_executor.hpp"
 #include "lang2manip/language/offline_task_planner.hpp"
+#include "lang2manip/llm/llm_client_factory.hpp"
+#include "lang2manip/symbolic/llm_task_planner.hpp"
+#include "lang2manip/symbolic/plan_json.hpp"
 #include "lang2manip/symbolic/surface_region.hpp"
 #include "lang2manip/symbolic/symbolic_state.hpp"
 
@@ -189,6 +194,46 @@ TEST(ArrangementsForAnLlm, AnArrangedGoalFromTheLoopbackLlmIsCheckedAsALine) {
   EXPECT_THAT(result.output, HasSubstr("holds"));
   ASSERT_EQ(server.requests().size(), 1u);
   EXPECT_THAT(server.requests()[0].body, HasSubstr("\\\"kind\\\": \\\"arranged\\\""));
+}
+
+// A pyramid the LLM plans (its own places, base row first) and states as an arranged goal: the
+// run grounds the top block onto the two below and checks the pyramid, as the family's own check
+// does (an instruction the offline parser does not read, so the goals are the LLM's).
+TEST(ArrangementsForAnLlm, APyramidFromTheLoopbackLlmIsGroundedAndCheckedAsAPyramid) {
+  const auto family = std::find_if(instructionFamilies().begin(), instructionFamilies().end(),
+                                   [](const InstructionFamily& f) { return f.name == "own_pyramid"; });
+  ASSERT_NE(family, instructionFamilies().end());
+  Random random(5);
+  std::optional<FamilyInstance> instance;
+  for (int attempt = 0; attempt < 100 && !instance; ++attempt) instance = family->make(desk("panda_desk"), random);
+  ASSERT_TRUE(instance);
+  nlohmann::json answer = toJson(instance->plan);
+  nlohmann::json members = nlohmann::json::array();
+  for (const SymbolicAction& action : instance->plan.actions) {
+    if (action.type == ActionType::kPick) members.push_back(action.object);
+  }
+  answer["goals"] = {{{"kind", "arranged"}, {"members", members}, {"shape", "pyramid"}, {"target", "desk"}}};
+  FakeLlmServer server(FakeLlmProtocol::kOpenAi);
+  server.enqueueAnswer(answer.dump());
+  LlmClientOptions options;
+  options.baseUrl = server.baseUrl();
+  options.apiKey = "sk-test";
+  const std::unique_ptr<LlmClient> client = makeLlmClient("openai:gpt-test", options);
+  LlmTaskPlanner planner(*client);
+  ExecutionSettings settings;
+#if defined(__SANITIZE_ADDRESS__)
+  settings.planningTimeSeconds *= 10.0;  // sanitized builds run about ten times slower
+  settings.reach.ikTimeoutSeconds *= 10.0;
+#endif
+  TaskExecutor executor(instance->scene, settings);
+  const TaskRun result = planExecuteAndVerify(planner, executor, "heap the three cubes into a little mountain", 1);
+  ASSERT_TRUE(result.success()) << result.repair.failure;
+  ASSERT_EQ(result.goals.size(), 1u);
+  EXPECT_EQ(result.goals.front().shape, ArrangementShape::kPyramid);
+  const GoalCheck check = instance->check(executor.lastExecution().finalScene, instance->scene);
+  EXPECT_TRUE(check.holds) << check.explanation;
+  ASSERT_EQ(server.requests().size(), 1u);
+  EXPECT_THAT(server.requests()[0].body, HasSubstr("pyramid"));
 }
 
 }  // namespace
