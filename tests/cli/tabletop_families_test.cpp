@@ -102,26 +102,6 @@ TEST(Tabletop, RoundBowlsAreMeshesWhoseCavityIsMeasuredAndHoldsABlock) {
   EXPECT_EQ(observeSymbolicState(executor.executions().back().finalScene).inside.at(block), bowl);
 }
 
-TEST(Tabletop, OnAReachTooSmallForTheBenchmarksBowlsTheyAreScaledDownToIt) {
-  // YuMi's right arm reaches 24 x 36 cm: two bowls of 12-18 cm and two blocks, 5 cm apart, do not
-  // fit; bowls of at most 40 % of the short side do. On the Panda's desk the sizes stay.
-  TabletopRequest request;
-  request.blocks = 2;
-  request.bowls = 2;
-  request.roundBowlShare = 0.0;
-  Random random(4);
-  const std::optional<Scene> small = generateTabletop(desk("yumi_desk"), request, random);
-  ASSERT_TRUE(small);
-  const double shortSide = deskReach(*small).sizes().head<2>().minCoeff();
-  for (const std::string& bowl : objectsOfKind(*small, "bowl")) {
-    EXPECT_LE(small->object(bowl).dimensions().x(), 0.4 * shortSide + 1e-9) << bowl;
-    EXPECT_GE(small->object(bowl).dimensions().x(), 0.4 * shortSide * 0.8 - 1e-9) << bowl;
-  }
-  const std::optional<Scene> roomy = generateTabletop(desk("panda_desk"), request, random);
-  ASSERT_TRUE(roomy);
-  for (const std::string& bowl : objectsOfKind(*roomy, "bowl")) EXPECT_GE(roomy->object(bowl).dimensions().x(), 0.12 - 1e-9) << bowl;
-}
-
 TEST(Tabletop, TheSameSeedGivesTheSameScene) {
   Random a(9), b(9);
   const Scene first = *generateTabletop(desk("panda_desk"), TabletopRequest{}, a);

@@ -19,8 +19,6 @@ constexpr double kBowlHeight = 0.05;
 constexpr double kBowlWall = 0.008;
 constexpr double kEdgeClearance = 0.03;
 constexpr int kTries = 200;
-/// The widest square bowl the benchmarks' sizes give (m).
-constexpr double kLargestSquareBowl = 0.15;
 
 Shape coloured(const Geometry& geometry, const Vector3& offset, const PaletteColour& colour) {
   Shape shape;
@@ -128,15 +126,13 @@ std::string uniqueName(const std::string& base, std::map<std::string, int>& used
   return n == 1 ? base : base + "_" + std::to_string(n);
 }
 
-/// The objects of `request`, bowls `bowlScale` times the benchmarks' sizes (12-15 cm square,
-/// 15-18 cm round).
-std::vector<SceneObject> drawObjects(const TabletopRequest& request, double bowlScale, Random& random) {
+std::vector<SceneObject> drawObjects(const TabletopRequest& request, Random& random) {
   std::vector<SceneObject> objects;
   std::map<std::string, int> used;
   for (const PaletteColour& colour : drawColours(request.bowls, request.distinctColours, random)) {
     // Round bowls are drawn wider: their sloping wall leaves less room at the floor.
     const bool round = random.uniform(0.0, 1.0) < request.roundBowlShare;
-    objects.push_back(round ? roundBowl(colour, bowlScale * random.uniform(0.15, 0.18)) : bowl(colour, bowlScale * random.uniform(0.12, 0.15)));
+    objects.push_back(round ? roundBowl(colour, random.uniform(0.15, 0.18)) : bowl(colour, random.uniform(0.12, 0.15)));
     objects.back().name = uniqueName(std::string(colour.name) + "_bowl", used);
   }
   std::vector<PaletteColour> blockColours = drawColours(request.oneBlockColour ? 1 : request.blocks, request.distinctColours, random);
@@ -213,19 +209,12 @@ std::optional<Scene> generateTabletop(const Scene& desk, const TabletopRequest& 
   for (const std::string& name : removed) scene.removeObject(name);
   const AlignedBox3 reachable = deskReach(scene);
   const Pose base = robotBaseFrame(scene, "");
-  // The benchmarks' bowls first; on a reach too small for them (a bowl wider than 40 % of its
-  // short side leaves no room beside it), bowls scaled down to that.
-  const double shortSide = std::min(reachable.sizes().x(), reachable.sizes().y());
-  std::vector<double> scales{1.0};
-  if (request.bowls > 0 && 0.4 * shortSide < kLargestSquareBowl) scales.push_back(0.4 * shortSide / kLargestSquareBowl);
-  for (const double scale : scales) {
-    for (int attempt = 0; attempt < kTries; ++attempt) {
-      std::vector<SceneObject> objects = drawObjects(request, scale, random);
-      if (!scatter(objects, reachable, base, request.gap, random)) continue;
-      Scene result = scene;
-      for (SceneObject& object : objects) result.addObject(std::move(object));
-      return result;
-    }
+  for (int attempt = 0; attempt < kTries; ++attempt) {
+    std::vector<SceneObject> objects = drawObjects(request, random);
+    if (!scatter(objects, reachable, base, request.gap, random)) continue;
+    Scene result = scene;
+    for (SceneObject& object : objects) result.addObject(std::move(object));
+    return result;
   }
   return std::nullopt;
 }

@@ -44,9 +44,7 @@ struct TabletopRequest {
 
 /// `desk` (a built-in desk scene: a support named "desk" and its objects) with every movable or
 /// contained object removed and the requested ones added at random places the acting arm
-/// reaches (deskReach(), seeded by `random`); bowls of the benchmarks' sizes, scaled down to 40 %
-/// of the reach's short side when they do not fit it (YuMi's one arm). Nullopt when the objects do
-/// not fit after 200 tries of each.
+/// reaches (deskReach(), seeded by `random`). Nullopt when the objects do not fit after 200 tries.
 std::optional<Scene> generateTabletop(const Scene& desk, const TabletopRequest& request, Random& random);
 
 /// The objects of `scene` whose kind is `kind` ("block", "bowl", "cylinder"), in scene order.
