@@ -283,6 +283,31 @@ std::optional<std::vector<std::size_t>> pyramidRows(const std::vector<AlignedBox
   return rows;
 }
 
+/// Every member's spot when the base row (`baseMembers`, members `rows[0..base)`, at `row`) stands
+/// along `direction`: each higher member (the rest of `rows`, row by row) over the middle of two
+/// neighbours below, z the height its bottom rises to.
+std::vector<Vector3> rowsOnTop(const std::vector<AlignedBox3>& members, const std::vector<std::size_t>& rows,
+                               const std::vector<AlignedBox3>& baseMembers, const std::vector<Vector3>& row, const Vector3& direction) {
+  std::vector<Vector3> spots(members.size());
+  std::vector<Vector3> below;  // the row below from one end, and its tops
+  std::vector<double> tops;
+  for (const std::size_t k : orderAlong(baseMembers, direction)) below.push_back(row[k]), tops.push_back(baseMembers[k].sizes().z());
+  for (std::size_t k = 0; k < baseMembers.size(); ++k) spots[rows[k]] = row[k];
+  for (std::size_t next = baseMembers.size(); next < members.size();) {
+    std::vector<Vector3> above;
+    std::vector<double> aboveTops;
+    for (std::size_t k = 0; k + 1 < below.size(); ++k, ++next) {
+      const double rise = std::max(tops[k], tops[k + 1]);
+      above.push_back(Vector3((below[k].x() + below[k + 1].x()) / 2.0, (below[k].y() + below[k + 1].y()) / 2.0, rise));
+      aboveTops.push_back(rise + members[rows[next]].sizes().z());
+      spots[rows[next]] = above.back();
+    }
+    below = std::move(above);
+    tops = std::move(aboveTops);
+  }
+  return spots;
+}
+
 /// A pyramid: its base row (pyramidRows()) `kPyramidGap` apart (sideways, else away from the
 /// robot), each higher member over the middle of two neighbours of the row below; z is how far its
 /// bottom rises above the support's top.
@@ -299,25 +324,7 @@ std::optional<std::vector<Vector3>> layOutPyramid(const ArrangementLayoutRequest
       for (const Vector3& direction : {flattened(request.direction).normalized(), Vector3(Vector3::UnitX())}) {
         const std::vector<Vector3> row = rowOf(baseMembers, direction, centre, kPyramidGap);
         if (!layout.fits(row, clearance)) continue;
-        std::vector<std::size_t> along = orderAlong(baseMembers, direction);  // the base row from one end
-        std::vector<Vector3> below;
-        std::vector<double> tops;
-        for (const std::size_t k : along) below.push_back(row[k]), tops.push_back(baseMembers[k].sizes().z());
-        std::vector<Vector3> spots(n);
-        for (std::size_t k = 0; k < base; ++k) spots[(*bySize)[k]] = row[k];
-        for (std::size_t next = base; next < n;) {
-          std::vector<Vector3> above;
-          std::vector<double> aboveTops;
-          for (std::size_t k = 0; k + 1 < below.size(); ++k, ++next) {
-            const double rise = std::max(tops[k], tops[k + 1]);
-            above.push_back(Vector3((below[k].x() + below[k + 1].x()) / 2.0, (below[k].y() + below[k + 1].y()) / 2.0, rise));
-            aboveTops.push_back(rise + request.members[(*bySize)[next]].sizes().z());
-            spots[(*bySize)[next]] = above.back();
-          }
-          below = std::move(above);
-          tops = std::move(aboveTops);
-        }
-        return spots;
+        return rowsOnTop(request.members, *bySize, baseMembers, row, direction);
       }
     }
   }
