@@ -102,6 +102,38 @@ TEST(Tabletop, RoundBowlsAreMeshesWhoseCavityIsMeasuredAndHoldsABlock) {
   EXPECT_EQ(observeSymbolicState(executor.executions().back().finalScene).inside.at(block), bowl);
 }
 
+TEST(Tabletop, OnAReachTooSmallForTheBenchmarksBowlsTheyAreScaledDownToIt) {
+  // YuMi's one arm reaches about 24 x 36 cm: two bowls of 12-18 cm and two blocks, 5 cm apart, do
+  // not fit; bowls of 40 % of the short side, 3 cm apart, do, none too small to hold a block
+  // (placement's own margins). On the Panda's desk the benchmarks' sizes and gap stay.
+  TabletopRequest request;
+  request.blocks = 2;
+  request.bowls = 2;
+  Random random(4);
+  const std::optional<Scene> small = generateTabletop(desk("yumi_desk"), request, random);
+  ASSERT_TRUE(small);
+  for (const std::string& bowl : objectsOfKind(*small, "bowl")) {
+    EXPECT_LT(small->object(bowl).dimensions().x(), 0.15 - 1e-9) << bowl;
+    ASSERT_TRUE(small->object(bowl).cavity) << bowl;
+    EXPECT_GE(families::blocksHeld(*small, bowl, 0.04), 1) << bowl;
+  }
+  request.blocksPerBowl = 2;
+  request.roundBowlShare = 0.0;
+  const std::optional<Scene> roomy = generateTabletop(desk("panda_desk"), request, random);
+  ASSERT_TRUE(roomy);
+  for (const std::string& bowl : objectsOfKind(*roomy, "bowl")) {
+    EXPECT_GE(roomy->object(bowl).dimensions().x(), 0.12 - 1e-9) << bowl;
+    EXPECT_GE(families::blocksHeld(*roomy, bowl, 0.04), 2) << bowl;
+  }
+  for (const SceneObject& object : roomy->objects()) {
+    for (const SceneObject& other : roomy->objects()) {
+      if (object.name < other.name && object.name != "desk" && other.name != "desk") {
+        EXPECT_GE(boxGap(object.worldBounds(), other.worldBounds()), 0.05 - 1e-9) << object.name << " " << other.name;
+      }
+    }
+  }
+}
+
 TEST(Tabletop, TheSameSeedGivesTheSameScene) {
   Random a(9), b(9);
   const Scene first = *generateTabletop(desk("panda_desk"), TabletopRequest{}, a);

@@ -74,7 +74,7 @@ TEST(ArrangementInstruction, ThePlacesChosenMakeTheArrangementTheCheckMeasures) 
   for (const char* instruction :
        {"put the blocks in a horizontal line", "put the blocks in a vertical line 12 cm apart", "put the blocks in a diagonal line", "line up the blocks along the far edge",
         "arrange the blocks in a circle", "put the blocks and the markers in a circle", "make a triangle with the blocks",
-        "put the blocks and the red marker in a square",
+        "put the blocks and the red marker in a square", "make a triangle with the blocks, the markers and the yellow cup",
         "put the blocks in a triangle in the far left corner of the table", "put the blocks and the cups in a line along the near edge",
         "spread out the blocks and the markers"}) {
     expectPlacesMakeTheArrangement(instruction);
@@ -156,8 +156,8 @@ TEST(ArrangementInstruction, ALineBetweenTwoObjectsIsEvenlySpacedAlongThem) {
 }
 
 TEST(ArrangementInstruction, ArrangementsThatCannotBeAreRefusedSayingWhy) {
-  EXPECT_THAT(arrangementRefusal("make a triangle with the blocks and the markers"), HasSubstr("a triangle has 3 members, not 5"));
-  EXPECT_THAT(arrangementRefusal("put the blocks in a square"), HasSubstr("a square has 4 members, not 3"));
+  EXPECT_THAT(arrangementRefusal("make a triangle with the blocks and the markers"), HasSubstr("a triangle takes 3, 6, 9, ... members (its corners, and as many more evenly along each side), not 5; say which of them, or a circle or line"));
+  EXPECT_THAT(arrangementRefusal("put the blocks in a square"), HasSubstr("a square takes 4, 8, 12, ... members (its corners, and as many more evenly along each side), not 3"));
   EXPECT_THAT(arrangementRefusal("put the red block in a circle"), HasSubstr("an arrangement needs at least two objects"));
   EXPECT_THAT(arrangementRefusal("put the blocks in a line 3 cm apart"), HasSubstr("0.030 m apart would overlap: the widest is wider than that"));
   EXPECT_THAT(arrangementRefusal("put the blocks in a line around the yellow cup"), HasSubstr("only a circle, triangle or square goes around something"));
@@ -184,7 +184,7 @@ TEST(ArrangementInstruction, APyramidPutsEachHigherBlockOnTwoOfTheRowBelow) {
       EXPECT_TRUE(check.holds) << instruction << ": " << check.explanation;
     }
   }
-  EXPECT_THAT(arrangementRefusal("make a pyramid with the blocks and the red marker"), HasSubstr("take 3, 6 or 10 objects, not 4"));
+  EXPECT_THAT(arrangementRefusal("make a pyramid with the blocks and the red marker"), HasSubstr("a pyramid has 3, 6 or 10 members (rows of k, k - 1, ..., 1), not 4"));
   EXPECT_THAT(arrangementRefusal("put the blocks in a pyramid around the yellow cup"), HasSubstr("only a circle, triangle or square goes around"));
 }
 

@@ -92,7 +92,38 @@ TEST(ArrangementCheck, TrianglesAndSquaresAreRegularPolygonsOfTheirMembers) {
   EXPECT_FALSE(checkArrangedBoxes(arranged(ArrangementShape::kSquare, 4), rhombus, {}).holds);
   const GoalCheck count = checkArrangedBoxes(arranged(ArrangementShape::kSquare, 3), onCircle(3, 0.08), {});
   EXPECT_FALSE(count.holds);
-  EXPECT_THAT(count.explanation, HasSubstr("a square has 4 members"));
+  EXPECT_THAT(count.explanation, HasSubstr("a square takes 4, 8, 12, ... members (its corners, and as many more evenly along each side), not 3"));
+}
+
+/// Members on the outline of a regular polygon: `perSide` from each corner along its side.
+std::vector<AlignedBox3> onOutline(std::size_t corners, std::size_t perSide, double radius, double rotation) {
+  std::vector<AlignedBox3> boxes;
+  for (const Eigen::Vector2d& spot : regularOutline(Eigen::Vector2d(0.5, 0.1), radius, rotation, corners, perSide)) {
+    boxes.push_back(block(spot.x(), spot.y()));
+  }
+  return boxes;
+}
+
+TEST(ArrangementCheck, MorePolygonMembersThanCornersStandEvenlyAlongItsSides) {
+  // Eight in a square: its corners and the middle of each side; six and nine in a triangle.
+  std::vector<AlignedBox3> square = onOutline(4, 2, 0.16, 0.4);
+  std::reverse(square.begin(), square.end());  // the members' order does not matter
+  EXPECT_TRUE(checkArrangedBoxes(arranged(ArrangementShape::kSquare, 8), square, {}).holds);
+  EXPECT_TRUE(checkArrangedBoxes(arranged(ArrangementShape::kTriangle, 6), onOutline(3, 2, 0.14, 0.0), {}).holds);
+  EXPECT_TRUE(checkArrangedBoxes(arranged(ArrangementShape::kTriangle, 9), onOutline(3, 3, 0.2, 1.0), {}).holds);
+  // A side member off the middle of its side, or all eight on a circle, is no square.
+  std::vector<AlignedBox3> shifted = onOutline(4, 2, 0.16, 0.4);
+  shifted[1] = onOutline(4, 3, 0.16, 0.4)[1];
+  const GoalCheck off = checkArrangedBoxes(arranged(ArrangementShape::kSquare, 8), shifted, {});
+  EXPECT_FALSE(off.holds);
+  EXPECT_THAT(off.explanation, HasSubstr("of the corners and 1 evenly spaced spots of each side of a regular polygon"));
+  EXPECT_FALSE(checkArrangedBoxes(arranged(ArrangementShape::kSquare, 8), onCircle(8, 0.16), {}).holds);
+  // Nine in a square or five in a triangle: not a multiple of the corners.
+  EXPECT_THAT(memberCountProblem(ArrangementShape::kSquare, 9), HasSubstr("not 9"));
+  EXPECT_THAT(memberCountProblem(ArrangementShape::kTriangle, 5), HasSubstr("a triangle takes 3, 6, 9, ... members"));
+  EXPECT_EQ(memberCountProblem(ArrangementShape::kSquare, 12), "");
+  EXPECT_THAT(memberCountProblem(ArrangementShape::kCircle, 2), HasSubstr("a circle needs at least 3 members, not 2"));
+  EXPECT_THAT(memberCountProblem(ArrangementShape::kPyramid, 4), HasSubstr("3, 6 or 10"));
 }
 
 TEST(ArrangementCheck, SpreadOutMeansNoTwoNextToEachOther) {
@@ -196,7 +227,7 @@ TEST(ArrangementCheck, TheGoalStatementReadsAndWritesArrangementsAndNamesEachMis
   ASSERT_EQ(problems.size(), 8u);
   EXPECT_THAT(problems[0], HasSubstr("goals[0].members[1]: unknown object \"cup\""));
   EXPECT_THAT(problems[1], HasSubstr("goals[1].shape: unknown shape string \"hexagon\" (shapes: line, circle, triangle, square, spread_out, together, pyramid)"));
-  EXPECT_THAT(problems[2], HasSubstr("goals[2].members: a triangle has 3 members, not 2"));
+  EXPECT_THAT(problems[2], HasSubstr("goals[2].members: a triangle takes 3, 6, 9, ... members (its corners, and as many more evenly along each side), not 2"));
   EXPECT_THAT(problems[3], HasSubstr("goals[3].members[1]: \"marker\" is named twice"));
   EXPECT_THAT(problems[4], HasSubstr("goals[4]: heading, evenly_spaced and distance are of a line only"));
   EXPECT_THAT(problems[5], HasSubstr("goals[5].members: expected an array of object names"));

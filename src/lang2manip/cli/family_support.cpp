@@ -7,6 +7,7 @@
 
 #include "lang2manip/cli/tabletop_scenes.hpp"
 #include "lang2manip/core/text_parsing.hpp"
+#include "lang2manip/grounding/placement.hpp"
 #include "lang2manip/language/words.hpp"
 #include "lang2manip/symbolic/object_heading.hpp"
 #include "lang2manip/symbolic/symbolic_state.hpp"
@@ -66,7 +67,9 @@ int blocksHeld(const Scene& scene, const std::string& bowl, double edge) {
   constexpr double kGap = 0.01;
   const auto& cavity = scene.object(bowl).cavity;
   if (!cavity) return 0;
-  const auto along = [&](double length) { return static_cast<int>(std::floor((length + kGap) / (edge + kGap))); };
+  // Placement keeps its wall margin from each wall.
+  const double margin = 2.0 * PlacementSettings{}.wallMargin;
+  const auto along = [&](double length) { return static_cast<int>(std::floor((length - margin + kGap) / (edge + kGap))); };
   return along(cavity->sizes().x()) * along(cavity->sizes().y());
 }
 

@@ -34,7 +34,8 @@ Vector3 centreInBase(const Scene& scene, const std::string& object);
 /// "red" -> "red block" words of an object's name ("red_block_2" -> "red block").
 std::string spoken(const std::string& object);
 
-/// How many blocks of edge `edge` stand side by side, 1 cm apart, on the floor of `bowl`'s cavity.
+/// How many blocks of edge `edge` stand side by side, 1 cm apart and clear of the walls by
+/// placement's margin, on the floor of `bowl`'s cavity.
 int blocksHeld(const Scene& scene, const std::string& bowl, double edge);
 
 /// True when no bowl of `scene` stands in `region` of the desk's reachable part (a region a bowl

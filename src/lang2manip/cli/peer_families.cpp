@@ -85,6 +85,8 @@ std::optional<FamilyInstance> oldNeighbour(const Scene& desk, Random& random) {
   TabletopRequest request;
   request.blocks = 3;
   request.bowls = 1;
+  request.blocksPerBowl = 2;
+  request.roundBowlShare = 0.0;  // the square a round bowl's floor holds takes two blocks only at 22 cm across
   auto scene = drawTabletop(desk, request, random);
   if (!scene) return std::nullopt;
   const std::string bowl = objectsOfKind(*scene, "bowl").front();

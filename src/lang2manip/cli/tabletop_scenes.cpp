@@ -19,6 +19,13 @@ constexpr double kBowlHeight = 0.05;
 constexpr double kBowlWall = 0.008;
 constexpr double kEdgeClearance = 0.03;
 constexpr int kTries = 200;
+/// The widest square bowl of the benchmarks' sizes (m), and the share of a small reach's short
+/// side a bowl may take.
+constexpr double kLargestSquareBowl = 0.15;
+constexpr double kSmallReachBowlShare = 0.4;
+constexpr double kSmallReachGap = 0.03;
+constexpr double kBowlPlay = 0.015;
+constexpr double kBlockSpacing = 0.01;
 
 Shape coloured(const Geometry& geometry, const Vector3& offset, const PaletteColour& colour) {
   Shape shape;
@@ -126,38 +133,68 @@ std::string uniqueName(const std::string& base, std::map<std::string, int>& used
   return n == 1 ? base : base + "_" + std::to_string(n);
 }
 
-std::vector<SceneObject> drawObjects(const TabletopRequest& request, Random& random) {
-  std::vector<SceneObject> objects;
+/// The narrowest bowl whose cavity holds `blocks` blocks of `edge` side by side (a square grid,
+/// 1 cm apart) with 1.5 cm of play: a square bowl's cavity is its width less two walls; a round
+/// one's, the square inscribed in its floor (roundBowl(): the foot 37.5 % of the width across,
+/// less the wall).
+double widthHolding(bool round, double edge, int blocks) {
+  const double perSide = std::ceil(std::sqrt(static_cast<double>(std::max(blocks, 1))));
+  const double cavity = perSide * edge + (perSide - 1.0) * kBlockSpacing + kBowlPlay;
+  return round ? (cavity / std::numbers::sqrt2 + kBowlWall) / 0.375 : cavity + 2.0 * kBowlWall;
+}
+
+/// One object drawn but not yet built: what it is, its colour and size. Scenes are laid out from
+/// these footprints and built only once they fit, so that a draw that does not fit costs no mesh.
+struct DrawnObject {
+  enum class Kind { kBlock, kSquareBowl, kRoundBowl, kCylinder };
+  Kind kind;
+  PaletteColour colour;
+  /// Edge (block), width across the rim (bowls) or diameter (cylinder), metres.
+  double width;
+  /// A cylinder's height, metres (the others' heights are fixed by their kind).
+  double height = 0.0;
+  std::string name{};
+  Vector3 centre{};
+};
+
+/// The objects of `request`, bowls `bowlScale` times the benchmarks' sizes (12-15 cm square,
+/// 15-18 cm round), none too small to hold request.blocksPerBowl of the largest blocks.
+std::vector<DrawnObject> drawObjects(const TabletopRequest& request, double bowlScale, Random& random) {
+  using Kind = DrawnObject::Kind;
+  std::vector<DrawnObject> objects;
   std::map<std::string, int> used;
   for (const PaletteColour& colour : drawColours(request.bowls, request.distinctColours, random)) {
     // Round bowls are drawn wider: their sloping wall leaves less room at the floor.
     const bool round = random.uniform(0.0, 1.0) < request.roundBowlShare;
-    objects.push_back(round ? roundBowl(colour, random.uniform(0.15, 0.18)) : bowl(colour, random.uniform(0.12, 0.15)));
+    const double drawn = bowlScale * (round ? random.uniform(0.15, 0.18) : random.uniform(0.12, 0.15));
+    const double width = std::max(drawn, widthHolding(round, request.blockEdgeMax, request.blocksPerBowl));
+    objects.push_back({round ? Kind::kRoundBowl : Kind::kSquareBowl, colour, width});
     objects.back().name = uniqueName(std::string(colour.name) + "_bowl", used);
   }
   std::vector<PaletteColour> blockColours = drawColours(request.oneBlockColour ? 1 : request.blocks, request.distinctColours, random);
   if (request.oneBlockColour && !blockColours.empty()) blockColours.assign(static_cast<std::size_t>(request.blocks), blockColours.front());
   for (const PaletteColour& colour : blockColours) {
-    objects.push_back(block(colour, random.uniform(request.blockEdgeMin, request.blockEdgeMax)));
+    objects.push_back({Kind::kBlock, colour, random.uniform(request.blockEdgeMin, request.blockEdgeMax)});
     objects.back().name = uniqueName(std::string(colour.name) + "_block", used);
   }
   for (const PaletteColour& colour : drawColours(request.cylinders, request.distinctColours, random)) {
-    objects.push_back(cylinder(colour, random.uniform(0.015, 0.02), random.uniform(0.04, 0.07)));
+    const double radius = random.uniform(0.015, 0.02);
+    objects.push_back({Kind::kCylinder, colour, 2.0 * radius, random.uniform(0.04, 0.07)});
     objects.back().name = uniqueName(std::string(colour.name) + "_cylinder", used);
   }
   return objects;
 }
 
-/// Sets every object at a random place of `area` (base frame), `gap` apart; false when some
-/// object found no place.
-bool scatter(std::vector<SceneObject>& objects, const AlignedBox3& area, const Pose& base, double gap, Random& random) {
+/// Sets every object's centre at a random place of `area` (base frame), `gap` apart; false when
+/// some object found no place.
+bool scatter(std::vector<DrawnObject>& objects, const AlignedBox3& area, double gap, Random& random) {
   std::vector<AlignedBox3> taken;
-  for (SceneObject& object : objects) {
-    const Vector3 size = object.dimensions();
+  for (DrawnObject& object : objects) {
+    const Vector3 size(object.width, object.width, 0.0);
+    const double margin = kEdgeClearance + object.width / 2.0;
+    if (area.sizes().x() < 2.0 * margin || area.sizes().y() < 2.0 * margin) return false;
     bool placed = false;
     for (int attempt = 0; attempt < kTries && !placed; ++attempt) {
-      const double margin = kEdgeClearance + std::max(size.x(), size.y()) / 2.0;
-      if (area.sizes().x() < 2.0 * margin || area.sizes().y() < 2.0 * margin) return false;
       const Vector3 centre(random.uniform(area.min().x() + margin, area.max().x() - margin),
                            random.uniform(area.min().y() + margin, area.max().y() - margin), area.max().z());
       const AlignedBox3 footprint(centre - size / 2.0, centre + size / 2.0);
@@ -166,14 +203,46 @@ bool scatter(std::vector<SceneObject>& objects, const AlignedBox3& area, const P
       });
       if (!free) continue;
       taken.push_back(footprint);
-      object.pose = Pose::Identity();
-      object.pose.linear() = base.linear();
-      object.pose.translation() = base * centre;
+      object.centre = centre;
       placed = true;
     }
     if (!placed) return false;
   }
   return true;
+}
+
+SceneObject built(const DrawnObject& drawn, const Pose& base) {
+  using Kind = DrawnObject::Kind;
+  SceneObject object;
+  switch (drawn.kind) {
+    case Kind::kBlock: object = block(drawn.colour, drawn.width); break;
+    case Kind::kSquareBowl: object = bowl(drawn.colour, drawn.width); break;
+    case Kind::kRoundBowl: object = roundBowl(drawn.colour, drawn.width); break;
+    case Kind::kCylinder: object = cylinder(drawn.colour, drawn.width / 2.0, drawn.height); break;
+  }
+  object.name = drawn.name;
+  object.pose = Pose::Identity();
+  object.pose.linear() = base.linear();
+  object.pose.translation() = base * drawn.centre;
+  return object;
+}
+
+/// How a draw is sized: the bowls' share of the benchmarks' sizes and the gap between objects.
+struct DrawSizing {
+  double bowlScale;
+  double gap;
+};
+
+/// The benchmarks' bowl sizes and the requested gap first; on a reach too small for them (a square
+/// bowl wider than 40 % of its short side leaves no room beside it: YuMi's one arm), bowls scaled
+/// down to that and at most 3 cm between objects next.
+std::vector<DrawSizing> drawSizings(const TabletopRequest& request, const AlignedBox3& reachable) {
+  const double shortSide = std::min(reachable.sizes().x(), reachable.sizes().y());
+  std::vector<DrawSizing> sizings{{1.0, request.gap}};
+  if (request.bowls > 0 && kSmallReachBowlShare * shortSide < kLargestSquareBowl) {
+    sizings.push_back({kSmallReachBowlShare * shortSide / kLargestSquareBowl, std::min(request.gap, kSmallReachGap)});
+  }
+  return sizings;
 }
 
 }  // namespace
@@ -209,12 +278,14 @@ std::optional<Scene> generateTabletop(const Scene& desk, const TabletopRequest& 
   for (const std::string& name : removed) scene.removeObject(name);
   const AlignedBox3 reachable = deskReach(scene);
   const Pose base = robotBaseFrame(scene, "");
-  for (int attempt = 0; attempt < kTries; ++attempt) {
-    std::vector<SceneObject> objects = drawObjects(request, random);
-    if (!scatter(objects, reachable, base, request.gap, random)) continue;
-    Scene result = scene;
-    for (SceneObject& object : objects) result.addObject(std::move(object));
-    return result;
+  for (const DrawSizing& sizing : drawSizings(request, reachable)) {
+    for (int attempt = 0; attempt < kTries; ++attempt) {
+      std::vector<DrawnObject> objects = drawObjects(request, sizing.bowlScale, random);
+      if (!scatter(objects, reachable, sizing.gap, random)) continue;
+      Scene result = scene;
+      for (const DrawnObject& object : objects) result.addObject(built(object, base));
+      return result;
+    }
   }
   return std::nullopt;
 }

@@ -38,13 +38,18 @@ struct TabletopRequest {
   /// Edge of the blocks, metres (each block draws its edge from [blockEdgeMin, blockEdgeMax]).
   double blockEdgeMin = 0.04;
   double blockEdgeMax = 0.04;
+  /// Every bowl holds at least this many of the largest blocks side by side.
+  int blocksPerBowl = 1;
   /// Clearance kept between the objects' footprints, metres.
   double gap = 0.05;
 };
 
 /// `desk` (a built-in desk scene: a support named "desk" and its objects) with every movable or
 /// contained object removed and the requested ones added at random places the acting arm
-/// reaches (deskReach(), seeded by `random`). Nullopt when the objects do not fit after 200 tries.
+/// reaches (deskReach(), seeded by `random`): bowls of the benchmarks' sizes, or, when 200 draws
+/// of those do not fit, scaled down to 40 % of the reach's short side and at most 3 cm apart
+/// (YuMi's one arm). Nullopt
+/// when the objects do not fit after 200 draws of each.
 std::optional<Scene> generateTabletop(const Scene& desk, const TabletopRequest& request, Random& random);
 
 /// The objects of `scene` whose kind is `kind` ("block", "bowl", "cylinder"), in scene order.

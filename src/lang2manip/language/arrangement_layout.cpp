@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "lang2manip/core/text_parsing.hpp"
+#include "lang2manip/symbolic/arrangement_check.hpp"
 
 namespace lang2manip::language_detail {
 namespace {
@@ -332,10 +333,14 @@ std::optional<std::vector<Vector3>> layOutPyramid(const ArrangementLayoutRequest
   return std::nullopt;
 }
 
+/// A circle (its members evenly around it), or a triangle or square (its corners, and as many more
+/// members evenly along each side): neighbours a pitch apart, or around the box it goes around.
 std::optional<std::vector<Vector3>> layOutRing(const ArrangementLayoutRequest& request, const Layout& layout, std::string& why) {
   const std::size_t n = request.members.size();
-  const double share = 2.0 * std::numbers::pi / static_cast<double>(n);
-  double radius = layout.pitch() / (2.0 * std::sin(std::numbers::pi / static_cast<double>(n)));
+  const std::size_t corners = polygonCorners(request.shape) != 0 ? polygonCorners(request.shape) : n;
+  const std::size_t perSide = n / corners;
+  const double share = 2.0 * std::numbers::pi / static_cast<double>(corners);
+  double radius = static_cast<double>(perSide) * layout.pitch() / (2.0 * std::sin(std::numbers::pi / static_cast<double>(corners)));
   if (request.around) {  // clear of the box it goes around, grown as clear() grows it, at any angle
     const Eigen::Vector2d corner = request.around->sizes().head<2>() / 2.0 + Eigen::Vector2d::Constant(layout.widest() / 2.0 + kOtherClearance);
     radius = std::max(radius, corner.norm() + 1e-3);
@@ -347,9 +352,8 @@ std::optional<std::vector<Vector3>> layOutRing(const ArrangementLayoutRequest& r
       for (int r = 0; r < kRotations; ++r) {
         const double rotation = first + share * static_cast<double>(r) / kRotations;
         std::vector<Vector3> spots;
-        for (std::size_t k = 0; k < n; ++k) {
-          const double angle = rotation + share * static_cast<double>(k);
-          spots.push_back(centre + radius * Vector3(std::cos(angle), std::sin(angle), 0.0));
+        for (const Eigen::Vector2d& spot : regularOutline(centre.head<2>(), radius, rotation, corners, perSide)) {
+          spots.emplace_back(spot.x(), spot.y(), centre.z());
         }
         if (layout.fits(spots, clearance)) return leastTravel(request.members, spots);
       }

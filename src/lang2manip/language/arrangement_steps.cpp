@@ -223,14 +223,9 @@ void StepParser::arrange(Step& step, const ShapePhrase& phrase) {
   const ObjectDescriptor& top = reader_.descriptor(support);
   if (top.role != ObjectRole::kSupport) failStep(step, support + " is not a support to arrange things on");
   const std::size_t members = step.objects.size();
-  const std::size_t corners = phrase.shape == ArrangementShape::kTriangle ? 3 : phrase.shape == ArrangementShape::kSquare ? 4 : 0;
-  if (corners != 0 && members != corners) {
-    failStep(step, "a " + arrangementShapeName(phrase.shape) + " has " + std::to_string(corners) + " members, not " + std::to_string(members) +
-                       (members > corners ? "; say which of them, or a circle or line" : ""));
-  }
-  if (phrase.shape == ArrangementShape::kCircle && members < 3) failStep(step, "a circle needs at least three objects");
-  if (phrase.shape == ArrangementShape::kPyramid && members != 3 && members != 6 && members != 10) {
-    failStep(step, "a pyramid's rows (k, k - 1, ..., 1 objects) take 3, 6 or 10 objects, not " + std::to_string(members));
+  if (const std::string problem = memberCountProblem(phrase.shape, members); !problem.empty()) {
+    const bool tooManyForCorners = polygonCorners(phrase.shape) != 0 && members > polygonCorners(phrase.shape);
+    failStep(step, problem + (tooManyForCorners ? "; say which of them, or a circle or line" : ""));
   }
   ArrangementLayoutRequest request;
   request.shape = phrase.shape;

@@ -94,38 +94,41 @@ GoalCheck checkCircle(const std::vector<Point>& points, double tolerance) {
                      ", neighbours " + fixed(narrowestGap * 180.0 / std::numbers::pi, 0) + " to " + degrees(widestGap) + " apart around it"};
 }
 
-/// Each point within tolerance of its own corner of the regular polygon fitted to them.
-GoalCheck checkPolygon(const std::vector<Point>& points, double tolerance) {
-  const std::size_t corners = points.size();
+/// Each point within tolerance of its own spot of the regular polygon outline fitted to them: its
+/// corners are the `corners` points farthest from the centroid (side spots lie nearer), its
+/// radius and rotation theirs.
+GoalCheck checkPolygon(const std::vector<Point>& points, std::size_t corners, double tolerance) {
   const double n = static_cast<double>(corners);
+  const std::size_t perSide = points.size() / corners;
   const Point centre = centroidOf(points);
+  std::vector<Point> byDistance = points;
+  std::sort(byDistance.begin(), byDistance.end(), [&](const Point& a, const Point& b) { return (a - centre).norm() > (b - centre).norm(); });
   double radius = 0.0;
-  Point rotation = Point::Zero();  // the mean of n times each point's angle: the polygon's rotation
-  for (const Point& p : points) {
+  Point rotation = Point::Zero();  // the mean of n times each corner's angle: the polygon's rotation
+  for (std::size_t i = 0; i < corners; ++i) {
+    const Point& p = byDistance[i];
     radius += (p - centre).norm() / n;
     const double angle = std::atan2(p.y() - centre.y(), p.x() - centre.x());
     rotation += Point(std::cos(n * angle), std::sin(n * angle));
   }
-  const double first = std::atan2(rotation.y(), rotation.x()) / n;
-  std::vector<bool> taken(corners, false);
-  double offCorner = 0.0;
-  bool ownCorners = true;
+  const std::vector<Point> spots = regularOutline(centre, radius, std::atan2(rotation.y(), rotation.x()) / n, corners, perSide);
+  std::vector<bool> taken(spots.size(), false);
+  double offSpot = 0.0;
+  bool ownSpots = true;
   for (const Point& p : points) {
     std::size_t nearest = 0;
-    double distance = 1e9;
-    for (std::size_t k = 0; k < corners; ++k) {
-      const double angle = first + 2.0 * std::numbers::pi * static_cast<double>(k) / n;
-      const double d = (p - (centre + radius * Point(std::cos(angle), std::sin(angle)))).norm();
-      if (d < distance) nearest = k, distance = d;
+    for (std::size_t k = 1; k < spots.size(); ++k) {
+      if ((p - spots[k]).norm() < (p - spots[nearest]).norm()) nearest = k;
     }
-    ownCorners = ownCorners && !taken[nearest];
+    ownSpots = ownSpots && !taken[nearest];
     taken[nearest] = true;
-    offCorner = std::max(offCorner, distance);
+    offSpot = std::max(offSpot, (p - spots[nearest]).norm());
   }
   const double side = 2.0 * radius * std::sin(std::numbers::pi / n);
-  const bool holds = ownCorners && offCorner <= tolerance && side >= 2.0 * tolerance;
-  return {holds, "the centres lie within " + metres(offCorner) + " of the corners of a regular polygon of side " + metres(side) +
-                     (ownCorners ? "" : ", two at one corner")};
+  const bool holds = ownSpots && offSpot <= tolerance && side / static_cast<double>(perSide) >= 2.0 * tolerance;
+  const std::string where = perSide == 1 ? "the corners" : "the corners and " + std::to_string(perSide - 1) + " evenly spaced spots of each side";
+  return {holds, "the centres lie within " + metres(offSpot) + " of " + where + " of a regular polygon of side " + metres(side) +
+                     (ownSpots ? "" : ", two at one spot")};
 }
 
 const SceneObject& memberNamed(const Scene& scene, const std::string& name) {
@@ -213,6 +216,39 @@ GoalCheck checkPyramid(const std::vector<AlignedBox3>& boxes, double tolerance) 
 
 }  // namespace
 
+std::size_t polygonCorners(ArrangementShape shape) {
+  return shape == ArrangementShape::kTriangle ? 3 : shape == ArrangementShape::kSquare ? 4 : 0;
+}
+
+std::string memberCountProblem(ArrangementShape shape, std::size_t members) {
+  const std::string name = "a " + arrangementShapeName(shape);
+  const std::string count = std::to_string(members);
+  if (const std::size_t corners = polygonCorners(shape); corners != 0) {
+    if (members >= corners && members % corners == 0) return {};
+    return name + " takes " + std::to_string(corners) + ", " + std::to_string(2 * corners) + ", " + std::to_string(3 * corners) +
+           ", ... members (its corners, and as many more evenly along each side), not " + count;
+  }
+  if (shape == ArrangementShape::kPyramid) {
+    return members == 3 || members == 6 || members == 10 ? "" : name + " has 3, 6 or 10 members (rows of k, k - 1, ..., 1), not " + count;
+  }
+  const std::size_t least = shape == ArrangementShape::kCircle ? 3 : 2;
+  return members >= least ? "" : name + " needs at least " + std::to_string(least) + " members, not " + count;
+}
+
+std::vector<Point> regularOutline(const Point& centre, double radius, double rotation, std::size_t corners, std::size_t perSide) {
+  std::vector<Point> spots;
+  const double share = 2.0 * std::numbers::pi / static_cast<double>(corners);
+  const auto corner = [&](std::size_t k) {
+    const double angle = rotation + share * static_cast<double>(k);
+    return Point(centre + radius * Point(std::cos(angle), std::sin(angle)));
+  };
+  for (std::size_t k = 0; k < corners; ++k) {
+    const Point from = corner(k), to = corner(k + 1);
+    for (std::size_t j = 0; j < perSide; ++j) spots.push_back(from + (to - from) * static_cast<double>(j) / static_cast<double>(perSide));
+  }
+  return spots;
+}
+
 GoalCheck checkArrangedBoxes(const Goal& goal, const std::vector<AlignedBox3>& boxes, const SpatialOptions& spatial) {
   if (!goal.shape) throw InputError("goal \"" + describeGoal(goal) + "\": no shape");
   if (boxes.size() < 2) throw InputError("goal \"" + describeGoal(goal) + "\": an arrangement needs at least two members");
@@ -225,9 +261,8 @@ GoalCheck checkArrangedBoxes(const Goal& goal, const std::vector<AlignedBox3>& b
       return checkCircle(centres, tolerance);
     case ArrangementShape::kTriangle:
     case ArrangementShape::kSquare: {
-      const std::size_t corners = *goal.shape == ArrangementShape::kTriangle ? 3 : 4;
-      if (boxes.size() != corners) return {false, "a " + arrangementShapeName(*goal.shape) + " has " + std::to_string(corners) + " members"};
-      return checkPolygon(centres, tolerance);
+      if (const std::string problem = memberCountProblem(*goal.shape, boxes.size()); !problem.empty()) return {false, problem};
+      return checkPolygon(centres, polygonCorners(*goal.shape), tolerance);
     }
     case ArrangementShape::kSpreadOut: return checkSpreadOut(boxes, spatial.nearDistance);
     case ArrangementShape::kTogether: return checkTogether(boxes, spatial.nearDistance);

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "lang2manip/core/json_limits.hpp"
+#include "lang2manip/symbolic/arrangement_check.hpp"
 
 namespace lang2manip {
 namespace {
@@ -101,16 +102,7 @@ class GoalReader {
       goal.evenlySpaced = evenly->is_boolean() && evenly->get<bool>();
     }
     if (!goal.shape) return;
-    const std::size_t wanted = *goal.shape == ArrangementShape::kTriangle ? 3 : *goal.shape == ArrangementShape::kSquare ? 4 : 0;
-    const std::size_t least = *goal.shape == ArrangementShape::kCircle ? 3 : 2;
-    const std::size_t count = goal.members.size();
-    if (*goal.shape == ArrangementShape::kPyramid && count != 3 && count != 6 && count != 10) {
-      report(path + ".members", "a pyramid has 3, 6 or 10 members (rows of k, k - 1, ..., 1), not " + std::to_string(count));
-    } else if (wanted != 0 && goal.members.size() != wanted) {
-      report(path + ".members", "a " + arrangementShapeName(*goal.shape) + " has " + std::to_string(wanted) + " members, not " + std::to_string(goal.members.size()));
-    } else if (goal.members.size() < least) {
-      report(path + ".members", "a " + arrangementShapeName(*goal.shape) + " needs at least " + std::to_string(least) + " members");
-    }
+    if (const std::string problem = memberCountProblem(*goal.shape, goal.members.size()); !problem.empty()) report(path + ".members", problem);
     const bool line = *goal.shape == ArrangementShape::kLine;
     if (!line && (goal.heading || goal.evenlySpaced || goal.distance)) report(path, "heading, evenly_spaced and distance are of a line only");
   }
@@ -292,7 +284,7 @@ nlohmann::json goalStatementSchema() {
         {"position", nullableOf(vector, "at_position: where the object frame's origin ends up, metres, robot base frame (x and y are checked); turned: where it stands turned when the plan moved it first (null: where it stood)")},
         {"region", nullableOf({{"type", "string"}, {"enum", surfaceRegionNames()}}, "relation on a support, or arranged on a target: the region of its top face the object's centre ends up in (corners, edges, centre, halves, quadrants of the reachable part)")},
         {"members", nullableOf({{"type", "array"}, {"items", {{"type", "string"}}}}, "arranged: the objects arranged together")},
-        {"shape", nullableOf({{"type", "string"}, {"enum", arrangementShapeNames()}}, "arranged: line, circle, triangle (3 members), square (4 members), spread_out (no two next_to), together (next to each other: one group of members next_to one another) or pyramid (3, 6 or 10 members: rows resting on two below)")},
+        {"shape", nullableOf({{"type", "string"}, {"enum", arrangementShapeNames()}}, "arranged: line, circle, triangle (3 members at its corners, or 6, 9, ...: as many more evenly along each side), square (4, or 8, 12, ... likewise), spread_out (no two next_to), together (next to each other: one group of members next_to one another) or pyramid (3, 6 or 10 members: rows resting on two below)")},
         {"heading", nullableOf(number, "arranged line: its direction, radians, base frame (0 = front, pi/2 = left), when the task names one")},
         {"evenly_spaced", nullableOf({{"type", "boolean"}}, "arranged line: neighbours equally far apart")},
         {"angle", nullableOf(number, "turned: the turn about the vertical from where it started, radians, counter-clockwise seen from above; facing without a target: the heading of the long side, radians, base frame (0 = front)")}}},
