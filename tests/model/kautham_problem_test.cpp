@@ -51,6 +51,25 @@ class KauthamProblemTest : public test::KauthamDirectoryTest {
   }
 };
 
+TEST(KauthamModelSearch, ModelsAreFoundInTheModelsDirectoryOfTheProblemsDirectoryOrAnyAboveIt) {
+  // A user's project: problems/ beside models/ (one level up), and Kautham's own layout,
+  // demos/<set>/<scene>/ under demos/models/ (two levels up); references stay "robots/...".
+  for (const char* problemDirectory : {"project/problems", "demos/set/scene"}) {
+    SCOPED_TRACE(problemDirectory);
+    const test::TempDirectory directory;
+    const std::filesystem::path problem = directory.path() / problemDirectory / "problem.xml";
+    const std::filesystem::path models = std::string(problemDirectory).rfind("project", 0) == 0
+                                             ? directory.path() / "project" / "models"
+                                             : directory.path() / "demos" / "models";
+    test::writeText(models / "robots" / "arm.urdf", test::armUrdf());
+    test::writeText(models / "obstacles" / "crate.urdf", test::boxUrdf("crate_model", "0.1 0.1 0.1"));
+    test::writeText(problem, test::problemXml(robotXml() + "  <Obstacle obstacle=\"obstacles/crate.urdf\"/>\n"));
+    const KauthamProblem read = readKauthamProblem(problem, {});
+    EXPECT_EQ(read.scene.robots().size(), 1u);
+    EXPECT_EQ(read.scene.objects().size(), 1u);
+  }
+}
+
 TEST_F(KauthamProblemTest, OldQueryFormKeepsSeveralInitGoalPairsAndQueriesInOrder) {
   writeControls("arm.cntr", controlSet(simpleControl("a", "arm/upper") + simpleControl("b", "arm/fore")));
   writeProblem(robotXml() + "  <Controls robot=\"controls/arm.cntr\"/>\n" +

@@ -66,7 +66,8 @@ struct KauthamProblem {
 
 /// Options for reading a problem.
 struct KauthamReadOptions {
-  /// Extra directory prefixes tried after the problem's directory and <problem dir>/../../models/.
+  /// Extra directory prefixes tried after the problem's directory and the models/ directories of
+  /// it and every directory above it (nearest first), as Kautham searches.
   std::vector<std::filesystem::path> modelDirectories;
   /// package:// search paths for the URDFs.
   std::vector<std::filesystem::path> packagePaths;

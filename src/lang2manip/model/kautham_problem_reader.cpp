@@ -19,10 +19,24 @@ class ProblemReader {
   ProblemReader(const std::filesystem::path& file, const KauthamReadOptions& options)
       : document_(XmlDocument::loadFile(file, "problem file")), options_(options) {
     problem_.file = file;
-    const std::filesystem::path directory = file.parent_path();
-    prefixes_ = {directory, directory / ".." / ".." / "models"};
+    prefixes_ = modelPrefixes(file);
     prefixes_.insert(prefixes_.end(), options.modelDirectories.begin(),
                      options.modelDirectories.end());
+  }
+
+  /// Where models are searched, as Kautham does: the problem's directory, then the `models/`
+  /// directory of it and of each directory above it, nearest first (`problems/p.xml` beside
+  /// `models/`, Kautham's `demos/<set>/<scene>/p.xml` under `demos/models/`).
+  static std::vector<std::filesystem::path> modelPrefixes(const std::filesystem::path& file) {
+    std::error_code error;
+    std::filesystem::path directory = std::filesystem::absolute(file, error).parent_path();
+    if (error) directory = file.parent_path();
+    std::vector<std::filesystem::path> prefixes{directory};
+    for (std::filesystem::path above = directory;; above = above.parent_path()) {
+      if (std::filesystem::is_directory(above / "models", error)) prefixes.push_back(above / "models");
+      if (above == above.parent_path() || above.empty()) break;
+    }
+    return prefixes;
   }
 
   /// Attribute `name` of `node` as a number (`fallback` when absent). Kautham reads numbers with
