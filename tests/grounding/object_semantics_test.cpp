@@ -10,9 +10,12 @@
 
 #include "grounding_test_support.hpp"
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/grounding/grasp_planner.hpp"
 #include "lang2manip/grounding/object_semantics.hpp"
 #include "lang2manip/model/kautham_problem.hpp"
 #include "lang2manip/model/triangle_mesh.hpp"
+#include "lang2manip/symbolic/resting_height.hpp"
+#include "lang2manip/symbolic/symbolic_state.hpp"
 #include "test_paths.hpp"
 
 namespace lang2manip::test {
@@ -164,6 +167,66 @@ TEST(ObjectSemanticsBadInput, ContradictingOrUnknownNamesAreRefused) {
     EXPECT_THAT(error.what(), HasSubstr("unicorn"));
     EXPECT_THAT(error.what(), HasSubstr("block"));
   }
+}
+
+/// Adds the closed surface of the box [low, high] to `mesh`.
+void addBoxSurface(TriangleMesh& mesh, const Vector3& low, const Vector3& high) {
+  const int first = static_cast<int>(mesh.vertices.size());
+  for (int corner = 0; corner < 8; ++corner) {
+    mesh.vertices.emplace_back((corner & 1) ? high.x() : low.x(), (corner & 2) ? high.y() : low.y(), (corner & 4) ? high.z() : low.z());
+  }
+  const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& f : faces) {
+    mesh.triangles.push_back({first + f[0], first + f[1], first + f[2]});
+    mesh.triangles.push_back({first + f[0], first + f[2], first + f[3]});
+  }
+}
+
+/// A shelf unit as one mesh, as a Kautham kitchen is: a low board (its top 2 cm above its
+/// frame), a back panel and a high board over the back part, so that its bounds reach 60 cm
+/// above the low board where objects stand.
+Shape shelfUnitMesh() {
+  auto mesh = std::make_shared<TriangleMesh>();
+  addBoxSurface(*mesh, {-0.15, -0.15, 0.0}, {0.15, 0.15, 0.02});
+  addBoxSurface(*mesh, {0.13, -0.15, 0.0}, {0.15, 0.15, 0.6});
+  addBoxSurface(*mesh, {0.05, -0.15, 0.58}, {0.15, 0.15, 0.6});
+  Shape shape;
+  shape.geometry = MeshGeometry{mesh, Vector3::Ones(), "test:shelf_unit"};
+  return shape;
+}
+
+TEST(ObjectSemantics, ObjectsRestOnASurfaceInsideTheBoundsOfTheirSupport) {
+  // Blocks 3 mm above the low board and 2 mm into it rest on it (how such files are written);
+  // one 5 cm above it rests on nothing. Resting is measured on the shelf's geometry, not on the
+  // top of its bounds (0.6 m higher).
+  Scene scene = emptyDeskScene("panda");
+  scene.addObject(untagged("shelf_unit", {shelfUnitMesh()}, {0.15, -0.2, 0.75}));
+  scene.addObject(untagged("above", {boxAt({0.04, 0.04, 0.04}, {0, 0, 0.02})}, {0.08, -0.27, 0.773}));
+  scene.addObject(untagged("sunk", {boxAt({0.04, 0.04, 0.04}, {0, 0, 0.02})}, {0.08, -0.13, 0.768}));
+  scene.addObject(untagged("floating", {boxAt({0.04, 0.04, 0.04}, {0, 0, 0.02})}, {0.02, -0.2, 0.82}));
+  for (const char* block : {"above", "sunk"}) {
+    const AlignedBox3 bounds = scene.object(block).worldBounds();
+    const std::optional<double> height =
+        restingHeight(scene.object("shelf_unit"), Vector3(bounds.center().x(), bounds.center().y(), bounds.min().z()), 0.015);
+    ASSERT_TRUE(height) << block;
+    EXPECT_NEAR(*height, 0.77, 5e-4) << block;
+  }
+  const std::vector<ObjectSemanticsDecision> decisions = inferObjectSemantics(scene);
+  EXPECT_TRUE(scene.object("above").movable);
+  EXPECT_THAT(decisionFor(decisions, "above").reason, HasSubstr("rests on shelf_unit"));
+  EXPECT_TRUE(scene.object("sunk").movable);
+  EXPECT_FALSE(scene.object("floating").movable);
+  EXPECT_THAT(decisionFor(decisions, "floating").reason, HasSubstr("rests on nothing"));
+  const SymbolicState state = observeSymbolicState(scene);
+  EXPECT_EQ(state.onTopOf.at("above"), "shelf_unit");
+  EXPECT_EQ(state.onTopOf.at("sunk"), "shelf_unit");
+  EXPECT_FALSE(state.onTopOf.count("floating"));
+  // A top grasp keeps the fingers above the low board, not above the bounds' top.
+  GraspRequest request;
+  request.object = "above";
+  request.direction = GraspDirection::kTop;
+  const GraspPlan plan = makeGraspPlanner(defaultGraspPlannerName())->plan(reachFor("panda", scene), request);
+  ASSERT_TRUE(plan.success()) << plan.reason;
 }
 
 TEST(ObjectSemantics, KauthamScenesAsTheyAre) {

@@ -154,7 +154,7 @@ struct DrawnObject {
   /// A cylinder's height, metres (the others' heights are fixed by their kind).
   double height = 0.0;
   std::string name{};
-  Vector3 centre{};
+  Vector3 centre = Vector3::Zero();
 };
 
 /// The objects of `request`, bowls `bowlScale` times the benchmarks' sizes (12-15 cm square,

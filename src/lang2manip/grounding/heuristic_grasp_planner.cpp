@@ -156,8 +156,10 @@ GraspPlan HeuristicGraspPlanner::plan(const ReachabilityChecker& reach, const Gr
   }
   if (!object.movable) return failed(std::move(plan), GraspFailure::kNotGraspable, object.name + ": not movable");
   const SceneObject* support = currentSupport(scene, object, kSupportTolerance);
+  const AlignedBox3 bounds = object.worldBounds();
+  const Vector3 bottom(bounds.center().x(), bounds.center().y(), bounds.min().z());
   GraspGeometryInput input{&object, object.pose, reach.robot().basePose,
-                           support != nullptr ? support->worldBounds().max().z() : object.worldBounds().min().z()};
+                           support != nullptr ? surfaceUnder(*support, bottom, kSupportTolerance) : bounds.min().z()};
   GraspGeneration generation = generateGrasps(input, reach.gripper(), request.direction, request.settings);
   plan.rejections = std::move(generation.rejections);
   if (generation.grasps.empty()) return noGeometricGrasp(std::move(plan), object.name, request.direction);

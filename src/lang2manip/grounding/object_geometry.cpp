@@ -6,6 +6,7 @@
 #include <variant>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/symbolic/resting_height.hpp"
 #include "lang2manip/symbolic/support_surface.hpp"
 
 namespace lang2manip {
@@ -26,11 +27,6 @@ double primitiveHalfExtent(const Shape& shape, const Matrix3& R_WS, const Vector
   }
   known = false;
   return 0.0;
-}
-
-bool containsXy(const AlignedBox3& box, const Vector3& point) {
-  return point.x() >= box.min().x() && point.x() <= box.max().x() && point.y() >= box.min().y() &&
-         point.y() <= box.max().y();
 }
 
 void addUnique(std::vector<Quaternion>& list, const Quaternion& q) {
@@ -91,13 +87,16 @@ const SceneObject* supportUnder(const Scene& scene, const Vector3& point, double
   for (const SceneObject& candidate : scene.objects()) {
     if (std::find(exclude.begin(), exclude.end(), candidate.name) != exclude.end()) continue;
     if (scene.findAttachment(candidate.name) != nullptr) continue;
-    const AlignedBox3 bounds = candidate.worldBounds();
-    const double top = bounds.max().z();
-    if (!containsXy(bounds, point) || std::abs(top - point.z()) > tolerance || top <= bestTop) continue;
+    const std::optional<double> top = restingHeight(candidate, point, tolerance);
+    if (!top || *top <= bestTop) continue;
     best = &candidate;
-    bestTop = top;
+    bestTop = *top;
   }
   return best;
+}
+
+double surfaceUnder(const SceneObject& support, const Vector3& bottom, double tolerance) {
+  return restingHeight(support, bottom, tolerance).value_or(support.worldBounds().max().z());
 }
 
 const SceneObject* supportUnderBody(const Scene& scene, const AlignedBox3& bounds, double tolerance,

@@ -31,8 +31,9 @@ AlignedBox3 transformedBox(const AlignedBox3& box, const Pose& X);
 std::vector<Quaternion> restingOrientations(const Quaternion& current);
 
 /// The object that a body standing at world point `point` (its bottom centre) would rest on:
-/// the highest object, other than those in `exclude`, whose world bounds contain the point's
-/// x, y and whose top is within `tolerance` of point.z(). nullptr when there is none.
+/// the one, other than those in `exclude` and held ones, whose surface under the point is
+/// highest among those within `tolerance` of point.z() (restingHeight(): its top, or a surface
+/// inside its bounds such as a counter under cabinets). nullptr when there is none.
 const SceneObject* supportUnder(const Scene& scene, const Vector3& point, double tolerance,
                                 const std::vector<std::string>& exclude);
 
@@ -44,6 +45,11 @@ const SceneObject* supportUnderBody(const Scene& scene, const AlignedBox3& bound
 
 /// The object `object` currently rests on (see supportUnderBody()), from its world bounds.
 const SceneObject* currentSupport(const Scene& scene, const SceneObject& object, double tolerance);
+
+/// The height (world z) of `support`'s surface under `bottom` (a body's bottom centre): its
+/// restingHeight() within `tolerance`, else the top of its bounds (a body bridging two supports,
+/// or one about to be set down on it).
+double surfaceUnder(const SceneObject& support, const Vector3& bottom, double tolerance);
 
 /// How far an object's bottom may be from its support's top (m) for it to rest there.
 inline constexpr double kSupportTolerance = 0.015;

@@ -259,7 +259,8 @@ PoseSampling besideObject(const PoseSamplingInput& in, const SceneObject& refere
                           std::optional<double> distance, const PlacementSettings& s) {
   const SceneObject* support = currentSupport(*in.scene, reference, kSupportTolerance);
   if (support == nullptr) return failure(PlacementFailure::kNoSupport, reference.name + " rests on nothing to place beside it");
-  const double floor = support->worldBounds().max().z();
+  const AlignedBox3 standing = reference.worldBounds();
+  const double floor = surfaceUnder(*support, Vector3(standing.center().x(), standing.center().y(), standing.min().z()), kSupportTolerance);
   const AlignedBox3 area = support->worldBounds();
   const Vector3 centre = reference.worldBounds().center();
   const bool nextTo = relation == SpatialRelation::kNextTo;
@@ -298,10 +299,11 @@ PoseSampling atPoseTurned(const PoseSamplingInput& in, const PlacementTarget& ta
   const AlignedBox3 bounds = boundsAtPose(*in.object, pose);
   const Vector3 bottom(bounds.center().x(), bounds.center().y(), bounds.min().z());
   const SceneObject* support = supportUnderBody(*in.scene, bounds, s.supportTolerance, {in.object->name});
-  if (support == nullptr || bottom.z() < support->worldBounds().max().z() - 1e-3) {
+  const double surface = support == nullptr ? 0.0 : surfaceUnder(*support, bottom, s.supportTolerance);
+  if (support == nullptr || bottom.z() < surface - 1e-3) {
     return failure(PlacementFailure::kNoSupport, in.object->name + ": nothing to rest on at " + pointText(bottom.x(), bottom.y(), bottom.z()) + " (world)");
   }
-  pose.translation().z() += support->worldBounds().max().z() + s.releaseGap - bottom.z();
+  pose.translation().z() += surface + s.releaseGap - bottom.z();
   PoseSampling sampling;
   sampling.poses.push_back({pose, support->name, describePlacementTarget(target)});
   return sampling;

@@ -6,6 +6,7 @@
 #include "lang2manip/model/scene.hpp"
 #include "lang2manip/symbolic/symbolic_state.hpp"
 #include "lang2manip/symbolic/surface_region.hpp"
+#include "lang2manip/symbolic/resting_height.hpp"
 #include "lang2manip/symbolic/support_surface.hpp"
 
 namespace lang2manip {
@@ -22,14 +23,6 @@ bool isInsideCavity(const SceneObject& item, const SceneObject& container,
          centre.z() <= cavity.max().z();
 }
 
-bool restsOn(const AlignedBox3& item, const AlignedBox3& support,
-             const SymbolicStateTolerances& tolerances) {
-  const Vector3 centre = item.center();
-  const bool above = centre.x() >= support.min().x() && centre.x() <= support.max().x() &&
-                     centre.y() >= support.min().y() && centre.y() <= support.max().y();
-  return above && std::abs(item.min().z() - support.max().z()) <= tolerances.contactGap;
-}
-
 std::optional<std::string> containerOf(const Scene& scene, const SceneObject& item,
                                        const SymbolicStateTolerances& tolerances) {
   for (const SceneObject& other : scene.objects()) {
@@ -41,14 +34,15 @@ std::optional<std::string> containerOf(const Scene& scene, const SceneObject& it
 std::optional<std::string> supportOf(const Scene& scene, const SceneObject& item,
                                      const SymbolicStateTolerances& tolerances) {
   const AlignedBox3 bounds = item.worldBounds();
+  const Vector3 bottom(bounds.center().x(), bounds.center().y(), bounds.min().z());
   std::optional<std::string> best;
   double bestTop = -std::numeric_limits<double>::infinity();
   for (const SceneObject& other : scene.objects()) {
     if (other.name == item.name) continue;
-    const AlignedBox3 otherBounds = other.worldBounds();
-    if (restsOn(bounds, otherBounds, tolerances) && otherBounds.max().z() > bestTop) {
+    const std::optional<double> height = restingHeight(other, bottom, tolerances.contactGap);
+    if (height && *height > bestTop) {
       best = other.name;
-      bestTop = otherBounds.max().z();
+      bestTop = *height;
     }
   }
   if (best) return best;
