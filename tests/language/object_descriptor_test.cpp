@@ -1,3 +1,4 @@
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "lang2manip/planning/planner_catalog.hpp"
@@ -6,6 +7,7 @@
 
 #include "lang2manip/language/object_descriptor.hpp"
 #include "lang2manip/language/planner_names.hpp"
+#include "lang2manip/language/words.hpp"
 #include "language/language_test_scenes.hpp"
 #include "test_paths.hpp"
 #include "language/language_test_support.hpp"
@@ -96,6 +98,46 @@ TEST(ObjectDescriptorTest, AMeshWithoutAUrdfMaterialHasItsFilesColour) {
   EXPECT_EQ(find(all, "piece_2").colours, std::vector<std::string>{"white"});
   EXPECT_TRUE(find(all, "piece_1").colours.empty());
   EXPECT_EQ(test::summarize(understandInstruction("put the white piece in the holder", all)), "piece_2 in holder");
+}
+
+TEST(ObjectDescriptorTest, NamesWrittenInCamelCaseAreReadAsTheirWords) {
+  // Kautham's chess pieces: "queenW" and "queenB" are queens, told apart by their colours (from
+  // their materials here); "pawnB1" is still found as it is written.
+  EXPECT_EQ(nameWords("queenW"), (Words{"queen", "w"}));
+  EXPECT_EQ(nameWords("pawnB1"), (Words{"pawn", "b", "1"}));
+  EXPECT_EQ(nameWords("woodPiece"), (Words{"wood", "piece"}));
+  EXPECT_EQ(nameWords("UR5"), (Words{"ur", "5"}));
+  EXPECT_EQ(headNoun(Words{"pawn", "b", "1"}), "pawn");
+  EXPECT_EQ(headNoun(Words{"1"}), "");
+  Scene scene = test::deskScene();
+  const auto addPiece = [&](const std::string& name, const Vector4& rgba, double y) {
+    SceneObject piece;
+    piece.name = name;
+    piece.kind = name;
+    piece.movable = true;
+    Shape shape;
+    shape.geometry = Box{Vector3(0.03, 0.03, 0.08)};
+    shape.origin.translation().z() = 0.04;
+    shape.material = Material{"", rgba, ""};
+    piece.visuals.push_back(shape);
+    piece.collisions.push_back(shape);
+    piece.pose.translation() = Vector3(0.1, y, 0.75);
+    scene.addObject(piece);
+  };
+  addPiece("queenW", Vector4(0.95, 0.93, 0.88, 1.0), -0.3);
+  addPiece("queenB", Vector4(0.25, 0.16, 0.08, 1.0), 0.3);
+  addPiece("pawnB1", Vector4(0.25, 0.16, 0.08, 1.0), 0.2);
+  const std::vector<ObjectDescriptor> all = describeObjects(scene);
+  EXPECT_EQ(test::summarize(understandInstruction("pick up the white queen", all)), "holding queenW");
+  EXPECT_EQ(test::summarize(understandInstruction("put the brown queen in the holder", all)), "queenB in holder");
+  EXPECT_EQ(test::summarize(understandInstruction("pick up pawnB1", all)), "holding pawnB1");
+  EXPECT_EQ(test::summarize(understandInstruction("pick up the pawn", all)), "holding pawnB1");
+  try {
+    (void)understandInstruction("pick up the queen", all);
+    ADD_FAILURE() << "two queens: ambiguous";
+  } catch (const PlanningError& error) {
+    EXPECT_THAT(error.what(), ::testing::HasSubstr("queenB"));
+  }
 }
 
 TEST(ObjectDescriptorTest, ColourWordsInTheNameCount) {

@@ -104,17 +104,16 @@ void Discourse::mention(const std::vector<std::string>& objects) {
 NounPhraseReader::NounPhraseReader(const std::vector<ObjectDescriptor>& objects)
     : objects_(objects) {
   for (const ObjectDescriptor& object : objects_) {
-    const Words name = tokenize(object.name);
+    const Words name = nameWords(object.name);
     nouns_.push_back({name, object.name, kNameTier});
-    const bool adjective = !name.empty() && (colourWord(name.back()) || sizeWord(name.back()) ||
-                                             placeWord(name.back()));
-    if (!name.empty() && !numberValue(name.back()) && !adjective) {
-      nouns_.push_back({{name.back()}, object.name, kKindTier});
-    }
-    const Words kind = tokenize(object.kind);
+    if (const Words written = tokenize(object.name); written != name) nouns_.push_back({written, object.name, kNameTier});  // "pawnB1" as typed
+    const std::string nameHead = headNoun(name);
+    const bool adjective = colourWord(nameHead) || sizeWord(nameHead) || placeWord(nameHead);
+    if (!nameHead.empty() && !adjective) nouns_.push_back({{nameHead}, object.name, kKindTier});
+    const Words kind = nameWords(object.kind);
     if (!kind.empty()) {
       nouns_.push_back({kind, object.name, kKindTier});
-      nouns_.push_back({{kind.back()}, object.name, kKindTier});
+      if (const std::string head = headNoun(kind); !head.empty()) nouns_.push_back({{head}, object.name, kKindTier});
     }
     for (const std::string& synonym : object.synonyms) {
       nouns_.push_back({tokenize(synonym), object.name, kSynonymTier});

@@ -52,7 +52,7 @@ double boundsVolume(const AlignedBox3& box) {
 /// "block"); a familiar kind keeps its own (an eraser is not "the box").
 void addCategoryNouns(ObjectDescriptor& descriptor) {
   if (!descriptor.synonyms.empty() || descriptor.category.empty()) return;
-  const Words kindWords = tokenize(descriptor.kind);
+  const Words kindWords = nameWords(descriptor.kind);
   const bool familiar = std::any_of(kindSynonymTable().begin(), kindSynonymTable().end(), [&](const KindSynonyms& entry) {
     return std::find(kindWords.begin(), kindWords.end(), entry.kindWord) != kindWords.end();
   });
@@ -98,7 +98,7 @@ std::string shapeName(const SceneObject& object) {
 }  // namespace
 
 std::vector<std::string> kindSynonyms(const std::string& kind) {
-  const Words kindWords = tokenize(kind);
+  const Words kindWords = nameWords(kind);
   std::vector<std::string> synonyms;
   for (const KindSynonyms& entry : kindSynonymTable()) {
     if (std::find(kindWords.begin(), kindWords.end(), entry.kindWord) == kindWords.end()) continue;

@@ -64,7 +64,9 @@ std::map<std::string, int> targetWords(const std::vector<ObjectDescriptor>& obje
   };
   for (const ObjectDescriptor& object : objects) {
     for (const std::string& text : {object.name, object.kind}) {
-      for (const std::string& word : tokenize(text)) add(word, 0);
+      for (const Words& words : {nameWords(text), tokenize(text)}) {
+        for (const std::string& word : words) add(word, 0);
+      }
     }
     for (const std::string& synonym : object.synonyms) {
       for (const std::string& word : tokenize(synonym)) add(word, 0);

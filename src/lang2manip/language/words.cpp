@@ -96,6 +96,23 @@ bool endsWith(const std::string& word, std::string_view suffix) {
 
 Words tokenize(std::string_view text) { return Tokenizer(text).run(); }
 
+Words nameWords(std::string_view name) {
+  std::string spaced;
+  for (std::size_t i = 0; i < name.size(); ++i) {
+    const bool lowerToUpper = i > 0 && std::islower(static_cast<unsigned char>(name[i - 1])) && std::isupper(static_cast<unsigned char>(name[i]));
+    if (lowerToUpper) spaced += ' ';
+    spaced += name[i];
+  }
+  return tokenize(spaced);
+}
+
+std::string headNoun(const Words& words) {
+  for (auto word = words.rbegin(); word != words.rend(); ++word) {
+    if (word->size() >= 2 && !std::isdigit(static_cast<unsigned char>(word->front()))) return *word;
+  }
+  return {};
+}
+
 std::string joinWords(const Words& words, std::size_t begin, std::size_t end) {
   std::string text;
   for (std::size_t i = begin; i < end && i < words.size(); ++i) {

@@ -19,6 +19,15 @@ using Words = std::vector<std::string>;
 /// and apostrophes inside words ("rrt*", "don't").
 Words tokenize(std::string_view text);
 
+/// The words of an object's name or kind as a person reads them: tokenize() after splitting
+/// where a lower-case letter meets a capital ("queenW" -> "queen", "w"; "pawnB1" -> "pawn", "b",
+/// "1"; "woodPiece" -> "wood", "piece"; "UR5" stays "ur", "5").
+Words nameWords(std::string_view name);
+
+/// The noun a name's words end on: the last word of two letters or more that is not a number
+/// ("queen" of "queen w", "pawn" of "pawn b 1"); empty when there is none.
+std::string headNoun(const Words& words);
+
 /// The words [begin, end) joined by single spaces.
 std::string joinWords(const Words& words, std::size_t begin, std::size_t end);
 /// All of `words` joined by single spaces.
