@@ -37,6 +37,14 @@ using test::FakeLlmProtocol;
 
 Scene desk(const std::string& name) { return loadProblem(name, "panda", SceneOptions{}).problem.scene; }
 
+/// The desk of `name` with nothing on it.
+Scene emptyTabletop(const std::string& name) {
+  Random random(1);
+  TabletopRequest request;
+  request.blocks = 0;
+  return *generateTabletop(desk(name), request, random);
+}
+
 TEST(Tabletop, HoldsTheRequestedObjectsApartOnTheReachablePartOfTheDesk) {
   for (const char* problem : {"panda_desk", "yumi_desk"}) {
     SCOPED_TRACE(problem);
@@ -132,6 +140,23 @@ TEST(Tabletop, OnAReachTooSmallForTheBenchmarksBowlsTheyAreScaledDownToIt) {
       }
     }
   }
+}
+
+TEST(InstructionFamilies, RegionsAreAskedForNoMoreBlocksThanTheyHoldAndSpotsOnlyWhenFree) {
+  // A corner of YuMi's 24 x 36 cm reach holds two 4 cm blocks as placement puts them; one of the
+  // Panda's, several. A spot another block stands on is not free.
+  const SurfaceRegion corner{SurfaceRegion::Kind::kCorner, 1, 1};
+  EXPECT_LE(families::blocksFitting(emptyTabletop("yumi_desk"), corner, 0.04), 2);
+  EXPECT_GE(families::blocksFitting(emptyTabletop("yumi_desk"), corner, 0.04), 1);
+  EXPECT_GE(families::blocksFitting(emptyTabletop("panda_desk"), corner, 0.04), 4);
+  Random random(2);
+  TabletopRequest request;
+  request.blocks = 2;
+  const Scene scene = *generateTabletop(desk("panda_desk"), request, random);
+  const auto blocks = objectsOfKind(scene, "block");
+  const Vector3 at = families::centreInBase(scene, blocks[0]);
+  EXPECT_FALSE(families::footprintClear(scene, at, Vector3(0.04, 0.04, 0.04), 0.03, {blocks[1]}));
+  EXPECT_TRUE(families::footprintClear(scene, at, Vector3(0.04, 0.04, 0.04), 0.03, {blocks[0]}));
 }
 
 TEST(Tabletop, TheSameSeedGivesTheSameScene) {

@@ -85,6 +85,40 @@ bool bowlsClearOf(const Scene& scene, const SurfaceRegion& region) {
   return true;
 }
 
+bool footprintClear(const Scene& scene, const Vector3& centre, const Vector3& size, double clearance,
+                    const std::vector<std::string>& ignore) {
+  const Pose toBase = robotBaseFrame(scene, "").inverse();
+  const Vector3 half(size.x() / 2.0, size.y() / 2.0, 0.0);
+  const AlignedBox3 footprint(centre - half, centre + half);
+  for (const SceneObject& object : scene.objects()) {
+    if (object.role == ObjectRole::kSupport || std::find(ignore.begin(), ignore.end(), object.name) != ignore.end()) continue;
+    AlignedBox3 other = object.worldBounds().transformed(toBase);
+    other.min().z() = footprint.min().z();
+    other.max().z() = footprint.max().z();
+    if (boxGap(footprint, other) < clearance) return false;
+  }
+  return true;
+}
+
+int blocksFitting(const Scene& scene, const SurfaceRegion& region, double edge) {
+  constexpr double kSpacing = 0.02, kBowlClearance = 0.03, kStep = 0.005;
+  const Vector3 size(edge, edge, 0.0);
+  const std::optional<AlignedBox3> centres = regionCentres(deskReach(scene), region, size);
+  if (!centres) return 0;
+  std::vector<std::string> blocks = objectsOfKind(scene, "block");
+  std::vector<Vector3> placed;
+  for (double x = centres->min().x(); x <= centres->max().x() + 1e-9; x += kStep) {
+    for (double y = centres->min().y(); y <= centres->max().y() + 1e-9; y += kStep) {
+      const Vector3 spot(x, y, centres->max().z());
+      const bool apart = std::all_of(placed.begin(), placed.end(), [&](const Vector3& other) {
+        return std::max(std::abs(other.x() - x), std::abs(other.y() - y)) >= edge + kSpacing;
+      });
+      if (apart && footprintClear(scene, spot, size, kBowlClearance, blocks)) placed.push_back(spot);
+    }
+  }
+  return static_cast<int>(placed.size());
+}
+
 std::string spoken(const std::string& object) {
   std::string words = object;
   std::replace(words.begin(), words.end(), '_', ' ');

@@ -42,6 +42,16 @@ int blocksHeld(const Scene& scene, const std::string& bowl, double edge);
 /// takes has no room for a block, and an instance asking for it is no test of understanding).
 bool bowlsClearOf(const Scene& scene, const SurfaceRegion& region);
 
+/// True when a footprint of `size` (x, y) centred at `centre` (base frame) keeps `clearance` from
+/// the footprint of every object of `scene` that is not a support nor in `ignore`.
+bool footprintClear(const Scene& scene, const Vector3& centre, const Vector3& size, double clearance,
+                    const std::vector<std::string>& ignore);
+
+/// How many blocks of edge `edge` stand in `region` of the desk's reachable part at once, as
+/// placement puts them (centres in the region, footprints kRegionEdgeMargin inside the reach,
+/// 2 cm apart, 3 cm clear of the bowls): a greedy packing on a 5 mm grid, so at most that many.
+int blocksFitting(const Scene& scene, const SurfaceRegion& region, double edge);
+
 using Check = std::function<GoalCheck(const Scene& final, const Scene& initial)>;
 
 /// Every goal holds (checkGoalInScene with the initial scene).

@@ -69,6 +69,7 @@ std::optional<FamilyInstance> blocksToRegion(const Scene& desk, Random& random) 
   const auto blocks = objectsOfKind(*scene, "block");
   const RegionWords& where = drawOne(cornersAndSides(), random);
   if (!bowlsClearOf(*scene, where.region)) return std::nullopt;
+  if (blocksFitting(*scene, where.region, 0.04) < static_cast<int>(blocks.size())) return std::nullopt;  // more than the region holds
   const std::vector<std::string> wordings = {"put all the blocks in the ", "move all the blocks to the ", "put all the blocks on the "};
   std::vector<Goal> goals;
   Plan plan;
@@ -285,6 +286,8 @@ std::optional<FamilyInstance> blockBesideBowl(const Scene& desk, Random& random)
   at[side.axis] += side.sign * (half + (little ? 0.04 : 0.18));
   const AlignedBox3 reachable = deskReach(*scene);
   if (!reachable.contains(Vector3(at.x(), at.y(), reachable.min().z()))) return std::nullopt;
+  // Another object where the block is to go leaves no room there: no test of understanding.
+  if (!footprintClear(*scene, at, scene->object(block).dimensions(), 0.03, {block, bowl})) return std::nullopt;
   at.head<2>() -= (centreInBase(*scene, block) - robotBaseFrame(*scene, "").inverse() * scene->object(block).pose.translation()).head<2>();
   addPickPlaceAt(result.plan, block, at);
   return result;
