@@ -134,6 +134,39 @@ TEST(SrdfReader, TheFingersOfAHandAreOneGripper) {
   EXPECT_EQ(semantics.manipulators[0].toolFrame, "palm");
 }
 
+Shape boxShape(const Vector3& size, const Vector3& centre = Vector3::Zero()) {
+  Shape shape;
+  shape.geometry = Box{size};
+  shape.origin.translation() = centre;
+  return shape;
+}
+
+TEST(SrdfReader, SelfCollisionEnvelopesAreRecognisedWithoutSrdf) {
+  // Each arm link carries a fixed, visual-less envelope larger than it and covering it (Franka's
+  // *_sc); a sensor on l2 (small, collision only), a cover with a visual and an envelope that
+  // covers too little of its link are not envelopes. Envelopes of links 3 or more joints apart
+  // are checked against each other, nothing else.
+  RobotModelData data = gripperArm();
+  for (Link& link : data.links) link.collisions.push_back(boxShape({0.1, 0.1, 0.3}, {0, 0, 0.15}));
+  const auto add = [&](const std::string& name, const std::string& parent, Shape shape, bool visual) {
+    Link link{name, {}, {std::move(shape)}};
+    if (visual) link.visuals = link.collisions;
+    data.links.push_back(link);
+    data.joints.push_back(joint(name + "_joint", JointType::kFixed, parent, name));
+  };
+  add("base_sc", "base", boxShape({0.16, 0.16, 0.36}, {0, 0, 0.15}), false);
+  add("l1_sc", "l1", boxShape({0.16, 0.16, 0.36}, {0, 0, 0.15}), false);
+  add("hand_sc", "hand", boxShape({0.16, 0.16, 0.36}, {0, 0, 0.15}), false);
+  add("sensor", "l2", boxShape({0.02, 0.02, 0.02}, {0, 0, 0.3}), false);
+  add("cover", "l2", boxShape({0.16, 0.16, 0.36}, {0, 0, 0.15}), true);
+  add("offset_shell", "tcp", boxShape({0.16, 0.16, 0.36}, {0, 0, 0.5}), false);
+  EXPECT_THAT(selfCollisionEnvelopes(data), ElementsAre("base_sc", "l1_sc", "hand_sc"));
+  const RobotSemantics semantics = inferSemantics(data);
+  EXPECT_THAT(semantics.defaultCollisionsDisabled, ElementsAre("base_sc", "l1_sc", "hand_sc"));
+  // base -> l1 is one joint, base -> hand three, l1 -> hand two.
+  EXPECT_THAT(semantics.enabledCollisions, ElementsAre(std::pair<std::string, std::string>{"base_sc", "hand_sc"}));
+}
+
 TEST(SrdfReader, AnApproachAxisIsReadNormalized) {
   std::string xml = kSrdf;
   xml.insert(xml.find("</robot>"), "  <lang2manip_approach group=\"arm\" xyz=\"0 0 -2\"/>\n");

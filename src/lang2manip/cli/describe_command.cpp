@@ -75,6 +75,15 @@ json robotDescriptionJson(const SceneRobot& robot) {
     for (const auto& [joint, value] : state.values) values[joint] = value;
     report["named_states"].push_back({{"name", state.name}, {"group", state.group}, {"values", values}});
   }
+  json pairs = json::array();
+  for (const auto& [first, second] : semantics.enabledCollisions) pairs.push_back({first, second});
+  report["collisions_off_by_default"] = semantics.defaultCollisionsDisabled;
+  report["collisions_enabled"] = pairs;
+  if (semantics.inferred && !semantics.defaultCollisionsDisabled.empty()) {
+    report["collisions_off_by_default_reason"] =
+        "self-collision envelopes: fixed links without a visual whose collision geometry covers their parent's; checked only "
+        "against each other, three or more joints apart";
+  }
   return report;
 }
 
@@ -119,6 +128,12 @@ std::string describeText(const json& report) {
     }
     for (const json& state : robot["named_states"]) {
       text += "  named state " + state["name"].get<std::string>() + " (" + state["group"].get<std::string>() + ")\n";
+    }
+    if (!robot["collisions_off_by_default"].empty()) {
+      std::string links;
+      for (const json& link : robot["collisions_off_by_default"]) links += (links.empty() ? "" : ", ") + link.get<std::string>();
+      text += "  collisions off by default: " + links + " (" + robot.value("collisions_off_by_default_reason", std::string("SRDF")) + "; " +
+              std::to_string(robot["collisions_enabled"].size()) + " pairs checked)\n";
     }
     if (robot["semantics"].get<std::string>().rfind("inferred", 0) == 0) {
       text += "  (guessed from the tree: to change the arm, tool frame or gripper, write them as an SRDF with --write-srdf, edit it and\n"

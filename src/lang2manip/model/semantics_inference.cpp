@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <array>
 #include <map>
+#include <limits>
 #include <set>
 
 #include "lang2manip/model/srdf_reader.hpp"
@@ -197,12 +198,81 @@ class TreeWalker {
   std::string root_;
 };
 
+/// Bounds of a link's collision shapes in its own frame (empty without any).
+AlignedBox3 collisionBounds(const Link& link) {
+  AlignedBox3 bounds;
+  for (const Shape& shape : link.collisions) bounds.extend(shapeBounds(shape));
+  return bounds;
+}
+
+/// `box` (in a child frame) in its parent's frame, `X_PC` the child frame in the parent's.
+AlignedBox3 inParentFrame(const AlignedBox3& box, const Pose& X_PC) {
+  AlignedBox3 moved;
+  for (int corner = 0; corner < 8; ++corner) moved.extend(X_PC * box.corner(static_cast<AlignedBox3::CornerType>(corner)));
+  return moved;
+}
+
+/// Joints on the tree path between two links.
+int jointsBetween(const std::map<std::string, const Joint*>& parentJoint, const std::string& a, const std::string& b) {
+  std::map<std::string, int> upFromA;
+  int steps = 0;
+  for (std::string link = a;; ++steps) {
+    upFromA[link] = steps;
+    const auto parent = parentJoint.find(link);
+    if (parent == parentJoint.end()) break;
+    link = parent->second->parentLink;
+  }
+  steps = 0;
+  for (std::string link = b;; ++steps) {
+    if (const auto common = upFromA.find(link); common != upFromA.end()) return common->second + steps;
+    const auto parent = parentJoint.find(link);
+    if (parent == parentJoint.end()) break;
+    link = parent->second->parentLink;
+  }
+  return std::numeric_limits<int>::max();
+}
+
 }  // namespace
+
+std::vector<std::string> selfCollisionEnvelopes(const RobotModelData& robot) {
+  constexpr double kLeastCover = 0.5;
+  std::map<std::string, const Link*> links;
+  for (const Link& link : robot.links) links[link.name] = &link;
+  std::vector<std::string> envelopes;
+  for (const Joint& joint : robot.joints) {
+    if (joint.type != JointType::kFixed) continue;
+    const Link* envelope = links.count(joint.childLink) ? links.at(joint.childLink) : nullptr;
+    const Link* parent = links.count(joint.parentLink) ? links.at(joint.parentLink) : nullptr;
+    if (envelope == nullptr || parent == nullptr || !envelope->visuals.empty() || envelope->collisions.empty()) continue;
+    const AlignedBox3 inner = collisionBounds(*parent);
+    const AlignedBox3 outer = inParentFrame(collisionBounds(*envelope), joint.origin);
+    if (inner.isEmpty() || outer.isEmpty()) continue;
+    const double covered = inner.intersection(outer).isEmpty() ? 0.0 : inner.intersection(outer).volume() / inner.volume();
+    if (covered >= kLeastCover && outer.volume() > inner.volume()) envelopes.push_back(envelope->name);
+  }
+  return envelopes;
+}
 
 RobotSemantics inferSemantics(const RobotModelData& robot) {
   RobotSemantics semantics = TreeWalker(robot).infer();
   semantics.inferred = true;
+  addSelfCollisionEnvelopes(robot, semantics);
   return semantics;
+}
+
+void addSelfCollisionEnvelopes(const RobotModelData& robot, RobotSemantics& semantics) {
+  constexpr int kLeastJointsApart = 3;
+  const std::vector<std::string> envelopes = selfCollisionEnvelopes(robot);
+  std::map<std::string, const Joint*> parentJoint;
+  for (const Joint& joint : robot.joints) parentJoint[joint.childLink] = &joint;
+  for (std::size_t i = 0; i < envelopes.size(); ++i) {
+    semantics.defaultCollisionsDisabled.push_back(envelopes[i]);
+    for (std::size_t j = 0; j < i; ++j) {
+      if (jointsBetween(parentJoint, envelopes[i], envelopes[j]) >= kLeastJointsApart + 2) {
+        semantics.enabledCollisions.emplace_back(envelopes[j], envelopes[i]);
+      }
+    }
+  }
 }
 
 }  // namespace lang2manip

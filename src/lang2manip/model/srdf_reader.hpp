@@ -27,8 +27,18 @@ RobotSemantics readSrdfString(const std::string& xml, const std::string& sourceN
 /// end is an arm (a prismatic torso or linear axis included); its last link (or a fixed child
 /// named like tcp/tool/grasp/ee, or the link the fingers hang from) is the tool frame; the
 /// fingers' joints below it are its gripper (open = upper limit, closed = lower; describeGripper
-/// measures which end really opens).
+/// measures which end really opens); self-collision envelopes as addSelfCollisionEnvelopes().
 RobotSemantics inferSemantics(const RobotModelData& robot);
+
+/// The links that are a self-collision envelope of their parent, as vendors add them (Franka's
+/// `*_sc`, capsules about the arm's links): attached by a fixed joint, with collision geometry and
+/// no visual, whose collision bounds are larger than the parent's and cover at least half of them.
+std::vector<std::string> selfCollisionEnvelopes(const RobotModelData& robot);
+
+/// Marks the envelopes of `robot` as a MoveIt configuration of such a robot does: their default
+/// collisions off (never checked against the world nor the other links), and on between two
+/// envelopes whose links are three or more joints apart (the real robot's self-collision model).
+void addSelfCollisionEnvelopes(const RobotModelData& robot, RobotSemantics& semantics);
 
 /// An approach axis written "X Y Z" (any length but zero), normalized. Throws InputError at
 /// `where` for anything else.
