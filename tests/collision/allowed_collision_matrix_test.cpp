@@ -116,10 +116,34 @@ TEST(AllowedCollisionMatrix, PairsSeenCollidingAndFreeAreNotTestedAgain) {
   EXPECT_EQ(reason(sometimes), AllowedReason::kNone);
   EXPECT_EQ(reason(always), AllowedReason::kAlways);
   EXPECT_EQ(reason(never), AllowedReason::kNever);
-  EXPECT_LT(asked[sometimes], 20);  // until q[0] has had both signs
+  EXPECT_LT(asked[sometimes], 50);  // until it has collided once and been free in over 5 % of the samples
+  EXPECT_GT(asked[sometimes], 10);
   EXPECT_EQ(asked[always], 200);
   EXPECT_EQ(asked[never], 200);
   EXPECT_EQ(asked[0 * links + 1], 0);  // adjacent: allowed before sampling
+}
+
+TEST(AllowedCollisionMatrix, APairCollidingInNinetyFivePercentOfTheSamplesIsAlways) {
+  // As MoveIt's setup assistant: touching faces flicker between colliding and free, so a pair
+  // colliding in 97 % of the samples is "always"; one colliding in 90 % is checked.
+  const RobotModelPtr panda = builtinRobot("panda");
+  const std::size_t links = panda->links().size();
+  const std::vector<std::size_t> pairs = pairsLeftToSample(*panda);
+  ASSERT_GE(pairs.size(), 2U);
+  const auto mirror = [links](std::size_t i) { return (i % links) * links + i / links; };
+  AllowedCollisionSettings settings;
+  settings.samples = 200;
+  int sample = 0;
+  const auto test = [&](const VectorX&, const std::vector<char>&, std::vector<char>& hits) {
+    const int s = sample++;
+    if (s % 33 != 0) hits[pairs[0]] = hits[mirror(pairs[0])] = 1;  // misses 7 of 200
+    if (s % 10 != 0) hits[pairs[1]] = hits[mirror(pairs[1])] = 1;  // misses 20 of 200
+  };
+  const AllowedCollisionMatrix matrix = computeAllowedCollisionMatrix(*panda, test, settings);
+  EXPECT_EQ(matrix.reason(static_cast<int>(pairs[0] / links), static_cast<int>(pairs[0] % links)), AllowedReason::kAlways);
+  EXPECT_EQ(matrix.reason(static_cast<int>(pairs[1] / links), static_cast<int>(pairs[1] % links)), AllowedReason::kNone);
+  settings.alwaysFraction = 0.2;
+  EXPECT_THROW((void)computeAllowedCollisionMatrix(*panda, test, settings), InputError);
 }
 
 TEST(AllowedCollisionMatrix, SkippingDecidedPairsChangesNothing) {

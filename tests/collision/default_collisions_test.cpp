@@ -37,16 +37,22 @@ const char* const kEnvelopeSemantics = R"(<robot name="enveloped">
 </robot>
 )";
 
-/// The robot with a box 5 cm beside its arm, inside the envelope; with the SRDF when `semantics`.
-Scene envelopedScene(const TempDirectory& directory, bool semantics) {
+/// The robot with a box 5 cm beside its arm, inside the envelope; with the SRDF when `semantics`;
+/// the envelope drawn (a visual: a real cover, no envelope to infer) when `visible`.
+Scene envelopedScene(const TempDirectory& directory, bool semantics, bool visible = false) {
   const auto srdf = directory.path() / "enveloped.srdf";
   std::ofstream(srdf) << kEnvelopeSemantics;
   UrdfReadOptions options;
   if (semantics) options.srdf = srdf;
+  std::string urdf = kEnvelopeRobot;
+  if (visible) {
+    const std::string link = "<link name=\"envelope\">";
+    urdf.replace(urdf.find(link), link.size(), link + "<visual><geometry><box size=\"0.25 0.25 0.6\"/></geometry></visual>");
+  }
   Scene scene;
   SceneRobot robot;
   robot.name = "enveloped";
-  robot.model = readUrdfString(kEnvelopeRobot, "enveloped.urdf", directory.path(), options);
+  robot.model = readUrdfString(urdf, "enveloped.urdf", directory.path(), options);
   robot.configuration = VectorX::Zero(2);
   scene.addRobot(robot);
   SceneObject post;
@@ -60,11 +66,16 @@ Scene envelopedScene(const TempDirectory& directory, bool semantics) {
 
 TEST(DefaultCollisions, ALinkWhoseDefaultIsOffTouchesTheWorldFreely) {
   const TempDirectory directory;
-  const Scene plain = envelopedScene(directory, false);
+  const Scene plain = envelopedScene(directory, false, true);
   const FclCollisionChecker strict(plain);
   const CollisionReport hit = strict.checkState(0, VectorX::Zero(2), {}, *strict.makeContext());
   EXPECT_FALSE(hit.valid);
   EXPECT_THAT(contactList(hit), HasSubstr("enveloped/envelope - post"));
+  // Without an SRDF, a fixed link without a visual covering its parent is taken for an envelope.
+  const Scene inferred = envelopedScene(directory, false);
+  EXPECT_EQ(inferred.robots()[0].model->semantics().defaultCollisionsDisabled, std::vector<std::string>{"envelope"});
+  const FclCollisionChecker guessed(inferred);
+  EXPECT_TRUE(guessed.isStateValid(0, VectorX::Zero(2), *guessed.makeContext()));
   const Scene quiet = envelopedScene(directory, true);
   const FclCollisionChecker checker(quiet);
   const auto context = checker.makeContext();
@@ -78,6 +89,45 @@ TEST(DefaultCollisions, ALinkWhoseDefaultIsOffTouchesTheWorldFreely) {
   folded << 0.0, 2.5;  // the tip folds down beside the arm, into the envelope
   const CollisionReport self = checker.checkState(0, folded, {}, *context);
   EXPECT_THAT(contactList(self), HasSubstr("enveloped/envelope - enveloped/tip"));
+}
+
+/// Two fingers sliding apart along y from a base, their pads meeting face to face when both are
+/// at 0 (zero depth) and overlapping by `overlap` metres beyond that at their lower limit.
+std::string fingersUrdf(double overlap) {
+  const std::string lower = std::to_string(-overlap / 2.0);
+  std::string urdf = "<robot name=\"pads\">\n"
+                     "  <link name=\"base\"><collision><origin xyz=\"0 0 -0.05\"/><geometry><box size=\"0.1 0.1 0.02\"/></geometry></collision></link>\n";
+  for (const char* side : {"left", "right"}) {
+    const std::string sign = std::string(side) == "left" ? "" : "-";
+    urdf += "  <link name=\"" + std::string(side) + "\"><collision><origin xyz=\"0 " + sign +
+            "0.01 0\"/><geometry><box size=\"0.02 0.02 0.04\"/></geometry></collision></link>\n"
+            "  <joint name=\"" + side + "_slide\" type=\"prismatic\"><parent link=\"base\"/><child link=\"" + side +
+            "\"/><axis xyz=\"0 " + sign + "1 0\"/><limit lower=\"" + lower + "\" upper=\"0.04\" effort=\"1\" velocity=\"1\"/></joint>\n";
+  }
+  return urdf + "</robot>\n";
+}
+
+TEST(SelfContact, LinksWhoseFacesMeetAtZeroDepthTouchAndDeeperOverlapCollides) {
+  // Pads that meet face to face (a vendor's closed fingers) touch: the state is free; pressed
+  // 4 mm into each other they collide, and the report names the pair. The pair is checked
+  // (never/always sampling off), so only the contact tolerance decides.
+  const TempDirectory directory;
+  Scene scene;
+  SceneRobot robot;
+  robot.name = "pads";
+  robot.model = readUrdfString(fingersUrdf(0.004), "pads.urdf", directory.path(), {});
+  robot.configuration = VectorX::Zero(2);
+  scene.addRobot(robot);
+  FclCheckerSettings settings;
+  settings.allowedCollisions.disableNever = false;
+  settings.allowedCollisions.disableAlways = false;
+  const FclCollisionChecker checker(scene, settings);
+  const auto context = checker.makeContext();
+  EXPECT_TRUE(checker.isStateValid(0, VectorX::Zero(2), *context)) << contactList(checker.checkState(0, VectorX::Zero(2), {}, *context));
+  const VectorX pressed = VectorX::Constant(2, -0.002);
+  const CollisionReport report = checker.checkState(0, pressed, {}, *context);
+  EXPECT_FALSE(report.valid);
+  EXPECT_THAT(contactList(report), HasSubstr("pads/left - pads/right"));
 }
 
 TEST(DefaultCollisions, AreWrittenBackByTheSrdfWriter) {

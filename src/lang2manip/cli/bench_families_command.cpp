@@ -151,7 +151,7 @@ std::vector<const InstructionFamily*> familiesToRun(const BenchFamiliesOptions& 
 /// Nullopt when no draw of kDraws fits the part of the desk the robot's arm reaches (a short arm).
 /// Draws are cheap (objects are built once their footprints fit), so families whose scenes are
 /// rare (a corner clear of the bowl closest to it) still get theirs.
-constexpr int kDraws = 400;
+constexpr int kDraws = 2000;
 std::optional<FamilyInstance> drawInstance(const InstructionFamily& family, const Scene& desk, Random& random) {
   for (int attempt = 0; attempt < kDraws; ++attempt) {
     if (std::optional<FamilyInstance> instance = family.make(desk, random)) return instance;

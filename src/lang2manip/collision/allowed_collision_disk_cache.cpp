@@ -161,6 +161,7 @@ std::string allowedCollisionKey(const RobotModel& model, const AllowedCollisionS
   digest.add(static_cast<std::uint64_t>(settings.seed));
   digest.add(settings.disableNever);
   digest.add(settings.disableAlways);
+  digest.add(settings.alwaysFraction);
   digest.add(static_cast<int>(model.links().size()));
   for (const Link& link : model.links()) {
     digest.add(link.name);

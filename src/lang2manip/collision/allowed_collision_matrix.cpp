@@ -1,5 +1,6 @@
 #include "lang2manip/collision/allowed_collision_matrix.hpp"
 
+#include <cmath>
 #include <numeric>
 
 #include "lang2manip/core/error.hpp"
@@ -79,6 +80,11 @@ void allowSampled(const RobotModel& model, const LinkCollisionTest& test,
       undecided[a * links + b] = matrix.isAllowed(static_cast<int>(a), static_cast<int>(b)) ? 0 : 1;
     }
   }
+  if (!(settings.alwaysFraction > 0.5 && settings.alwaysFraction <= 1.0)) {
+    throw InputError("allowed-collision matrix: alwaysFraction must be in (0.5, 1], got " + std::to_string(settings.alwaysFraction));
+  }
+  // A pair may still be "always" while it has missed at most this many samples.
+  const int allowedMisses = static_cast<int>(std::floor((1.0 - settings.alwaysFraction) * settings.samples + 1e-9));
   Random random(settings.seed);
   for (int s = 0; s < settings.samples; ++s) {
     const VectorX q = random.uniformVector(model.lowerLimits(), model.upperLimits());
@@ -88,7 +94,7 @@ void allowSampled(const RobotModel& model, const LinkCollisionTest& test,
       if (undecided[i] == 0) continue;
       hits[i] += inCollision[i] != 0 ? 1 : 0;
       const bool mayBeNever = settings.disableNever && hits[i] == 0;
-      const bool mayBeAlways = settings.disableAlways && hits[i] == s + 1;
+      const bool mayBeAlways = settings.disableAlways && s + 1 - hits[i] <= allowedMisses;
       undecided[i] = mayBeNever || mayBeAlways ? 1 : 0;
     }
   }
@@ -98,7 +104,7 @@ void allowSampled(const RobotModel& model, const LinkCollisionTest& test,
       const int ia = static_cast<int>(a);
       const int ib = static_cast<int>(b);
       if (count == 0 && settings.disableNever) matrix.allow(ia, ib, AllowedReason::kNever);
-      if (count == settings.samples && settings.disableAlways) matrix.allow(ia, ib, AllowedReason::kAlways);
+      if (settings.samples - count <= allowedMisses && settings.disableAlways) matrix.allow(ia, ib, AllowedReason::kAlways);
     }
   }
 }

@@ -55,6 +55,10 @@ struct AllowedCollisionSettings {
   bool disableNever = true;
   /// Disable pairs that collide in every sample (MoveIt's "Always": built-in overlaps).
   bool disableAlways = true;
+  /// The share of samples in which a pair must collide to count as always colliding (MoveIt's
+  /// setup assistant uses 95 %): faces that touch at zero depth flicker between colliding and
+  /// free from one sample to the next.
+  double alwaysFraction = 0.95;
 };
 
 /// Tells, for configuration `q`, which link pairs collide: sets inCollision[a * linkCount + b]

@@ -233,7 +233,7 @@ class WorldBuilder {
     std::vector<FclGeometryPair>& pairs = tables_.robotPairs.emplace_back();
     for (std::size_t i = 0; i < own.size(); ++i) {
       for (std::size_t j = i + 1; j < own.size(); ++j) {
-        if (!bodiesMayTouch(r, bodyOf(own[i]), bodyOf(own[j]))) pairs.push_back({own[i], own[j]});
+        if (!bodiesMayTouch(r, bodyOf(own[i]), bodyOf(own[j]))) pairs.push_back({own[i], own[j], true});
       }
     }
     tables_.worldPairs.insert(tables_.worldPairs.end(), pairs.begin(), pairs.end());

@@ -34,8 +34,10 @@ struct FclGeometryEntry {
 struct FclGeometryPair {
   int first = -1;
   int second = -1;
-  /// `second` is a fixed object: the pair may rest on each other (the scene's contact
-  /// tolerance applies). Self and robot–robot pairs are strict: the ACM handles what touches.
+  /// The pair may touch without colliding (the scene's contact tolerance applies): `second` is a
+  /// fixed object the robot rests on, or both are of one robot (links whose faces meet at zero
+  /// or tiny depth, as a vendor's fingers do, touch; the ACM handles what always overlaps).
+  /// Robot–robot pairs are strict.
   bool mayRest = false;
 };
 
