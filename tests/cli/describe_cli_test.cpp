@@ -71,6 +71,8 @@ TEST(DescribeCli, AnInferredGripperIsWrittenAsAnSrdfThatReadsBackTheSame) {
   const std::string written = readFileText(srdf);
   EXPECT_THAT(written, HasSubstr("<chain base_link=\"base\" tip_link=\"palm\"/>"));
   EXPECT_THAT(written, HasSubstr("<group_state name=\"open\" group=\"gripper\">"));
+  // The pairs the allowed-collision matrix lets touch, with MoveIt's reasons.
+  EXPECT_THAT(written, HasSubstr("reason=\"Adjacent\"/>"));
   // Beside the URDF, under its name, the SRDF is what the robot is read with.
   fs::copy_file(srdf, directory.path() / "hinged.srdf");
   const RunResult reread = run("describe " + urdf.string(), false);

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lang2manip/cli/commands.hpp"
+#include "lang2manip/collision/fcl_collision_checker.hpp"
 #include "lang2manip/cli/problem_loading.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/grounding/gripper_geometry.hpp"
@@ -148,6 +149,25 @@ std::string describeText(const json& report) {
   return text;
 }
 
+/// The link pairs of the first robot that its allowed-collision matrix lets touch, with MoveIt's
+/// reasons ("Adjacent", "Never", "Always"), added to `semantics` (those of an SRDF are there).
+void addComputedDisabledPairs(const Scene& scene, RobotSemantics& semantics) {
+  const FclCollisionChecker checker(scene);
+  const AllowedCollisionMatrix& matrix = checker.allowedCollisions(0);
+  const RobotModel& model = *scene.robots().front().model;
+  const int links = matrix.linkCount();
+  for (int a = 0; a < links; ++a) {
+    for (int b = a + 1; b < links; ++b) {
+      const std::vector<Link>& all = model.links();
+      if (all[static_cast<std::size_t>(a)].collisions.empty() || all[static_cast<std::size_t>(b)].collisions.empty()) continue;
+      const AllowedReason reason = matrix.reason(a, b);
+      const char* name = reason == AllowedReason::kAdjacent ? "Adjacent" : reason == AllowedReason::kNever ? "Never"
+                         : reason == AllowedReason::kAlways ? "Always" : nullptr;
+      if (name != nullptr) semantics.disabledCollisions.push_back({all[static_cast<std::size_t>(a)].name, all[static_cast<std::size_t>(b)].name, name});
+    }
+  }
+}
+
 void describe(const DescribeOptions& options, std::ostream& out) {
   const LoadedProblem loaded = loadProblem(options.problem, options.robot, options.scene);
   json report{{"robots", json::array()}, {"objects", json::array()}};
@@ -170,6 +190,7 @@ void describe(const DescribeOptions& options, std::ostream& out) {
         // Written as inferred; the printed description says why the gripper cannot grasp.
       }
     }
+    addComputedDisabledPairs(loaded.problem.scene, semantics);
     std::ofstream file(options.writeSrdf);
     file << srdfString(model, semantics);
     if (!file) throw InputError("describe --write-srdf: cannot write " + options.writeSrdf);
