@@ -6,6 +6,9 @@
 #include "lang2manip/language/instruction.hpp"
 #include "lang2manip/language/object_descriptor.hpp"
 #include "lang2manip/language/offline_task_planner.hpp"
+#include "lang2manip/model/urdf_reader.hpp"
+
+#include <filesystem>
 #include "language/language_test_support.hpp"
 #include "language/language_test_scenes.hpp"
 
@@ -216,6 +219,38 @@ TEST(OfflineTaskPlannerTest, APushThatFailedBecomesAPickAndPlaceByTheSameDisplac
   const Plan regrasped = firstPlan(planner, request);
   ASSERT_EQ(regrasped.actions.size(), 2u);
   EXPECT_EQ(regrasped.actions[0].refinements.grasp, graspRetryOrder()[1]);
+}
+
+/// The desk scene with a two-joint arm that has nothing on its flange in place of the Panda.
+Scene bareArmAtTheDesk() {
+  const char* const urdf = R"(<robot name="bare">
+  <link name="base"/><link name="upper"/><link name="flange"/>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="elbow" type="revolute"><parent link="upper"/><child link="flange"/><origin xyz="0.4 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+</robot>)";
+  const Scene desk = test::deskScene();
+  Scene scene;
+  SceneRobot robot;
+  robot.name = "bare";
+  robot.model = readUrdfString(urdf, "bare.urdf", std::filesystem::temp_directory_path(), {});
+  robot.configuration = VectorX::Zero(robot.model->variableCount());
+  robot.basePose = desk.robots().front().basePose;
+  scene.addRobot(robot);
+  for (const SceneObject& object : desk.objects()) scene.addObject(object);
+  return scene;
+}
+
+TEST(OfflineTaskPlannerTest, AnArmWithoutGripperIsNeverAskedToCarryWhatItFailedToPush) {
+  OfflineTaskPlanner planner;
+  const Scene scene = bareArmAtTheDesk();
+  PlanningRequest request = requestFor(scene, "push the eraser 5 cm to the left");
+  const Plan pushed = firstPlan(planner, request);
+  ASSERT_EQ(pushed.actions.size(), 1u);
+  request.earlierAttempts.push_back(groundingFailure(pushed, "eraser", "push"));
+  const std::string error = planningErrorOf(planner, request);
+  EXPECT_NE(error.find("the arm has no gripper to carry eraser instead of pushing it"), std::string::npos) << error;
 }
 
 TEST(OfflineTaskPlannerTest, AnObjectNoGraspFitsIsNotPickedAgain) {

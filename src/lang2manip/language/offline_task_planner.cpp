@@ -52,6 +52,17 @@ const std::string& objectToRegrasp(const PlanAttempt& attempt) {
   return failure.object;
 }
 
+/// True when the arm that executes the request's plans (any arm, when none is named) has a
+/// gripper: an arm without one pushes but cannot carry.
+bool armCanCarry(const PlanningRequest& request) {
+  if (request.scene == nullptr || request.scene->robots().empty()) return true;
+  const SceneRobot& robot = request.robot.empty() ? request.scene->robots().front() : request.scene->robot(request.robot);
+  const std::vector<Manipulator>& arms = robot.model->semantics().manipulators;
+  return std::any_of(arms.begin(), arms.end(), [&](const Manipulator& arm) {
+    return (request.arm.empty() || arm.name == request.arm) && !arm.gripperJoints.empty();
+  });
+}
+
 /// True when the action that failed in `attempt` is a push (at whatever stage: reaching behind
 /// the object, the push itself).
 bool failedAPush(const PlanAttempt& attempt) {
@@ -166,6 +177,9 @@ Answers applyEarlierAttempts(const PlanningRequest& request, TaskSpecification& 
   const std::vector<GraspDirection> order = graspRetryOrder();
   for (const PlanAttempt& attempt : request.earlierAttempts) {
     if (failedAPush(attempt)) {
+      if (!armCanCarry(request)) {
+        nothingNewToTry("the arm has no gripper to carry " + attempt.grounding->object + " instead of pushing it", attempt.failure);
+      }
       if (!answers.pickedInsteadOfPushed.insert(attempt.grounding->object).second) {
         nothingNewToTry("pushing " + attempt.grounding->object + " and carrying it both failed", attempt.failure);
       }
