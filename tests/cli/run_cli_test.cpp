@@ -236,6 +236,20 @@ TEST(RunCli, ThePaperTaskSucceedsWithTheOfficialUr5eAndAGripperOfOurOwn) {
   EXPECT_THAT(result.output, HasSubstr("SUCCESS"));
 }
 
+// An arm of four joints (no wrist roll: its hand turns with where it is) at the desk: grasps and
+// placements take the turn of the hand the arm reaches, where the object still fits between the
+// fingers and still stands where it was asked to (tests/data/robots/four_joint_arm.urdf).
+TEST(RunCli, AnArmOfFourJointsGraspsAndPlacesAtTheTurnItReaches) {
+  const TempDirectory directory;
+  const fs::path problem = writeKauthamRobotAtDesk(directory.path(), fs::path(LANG2MANIP_TEST_DATA_DIR) / "robots" / "four_joint_arm.urdf", -0.35);
+  const RunResult result = run("run " + problem.string() + " --task \"put the eraser in the holder\"" + kBudgets + " --out " +
+                               (directory.path() / "out").string());
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("SUCCESS"));
+  const std::string report = readFileText(directory.path() / "out" / "report.json");
+  EXPECT_THAT(report, HasSubstr("turned"));
+}
+
 // Universal Robots' official UR5e with nothing on its flange: it cannot pick, but it pushes.
 TEST(RunCli, ARobotWithoutGripperPushes) {
   const auto shared = sharedDataDirectory();

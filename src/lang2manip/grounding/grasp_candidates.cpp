@@ -197,6 +197,19 @@ GraspGeneration generateWidenedGrasps(const GraspGeometryInput& input, const Gri
   GraspGeneration out;
   if (direction != GraspDirection::kAuto && direction != GraspDirection::kTop) return out;
   const Vector3 reference = topApproaches(input, settings).front().closings.front();
+  // Leaning towards or away from the robot first: the only leans an arm whose joints turn in
+  // one vertical plane (fewer than six) can take, and natural for any arm.
+  Vector3 radial = input.objectPose.translation() - input.robotBase.translation();
+  radial.z() = 0.0;
+  if (radial.norm() > 1e-6) {
+    const Vector3 across = kUp.cross(radial.normalized());
+    for (const double tilt : settings.widenedTopTilts) {
+      for (const double sign : {1.0, -1.0}) {
+        const Eigen::AngleAxisd lean(sign * tilt, across);
+        for (const Vector3& c : {across, Vector3(radial.normalized())}) addGrasps(input, gripper, settings, {GraspDirection::kTop, lean * -kUp, {}}, lean * c, out);
+      }
+    }
+  }
   const int steps = 2 * settings.topYawSteps;
   for (int k = 0; k < steps; ++k) {
     const Vector3 c = Eigen::AngleAxisd(2.0 * M_PI * k / steps, kUp) * reference;

@@ -72,8 +72,29 @@ struct Context {
   const SceneObject& object;
 };
 
-/// Full checks of one geometric grasp; nullopt (and a rejection) when it fails.
-std::optional<GraspCandidate> checkGrasp(const Context& c, const GeometricGrasp& g, GraspPlan& plan) {
+std::optional<GraspCandidate> checkGrasp(const Context& c, const GeometricGrasp& g, GraspPlan& plan, bool mayTurn = true);
+
+/// `g` turned about its approach axis to the turn an arm of fewer than six joints reaches it
+/// with, when the object still fits between the fingers there (its width across them within the
+/// opening); nullopt otherwise.
+std::optional<GeometricGrasp> turnedGrasp(const Context& c, const GeometricGrasp& g) {
+  const std::optional<Pose> turned = c.reach.turnedToReach(g.pose, c.request.seed);
+  if (!turned) return std::nullopt;
+  const GripperGeometry& gripper = c.reach.gripper();
+  const double width = 2.0 * halfExtentAlong(c.object, c.object.pose, turned->linear() * gripper.closingAxis);
+  if (width > gripper.maxOpening - 2.0 * c.request.settings.openingMargin || width < gripper.minOpening) return std::nullopt;
+  const Vector3 before = g.pose.linear() * gripper.closingAxis, after = turned->linear() * gripper.closingAxis;
+  const double angle = std::atan2(before.cross(after).dot(g.approach), before.dot(after));
+  GeometricGrasp result = g;
+  result.pose = *turned;
+  result.width = width;
+  result.label = g.label + " turned " + std::to_string(static_cast<int>(std::lround(angle * 180.0 / M_PI))) + " deg";
+  return result;
+}
+
+/// Full checks of one geometric grasp; nullopt (and a rejection) when it fails. An arm of fewer
+/// than six joints that does not reach the grasp as it is tries it at the turn it reaches.
+std::optional<GraspCandidate> checkGrasp(const Context& c, const GeometricGrasp& g, GraspPlan& plan, bool mayTurn) {
   const GraspSettings& s = c.request.settings;
   GraspCandidate candidate;
   candidate.object = c.object.name;
@@ -92,6 +113,9 @@ std::optional<GraspCandidate> checkGrasp(const Context& c, const GeometricGrasp&
     return std::nullopt;
   };
   const ReachResult grasp = c.reach.reach(g.pose, c.request.seed, candidate.opening, c.object.name);
+  if (!grasp.reachable() && grasp.failure == ReachFailure::kNoIk && mayTurn && c.reach.turnIsConstrained()) {
+    if (const std::optional<GeometricGrasp> turned = turnedGrasp(c, g)) return checkGrasp(c, *turned, plan, false);
+  }
   if (!grasp.reachable()) return reject("grasp pose", grasp);
   const ReachResult pre = c.reach.reach(candidate.preGraspPose, grasp.solutions.front(), candidate.opening);
   if (!pre.reachable()) return reject("pre-grasp pose", pre);

@@ -11,6 +11,7 @@
 #include "lang2manip/grounding/object_geometry.hpp"
 #include "lang2manip/grounding/placement_poses.hpp"
 #include "lang2manip/kinematics/forward_kinematics.hpp"
+#include "lang2manip/symbolic/spatial_relations.hpp"
 
 namespace lang2manip {
 namespace {
@@ -113,29 +114,72 @@ void tryPose(Attempt& a, const PoseCandidate& pose, int& checks, PlacementPlan& 
   }
 }
 
-bool tryPoseAt(Attempt& a, const PoseCandidate& pose, double drop, int& checks, PlacementPlan& plan) {
+/// `pose` turned about the hand's approach axis to the turn an arm of fewer than six joints
+/// reaches its place pose with (grasp `g`, released `drop` above it), when the object there still
+/// stands upright, clear of the world and, for a relation, in it (the goal check's words); for a
+/// position without an orientation, at that position. Nullopt otherwise.
+std::optional<PoseCandidate> turnedPose(const Attempt& a, const ReachabilityChecker& reach, const PoseCandidate& pose, double drop,
+                                        std::size_t g) {
+  const Pose lift(Eigen::Translation3d(Vector3::UnitZ() * drop));
+  const std::optional<Pose> hand = reach.turnedToReach(lift * pose.pose * a.grasps[g], a.seed);
+  if (!hand) return std::nullopt;
+  const Pose turned = lift.inverse() * *hand * a.grasps[g].inverse();
+  const bool upright = (turned.linear().col(2) - pose.pose.linear().col(2)).norm() < 1e-2;
+  if (!upright || !ObjectCollisionWorld(a.scene, a.object.name).collisions(turned).empty()) return std::nullopt;
+  const PlacementTarget& target = a.request.target;
+  if (target.relation) {
+    Scene placed = a.scene;
+    const Pose resting = Pose(Eigen::Translation3d(-Vector3::UnitZ() * a.request.settings.releaseGap)) * turned;
+    if (placed.findAttachment(a.object.name) != nullptr) placed.detach(a.object.name, resting);
+    placed.object(a.object.name).pose = resting;
+    Goal goal;
+    goal.kind = GoalKind::kRelation;
+    goal.object = a.object.name;
+    goal.relation = *target.relation;
+    goal.target = target.target;
+    goal.distance = target.distance;
+    goal.region = target.region;
+    if (!checkGoalInScene(placed, goal).holds) return std::nullopt;
+  } else if (target.orientation || (turned.translation() - pose.pose.translation()).norm() > 0.01) {
+    return std::nullopt;
+  }
+  return PoseCandidate{turned, pose.support, pose.label + " (turned as the arm reaches it)"};
+}
+
+bool tryPoseAt(Attempt& a, const PoseCandidate& asked, double drop, int& checks, PlacementPlan& plan) {
   const PlacementSettings& s = a.request.settings;
-  const Pose release = Pose(Eigen::Translation3d(Vector3::UnitZ() * drop)) * pose.pose;
   for (std::size_t g = 0; g < a.grasps.size() && checks < s.maxReachChecks; ++g) {
     const ReachabilityChecker& reach = a.held.forGrasp(g, a.grasps[g]);
-    PlacementCandidate c;
-    c.object = a.object.name;
-    c.support = pose.support;
-    c.label = pose.label;
-    c.objectPose = pose.pose;
-    c.restingPose = Pose(Eigen::Translation3d(-Vector3::UnitZ() * s.releaseGap)) * pose.pose;
-    c.graspIndex = g;
-    c.objectToGripper = a.grasps[g];
-    c.dropHeight = drop;
-    c.placePose = release * a.grasps[g];
-    c.prePlacePose = Pose(Eigen::Translation3d(Vector3::UnitZ() * s.approachHeight)) * c.placePose;
-    c.retreatPose = c.placePose * Pose(Eigen::Translation3d(-reach.gripper().approachAxis * s.retreatDistance));
-    c.heldWidth = 2.0 * halfExtentAlong(a.object, Pose::Identity(), a.grasps[g].linear() * reach.gripper().closingAxis);
-    c.releaseOpening = std::min(reach.gripper().maxOpening, c.heldWidth + 2.0 * s.releaseMargin);
+    PoseCandidate pose = asked;
+    const auto candidateAt = [&](const PoseCandidate& at) {
+      PlacementCandidate c;
+      c.object = a.object.name;
+      c.support = at.support;
+      c.label = at.label;
+      c.objectPose = at.pose;
+      c.restingPose = Pose(Eigen::Translation3d(-Vector3::UnitZ() * s.releaseGap)) * at.pose;
+      c.graspIndex = g;
+      c.objectToGripper = a.grasps[g];
+      c.dropHeight = drop;
+      c.placePose = Pose(Eigen::Translation3d(Vector3::UnitZ() * drop)) * at.pose * a.grasps[g];
+      c.prePlacePose = Pose(Eigen::Translation3d(Vector3::UnitZ() * s.approachHeight)) * c.placePose;
+      c.retreatPose = c.placePose * Pose(Eigen::Translation3d(-reach.gripper().approachAxis * s.retreatDistance));
+      c.heldWidth = 2.0 * halfExtentAlong(a.object, Pose::Identity(), a.grasps[g].linear() * reach.gripper().closingAxis);
+      c.releaseOpening = std::min(reach.gripper().maxOpening, c.heldWidth + 2.0 * s.releaseMargin);
+      return c;
+    };
+    PlacementCandidate c = candidateAt(pose);
     ++checks;
     // Checked with the gripper opened for the release: fingers that open into a container's wall
     // rule the pose out.
-    const ReachResult place = reach.reach(c.placePose, a.seed, c.releaseOpening);
+    ReachResult place = reach.reach(c.placePose, a.seed, c.releaseOpening);
+    if (!place.reachable() && place.failure == ReachFailure::kNoIk && reach.turnIsConstrained()) {
+      if (const std::optional<PoseCandidate> turned = turnedPose(a, reach, pose, drop, g)) {
+        pose = *turned;
+        c = candidateAt(pose);
+        place = reach.reach(c.placePose, a.seed, c.releaseOpening);
+      }
+    }
     if (!place.reachable()) {
       plan.rejections.push_back({pose.label, PlacementFailure::kUnreachable, "place pose " + place.reason, {}});
       continue;

@@ -61,6 +61,8 @@ ReachabilityChecker::ReachabilityChecker(std::shared_ptr<const CollisionChecker>
   const Manipulator& arm = findManipulator(model(), gripper_->manipulator);
   chainBase_ = this->robot().basePose * computeLinkPose(model(), currentConfiguration(), arm.baseLink);
   chainReach_ = KinematicChain(model(), arm.baseLink, arm.toolFrame).reach();
+  armJoints_ = arm.armJoints.size();
+  toolFrame_ = arm.toolFrame;
   context_ = std::shared_ptr<CollisionContext>(checker_->makeContext());
 }
 
@@ -128,6 +130,28 @@ ReachResult ReachabilityChecker::reach(const Pose& X_WG, const VectorX& seed, do
     result.reason = collisionReason(withGripperOpening(model(), *gripper_, ik.solutions.front(), opening), touchable);
   }
   return result;
+}
+
+std::optional<Pose> ReachabilityChecker::turnedToReach(const Pose& X_WG, const VectorX& seed) const {
+  constexpr double kOnTheAxis = 2e-3;
+  const Pose X_BG = chainBase_.inverse() * X_WG;
+  const Pose X_BT = X_BG * gripper_->graspFrame.inverse();
+  if (X_BT.translation().norm() > chainReach_) return std::nullopt;
+  IkRequest request;
+  request.model = &model();
+  request.manipulator = gripper_->manipulator;
+  request.target = IkTarget::positionAndAxis(X_BT.translation(), X_BG.linear().col(2), gripper_->graspFrame.linear().col(2));
+  request.seed = seed.size() == 0 ? currentConfiguration() : seed;
+  request.timeoutSeconds = settings_.ikTimeoutSeconds;
+  request.solutionCount = 1;
+  request.randomSeed = settings_.seed;
+  ++statistics_.ikCalls;
+  const IkResult ik = ik_->solve(request);
+  if (ik.status != IkStatus::kSuccess || ik.solutions.empty()) return std::nullopt;
+  const Pose turned = robot().basePose * computeLinkPose(model(), ik.solutions.front(), toolFrame_) * gripper_->graspFrame;
+  // The tool frame turns about its own origin: the grasp frame's origin must stay on the axis.
+  if ((turned.translation() - X_WG.translation()).norm() > kOnTheAxis) return std::nullopt;
+  return turned;
 }
 
 double ReachabilityChecker::clearance(const VectorX& q) const {

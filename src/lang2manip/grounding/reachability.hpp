@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,16 @@ class ReachabilityChecker {
   [[nodiscard]] ReachResult reach(const Pose& X_WG, const VectorX& seed, double opening,
                                   const std::string& touchable = {}) const;
 
+  /// True when the arm has fewer than six joints: it cannot choose every turn of the hand about
+  /// the approach axis, and grasps and placements take the turn it reaches (turnedToReach()).
+  [[nodiscard]] bool turnIsConstrained() const { return armJoints_ < 6; }
+
+  /// `X_WG` turned about its approach axis (the grasp frame's +z, through its origin) to the turn
+  /// the arm reaches it with (IK for the position and the approach axis alone, searched from
+  /// `seed`), or nullopt when the arm reaches no turn of it. For arms of fewer than six joints,
+  /// whose hand turns with where it is; the caller checks that the turned pose still does.
+  [[nodiscard]] std::optional<Pose> turnedToReach(const Pose& X_WG, const VectorX& seed) const;
+
   /// Smallest distance (m) between the robot at `q` and the rest of the world; negative when in
   /// collision.
   [[nodiscard]] double clearance(const VectorX& q) const;
@@ -98,6 +109,8 @@ class ReachabilityChecker {
   ReachSettings settings_;
   Pose chainBase_ = Pose::Identity();
   double chainReach_ = 0.0;
+  std::size_t armJoints_ = 0;
+  std::string toolFrame_;
   std::shared_ptr<CollisionContext> context_;
   mutable ReachStatistics statistics_;
 };
