@@ -5,6 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <utility>
 
@@ -17,6 +21,7 @@ namespace lang2manip::test {
 namespace {
 
 using ::testing::HasSubstr;
+namespace fs = std::filesystem;
 using ::testing::ThrowsMessage;
 
 constexpr double kResting = 0.0003;
@@ -110,6 +115,63 @@ TEST(ContactTolerance, MeshesRestingOnMeshesAreInContact) {
   ASSERT_NE(contact, nullptr) << contactList(report);
   EXPECT_NEAR(contact->penetrationDepth, kSunk, 2e-4);
   EXPECT_NEAR(report.minimumDistance, -kSunk, 2e-4);
+}
+
+/// ASCII STL of a closed round column of `segments` sides, radius 5 cm and 10 cm high, its
+/// bottom at z = 0: a bottom fan, a top fan and the sides.
+std::string roundColumnStl(int segments) {
+  std::vector<Vector3> bottom, top;
+  for (int k = 0; k < segments; ++k) {
+    const double angle = 2.0 * M_PI * k / segments;
+    bottom.emplace_back(0.05 * std::cos(angle), 0.05 * std::sin(angle), 0.0);
+    top.emplace_back(bottom.back().x(), bottom.back().y(), 0.1);
+  }
+  std::string stl = "solid column\n";
+  const auto facet = [&stl](const Vector3& a, const Vector3& b, const Vector3& c) {
+    const Vector3 n = (b - a).cross(c - a).normalized();
+    char text[512];
+    std::snprintf(text, sizeof text,
+                  "facet normal %g %g %g\n outer loop\n  vertex %.9g %.9g %.9g\n  vertex %.9g %.9g %.9g\n  vertex %.9g %.9g %.9g\n endloop\nendfacet\n",
+                  n.x(), n.y(), n.z(), a.x(), a.y(), a.z(), b.x(), b.y(), b.z(), c.x(), c.y(), c.z());
+    stl += text;
+  };
+  for (int k = 0; k < segments; ++k) {
+    const std::size_t a = static_cast<std::size_t>(k), b = static_cast<std::size_t>((k + 1) % segments);
+    facet(Vector3(0, 0, 0), bottom[b], bottom[a]);
+    facet(Vector3(0, 0, 0.1), top[a], top[b]);
+    facet(bottom[a], bottom[b], top[b]);
+    facet(bottom[a], top[b], top[a]);
+  }
+  return stl + "endsolid column\n";
+}
+
+TEST(ContactTolerance, AMeshBaseFlushOnABoxTableIsInContact) {
+  // A vendor's base mesh whose bottom face lies exactly on the table's top (zero depth): the
+  // contact normals FCL reports there need not separate the two; a short translation along an
+  // axis still does. Pressed 2 mm in, it collides.
+  const TempDirectory directory;
+  for (const int segments : {7, 16, 40}) {
+    const fs::path stl = directory.path() / ("column" + std::to_string(segments) + ".stl");
+    std::ofstream(stl) << roundColumnStl(segments);
+    const std::string urdf = "<robot name=\"column\"><link name=\"base\"><collision><geometry><mesh filename=\"" + stl.string() +
+                             "\"/></geometry></collision></link><link name=\"arm\"/><joint name=\"turn\" type=\"revolute\"><parent link=\"base\"/>"
+                             "<child link=\"arm\"/><axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint></robot>";
+    for (const double depth : {0.0, kResting, kSunk}) {
+      Scene scene;
+      SceneRobot robot;
+      robot.name = "column";
+      robot.model = readUrdfString(urdf, "column.urdf", directory.path());
+      robot.configuration = VectorX::Zero(1);
+      robot.basePose.translation() = Vector3(0.1, 0.2, 0.3 - depth);
+      scene.addRobot(robot);
+      SceneObject table;
+      table.name = "table";
+      table.kind = "table";
+      table.collisions.push_back(Shape{Box{Vector3(1.0, 1.0, 0.3)}, Pose(Eigen::Translation3d(0.0, 0.0, 0.15)), std::nullopt, "top"});
+      scene.addObject(table);
+      EXPECT_EQ(homeIsValid(scene), depth < kSunk) << segments << " sides, " << depth << " m deep";
+    }
+  }
 }
 
 TEST(ContactTolerance, DeepCollisionsStayCollisions) {

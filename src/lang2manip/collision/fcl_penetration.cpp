@@ -88,15 +88,26 @@ double deepest(const fcl::CollisionResultd& result) {
   return depth;
 }
 
+/// The world axes: where faces meet at zero depth (a robot's base flush on a table) the contact
+/// normals FCL reports can be degenerate, and a short translation along an axis still tells.
+bool separatedAlongAnAxis(const PlacedFclShape& a, const PlacedFclShape& b, double tolerance) {
+  Directions axes;
+  axes.add(Vector3::UnitZ());
+  axes.add(Vector3::UnitX());
+  axes.add(Vector3::UnitY());
+  return separatedAlongAny(a, b, axes, tolerance + kProbeSlack);
+}
+
 /// Between two meshes FCL's depth means nothing: probe the first contact's normal and the
-/// normals of its two triangles (one more full contact query would cost more than it finds).
+/// normals of its two triangles (one more full contact query would cost more than it finds),
+/// then the world axes.
 bool meshesSeparableWithin(const PlacedFclShape& a, const Mesh& meshA, const PlacedFclShape& b,
                            const Mesh& meshB, const fcl::Contactd& first, double tolerance) {
   Directions directions;
   directions.add(first.normal);
   directions.add(triangleNormal(b, meshB, first.b2));
   directions.add(triangleNormal(a, meshA, first.b1));
-  return separatedAlongAny(a, b, directions, tolerance + kProbeSlack);
+  return separatedAlongAny(a, b, directions, tolerance + kProbeSlack) || separatedAlongAnAxis(a, b, tolerance);
 }
 
 /// One mesh: every reported depth bounds the true one from below.
@@ -109,7 +120,7 @@ bool meshShapeSeparableWithin(const PlacedFclShape& a, const PlacedFclShape& b,
   const fcl::CollisionResultd all = contactsOf(a, b, kContacts);
   if (deepest(all) > tolerance) return false;
   for (std::size_t c = 0; c < all.numContacts(); ++c) directions.add(all.getContact(c).normal);
-  return separatedAlongAny(a, b, directions, tolerance + kProbeSlack);
+  return separatedAlongAny(a, b, directions, tolerance + kProbeSlack) || separatedAlongAnAxis(a, b, tolerance);
 }
 
 /// Longest distance any translation needs to separate the two (their bounding spheres apart).
