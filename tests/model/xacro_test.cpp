@@ -109,6 +109,21 @@ TEST_F(XacroTest, MacrosWithDefaultsInheritanceBlocksAndDynamicScope) {
   EXPECT_THAT(urdf, HasSubstr("<y />"));
 }
 
+TEST_F(XacroTest, ABlockPassedOnUnderItsOwnNameIsTheCallersBlock) {
+  // Kinova's description passes its *origin on to a macro whose block parameter is also named
+  // origin: the call's blocks are expanded in the caller's scope, as ROS's xacro does.
+  const std::string urdf = expand(R"XML(
+    <xacro:macro name="inner" params="*origin prefix">
+      <joint name="${prefix}j" type="fixed"><xacro:insert_block name="origin"/></joint>
+    </xacro:macro>
+    <xacro:macro name="outer" params="*origin prefix">
+      <xacro:inner prefix="${prefix}arm_"><xacro:insert_block name="origin"/></xacro:inner>
+    </xacro:macro>
+    <xacro:outer prefix="left_"><origin xyz="1 2 3" rpy="0 0 0"/></xacro:outer>)XML");
+  EXPECT_THAT(urdf, HasSubstr("<joint name=\"left_arm_j\" type=\"fixed\">"));
+  EXPECT_THAT(urdf, HasSubstr("<origin xyz=\"1 2 3\" rpy=\"0 0 0\" />"));
+}
+
 TEST_F(XacroTest, ConditionalsArgumentsElementsAndPropertyBlocks) {
   const std::string urdf = expand(R"XML(
     <xacro:arg name="hand" default="false"/>

@@ -380,6 +380,11 @@ class XacroProcessor {
     if (static_cast<int>(calls_.size()) + includes_ >= kMaxXacroNesting) {
       fail(node, "macro calls nest more than " + std::to_string(kMaxXacroNesting) + " levels (a macro that calls itself?)");
     }
+    // The call's blocks are expanded where they are written, in the caller's scope, as ROS's
+    // xacro does: a block that inserts the caller's own block of the same name is that block.
+    calls_.emplace_back(name, where(node));
+    processChildren(node, caller);
+    calls_.pop_back();
     Scope scope;
     scope.parent = &caller;
     bindParameters(node, macro, name, caller, scope);
