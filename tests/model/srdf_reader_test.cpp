@@ -141,6 +141,22 @@ Shape boxShape(const Vector3& size, const Vector3& centre = Vector3::Zero()) {
   return shape;
 }
 
+TEST(SrdfReader, AMobileManipulatorsWheelsAndHeadAreNotItsDefaultArm) {
+  // Two wheels (one continuous joint each) and a pan-tilt head on the base, then the arm: the
+  // wheels are no arms, the arm with the gripper comes first (the default), the head after it.
+  RobotModelData data = gripperArm();
+  for (const char* name : {"left_wheel", "right_wheel", "head_pan_link", "head_tilt_link"}) data.links.push_back({name, {}, {}});
+  data.joints.insert(data.joints.begin(), joint("left_wheel_joint", JointType::kContinuous, "base", "left_wheel"));
+  data.joints.insert(data.joints.begin(), joint("right_wheel_joint", JointType::kContinuous, "base", "right_wheel"));
+  data.joints.insert(data.joints.begin(), joint("head_pan", JointType::kRevolute, "base", "head_pan_link"));
+  data.joints.push_back(joint("head_tilt", JointType::kRevolute, "head_pan_link", "head_tilt_link"));
+  const RobotSemantics semantics = inferSemantics(data);
+  ASSERT_EQ(semantics.manipulators.size(), 2u);
+  EXPECT_THAT(semantics.manipulators[0].armJoints, ElementsAre("j1", "j2"));
+  EXPECT_FALSE(semantics.manipulators[0].gripperJoints.empty());
+  EXPECT_THAT(semantics.manipulators[1].armJoints, ElementsAre("head_pan", "head_tilt"));
+}
+
 TEST(SrdfReader, SelfCollisionEnvelopesAreRecognisedWithoutSrdf) {
   // Each arm link carries a fixed, visual-less envelope larger than it and covering it (Franka's
   // *_sc); a sensor on l2 (small, collision only), a cover with a visual and an envelope that

@@ -71,6 +71,7 @@ class TreeWalker {
   RobotSemantics infer() const {
     RobotSemantics semantics;
     for (const Joint* tip : armTips()) semantics.manipulators.push_back(manipulatorEndingAt(*tip));
+    rankManipulators(semantics.manipulators);
     if (semantics.manipulators.size() > 1) {
       for (Manipulator& arm : semantics.manipulators) arm.name = "arm_" + arm.toolFrame;
     }
@@ -78,6 +79,19 @@ class TreeWalker {
   }
 
  private:
+  /// A mobile manipulator's wheels (one movable joint each, nothing held) are no arms when the
+  /// robot has an arm of more joints; arms with a gripper come first, then those of more joints,
+  /// so that the default arm is the one that manipulates (not a wheel or a head).
+  static void rankManipulators(std::vector<Manipulator>& arms) {
+    const auto joints = [](const Manipulator& arm) { return arm.armJoints.size(); };
+    const bool longer = std::any_of(arms.begin(), arms.end(), [&](const Manipulator& arm) { return joints(arm) > 1; });
+    if (longer) std::erase_if(arms, [&](const Manipulator& arm) { return joints(arm) <= 1 && arm.gripperJoints.empty(); });
+    std::stable_sort(arms.begin(), arms.end(), [&](const Manipulator& a, const Manipulator& b) {
+      if (a.gripperJoints.empty() != b.gripperJoints.empty()) return !a.gripperJoints.empty();
+      return joints(a) > joints(b);
+    });
+  }
+
   /// The topmost link reached from `link` through fixed joints.
   std::string rigidRoot(std::string link) const {
     for (auto parent = parentJoint_.find(link); parent != parentJoint_.end() && parent->second->type == JointType::kFixed;
