@@ -180,6 +180,30 @@ TEST(GripperGeometry, AToolWithoutGripperIsDescribedAndCannotPick) {
   EXPECT_TRUE(noGripperReason(*probe(rotatingFingers()), describeGripper(*probe(rotatingFingers())), "pick").empty());
 }
 
+TEST(GripperGeometry, TheWristBehindAShortFlangeIsSweptAboutItsRoll) {
+  // A 12 cm wide wrist, then a roll joint and a 2 cm flange: the wrist turns about the tool's
+  // axis, so it reaches 8.5 cm (half its diagonal) from that axis in every direction, 2-6 cm
+  // behind the tool frame. After the probe's pitch joint, no sweep is taken.
+  const RobotModelPtr model = probe(R"(<link name="wrist_body"><collision><origin xyz="0 0 0.02"/><geometry><box size="0.12 0.12 0.04"/></geometry></collision></link>
+  <link name="flange"><collision><origin xyz="0 0 0.01"/><geometry><box size="0.04 0.04 0.02"/></geometry></collision></link>
+  <link name="tool0"/>
+  <joint name="mount" type="fixed"><parent link="palm"/><child link="wrist_body"/><origin xyz="0 0 0.04"/></joint>
+  <joint name="roll" type="revolute"><parent link="wrist_body"/><child link="flange"/><origin xyz="0 0 0.04"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="tip" type="fixed"><parent link="flange"/><child link="tool0"/><origin xyz="0 0 0.02"/></joint>
+)");
+  const GripperGeometry gripper = describeGripper(*model);
+  ASSERT_FALSE(gripper.wristBounds.empty());
+  AlignedBox3 wrist;
+  for (const AlignedBox3& box : gripper.wristBounds) wrist.extend(box);
+  EXPECT_NEAR(wrist.max().x(), 0.06 * std::sqrt(2.0), 1e-6);
+  EXPECT_NEAR(wrist.min().y(), -0.06 * std::sqrt(2.0), 1e-6);
+  EXPECT_NEAR(wrist.max().z(), -0.02, 1e-6);
+  EXPECT_TRUE(describeGripper(*probe(R"(<link name="tool0"/>
+  <joint name="flange" type="fixed"><parent link="palm"/><child link="tool0"/><origin xyz="0 0 0.04"/></joint>
+)")).wristBounds.empty());
+}
+
 TEST(GripperGeometry, TheApproachAxisCanBeGiven) {
   const std::string flange = R"(<link name="tool0"/>
   <joint name="flange" type="fixed"><parent link="palm"/><child link="tool0"/><origin xyz="0 0 0.04"/></joint>

@@ -52,13 +52,15 @@ double handReachAlong(const GripperGeometry& gripper, const Matrix3& R_WG, const
 }
 
 /// How far the parts of the hand that meet a pushed object reach from H along `direction` (the
-/// push), with H at height `z`: the fingers, and the shapes that come lower than `objectTop`
-/// (the others pass over the object).
+/// push), with H at height `z`: the fingers, and the shapes of the hand and the wrist that come
+/// lower than `objectTop` (the others pass over the object).
 double pushingReachAlong(const GripperGeometry& gripper, const Matrix3& R_WG, const Vector3& direction, double z, double objectTop) {
   const Vector3 down = -Vector3::UnitZ();
   double reach = boxReachAlong(gripper.fingerBounds, R_WG, direction);
-  for (const AlignedBox3& box : gripper.closedHandBounds) {
-    if (z - boxReachAlong(box, R_WG, down) < objectTop) reach = std::max(reach, boxReachAlong(box, R_WG, direction));
+  for (const auto* boxes : {&gripper.closedHandBounds, &gripper.wristBounds}) {
+    for (const AlignedBox3& box : *boxes) {
+      if (z - boxReachAlong(box, R_WG, down) < objectTop) reach = std::max(reach, boxReachAlong(box, R_WG, direction));
+    }
   }
   return reach;
 }

@@ -138,6 +138,50 @@ std::vector<AlignedBox3> toolShapeBoxes(const RobotModel& model, const Manipulat
   return boxes;
 }
 
+/// The shapes of the link that carries the last arm joint, in H, each swept about that joint's
+/// axis when it is H's approach axis (+z): a box about the axis as wide as the farthest corner of
+/// the shape's bounds from it. None after a last joint of another axis.
+constexpr double kRollAlignment = 0.99;
+
+std::vector<AlignedBox3> sweptWristBoxes(const RobotModel& model, const Manipulator& manipulator, const GripperGeometry& g) {
+  std::vector<AlignedBox3> boxes;
+  if (manipulator.armJoints.empty()) return boxes;
+  const VectorX q = model.middleConfiguration();
+  const std::vector<Pose> poses = model.linkPoses(q);
+  const int last = model.jointIndex(manipulator.armJoints.back());
+  const int wrist = model.parentLinkOf(last);
+  const Pose X_HR = g.graspFrame.inverse() * poses[static_cast<std::size_t>(model.linkIndex(manipulator.toolFrame))].inverse();
+  const Pose X_RJ = poses[static_cast<std::size_t>(model.childLinkOf(last))];
+  const Vector3 axisPoint = X_HR * X_RJ.translation();
+  const Vector3 axis = (X_HR.linear() * X_RJ.linear() * model.joints()[static_cast<std::size_t>(last)].axis).normalized();
+  // Only a last joint that turns the tool about its approach axis (a flange's roll) keeps the
+  // wrist where the sweep says; after a pitch, the wrist's place depends on the joint.
+  if (std::abs(axis.z()) < kRollAlignment) return boxes;
+  for (const Shape& shape : model.links()[static_cast<std::size_t>(wrist)].collisions) {
+    const AlignedBox3 box = transformedBox(shapeBounds(shape), X_HR * poses[static_cast<std::size_t>(wrist)]);
+    if (box.isEmpty()) continue;
+    double radius = 0.0, low = std::numeric_limits<double>::infinity(), high = -low;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vector3 offset = box.corner(static_cast<AlignedBox3::CornerType>(corner)) - axisPoint;
+      const double along = offset.dot(axis);
+      radius = std::max(radius, (offset - along * axis).norm());
+      low = std::min(low, along);
+      high = std::max(high, along);
+    }
+    AlignedBox3 swept;
+    for (const double t : {low, high}) {
+      for (int i = 0; i < 3; ++i) {
+        const Vector3 side = Vector3::Unit(i) - Vector3::Unit(i).dot(axis) * axis;
+        const Vector3 across = side.norm() > 1e-9 ? Vector3(radius * side.normalized()) : Vector3(Vector3::Zero());
+        swept.extend(axisPoint + t * axis + across);
+        swept.extend(axisPoint + t * axis - across);
+      }
+    }
+    boxes.push_back(swept);
+  }
+  return boxes;
+}
+
 /// The shape boxes of the hand in H with the gripper closed (a tool without gripper as it is).
 std::vector<AlignedBox3> closedHandBoxes(const RobotModel& model, const Manipulator& manipulator, const GripperGeometry& g) {
   VectorX q = model.middleConfiguration();
@@ -220,6 +264,7 @@ GripperGeometry describeGripper(const RobotModel& model, const std::string& mani
     gripper.graspFrame.linear() = toolRotation(manipulator.approachAxis.value_or(Vector3::UnitZ()));
   }
   gripper.closedHandBounds = closedHandBoxes(model, manipulator, gripper);
+  gripper.wristBounds = sweptWristBoxes(model, manipulator, gripper);
   if (!gripper.hasGripper()) {
     for (const AlignedBox3& box : gripper.closedHandBounds) gripper.fingerBounds.extend(box);
   }

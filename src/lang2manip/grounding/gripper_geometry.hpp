@@ -59,6 +59,10 @@ struct GripperGeometry {
   /// Bounds in H of each collision shape below the last arm joint (palm, fingers, camera, tool)
   /// with the gripper closed: what meets an object the hand pushes.
   std::vector<AlignedBox3> closedHandBounds;
+  /// Bounds in H of the wrist that carries the last arm joint when that joint turns the tool
+  /// about its approach axis, each shape swept about it (the wrist turns about it relative to H):
+  /// what else meets an object pushed by a short flange. Empty after a last joint of another axis.
+  std::vector<AlignedBox3> wristBounds;
   /// Gripper joints (the manipulator's, mimics excluded) and their values when open and closed.
   /// Open is the end of the travel where the pads are farther apart, whatever the limits say.
   std::vector<std::string> gripperJoints;
