@@ -4,11 +4,8 @@
 #include <cstdio>
 #include <optional>
 
-#include <fcl/geometry/shape/box.h>
-#include <fcl/narrowphase/collision.h>
-
 #include "lang2manip/core/text_parsing.hpp"
-#include "lang2manip/collision/fcl_geometry.hpp"
+#include "lang2manip/collision/shape_probe.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/grounding/gripper_geometry.hpp"
 #include "lang2manip/grounding/object_geometry.hpp"
@@ -21,29 +18,6 @@ constexpr double kMinimumHollowFraction = 0.4;
 /// Bodies lower or narrower than this are not containers (m).
 constexpr double kMinimumContainerSize = 0.02;
 constexpr int kBisections = 20;
-
-/// Box probes against one object's collision geometry (world frame).
-class ShapeProbe {
- public:
-  explicit ShapeProbe(const SceneObject& object) : pose_(object.pose), shapes_(FclGeometryBuilder().build(object.collisions)) {}
-
-  [[nodiscard]] bool hits(const AlignedBox3& box) const {
-    const fcl::Boxd probe(box.sizes());
-    Pose X_WP = Pose::Identity();
-    X_WP.translation() = box.center();
-    const fcl::CollisionRequestd request;
-    for (const FclShape& shape : shapes_) {
-      fcl::CollisionResultd result;
-      fcl::collide(&probe, X_WP, shape.geometry.get(), pose_ * shape.origin, request, result);
-      if (result.isCollision()) return true;
-    }
-    return false;
-  }
-
- private:
-  Pose pose_;
-  std::vector<FclShape> shapes_;
-};
 
 /// The largest value in [0, limit] for which `free(value)` holds, assuming it holds up to some
 /// value and not beyond (0 when it never holds).

@@ -146,29 +146,33 @@ std::optional<PoseCandidate> turnedPose(const Attempt& a, const ReachabilityChec
   return PoseCandidate{turned, pose.support, pose.label + " (turned as the arm reaches it)"};
 }
 
+/// The candidate placing the object at `at` with grasp `g`, released `drop` above it (poses and
+/// openings; no reach checked yet).
+PlacementCandidate candidateAt(const Attempt& a, const ReachabilityChecker& reach, const PoseCandidate& at, double drop, std::size_t g) {
+  const PlacementSettings& s = a.request.settings;
+  PlacementCandidate c;
+  c.object = a.object.name;
+  c.support = at.support;
+  c.label = at.label;
+  c.objectPose = at.pose;
+  c.restingPose = Pose(Eigen::Translation3d(-Vector3::UnitZ() * s.releaseGap)) * at.pose;
+  c.graspIndex = g;
+  c.objectToGripper = a.grasps[g];
+  c.dropHeight = drop;
+  c.placePose = Pose(Eigen::Translation3d(Vector3::UnitZ() * drop)) * at.pose * a.grasps[g];
+  c.prePlacePose = Pose(Eigen::Translation3d(Vector3::UnitZ() * s.approachHeight)) * c.placePose;
+  c.retreatPose = c.placePose * Pose(Eigen::Translation3d(-reach.gripper().approachAxis * s.retreatDistance));
+  c.heldWidth = 2.0 * halfExtentAlong(a.object, Pose::Identity(), a.grasps[g].linear() * reach.gripper().closingAxis);
+  c.releaseOpening = std::min(reach.gripper().maxOpening, c.heldWidth + 2.0 * s.releaseMargin);
+  return c;
+}
+
 bool tryPoseAt(Attempt& a, const PoseCandidate& asked, double drop, int& checks, PlacementPlan& plan) {
   const PlacementSettings& s = a.request.settings;
   for (std::size_t g = 0; g < a.grasps.size() && checks < s.maxReachChecks; ++g) {
     const ReachabilityChecker& reach = a.held.forGrasp(g, a.grasps[g]);
     PoseCandidate pose = asked;
-    const auto candidateAt = [&](const PoseCandidate& at) {
-      PlacementCandidate c;
-      c.object = a.object.name;
-      c.support = at.support;
-      c.label = at.label;
-      c.objectPose = at.pose;
-      c.restingPose = Pose(Eigen::Translation3d(-Vector3::UnitZ() * s.releaseGap)) * at.pose;
-      c.graspIndex = g;
-      c.objectToGripper = a.grasps[g];
-      c.dropHeight = drop;
-      c.placePose = Pose(Eigen::Translation3d(Vector3::UnitZ() * drop)) * at.pose * a.grasps[g];
-      c.prePlacePose = Pose(Eigen::Translation3d(Vector3::UnitZ() * s.approachHeight)) * c.placePose;
-      c.retreatPose = c.placePose * Pose(Eigen::Translation3d(-reach.gripper().approachAxis * s.retreatDistance));
-      c.heldWidth = 2.0 * halfExtentAlong(a.object, Pose::Identity(), a.grasps[g].linear() * reach.gripper().closingAxis);
-      c.releaseOpening = std::min(reach.gripper().maxOpening, c.heldWidth + 2.0 * s.releaseMargin);
-      return c;
-    };
-    PlacementCandidate c = candidateAt(pose);
+    PlacementCandidate c = candidateAt(a, reach, pose, drop, g);
     ++checks;
     // Checked with the gripper opened for the release: fingers that open into a container's wall
     // rule the pose out.
@@ -176,7 +180,7 @@ bool tryPoseAt(Attempt& a, const PoseCandidate& asked, double drop, int& checks,
     if (!place.reachable() && place.failure == ReachFailure::kNoIk && reach.turnIsConstrained()) {
       if (const std::optional<PoseCandidate> turned = turnedPose(a, reach, pose, drop, g)) {
         pose = *turned;
-        c = candidateAt(pose);
+        c = candidateAt(a, reach, pose, drop, g);
         place = reach.reach(c.placePose, a.seed, c.releaseOpening);
       }
     }
