@@ -95,7 +95,9 @@ TEST(PaperTaskTiming, TimeOptimalIsFasterThanRestToRestEvenWithWideBlends) {
     EXPECT_TRUE(action.runs.empty());
   }
   ExecutionSettings wide = testSettings();
-  wide.blendDeviation = 1.0;  // arcs up to 1 rad from their corners where the path allows
+  // Arcs as wide as the path allows: a corner with little room is shrunk until its arc fits,
+  // however many times, and stops only where not even the smallest arc would.
+  wide.blendDeviation = 100.0;
   TaskExecutor fast(deskScene("panda"), wide);
   const TaskRun run = runPaperTask(fast);
   ASSERT_TRUE(run.repair.succeeded()) << run.repair.failure;

@@ -16,10 +16,10 @@
 namespace lang2manip {
 namespace {
 
-/// An arc that fails its checks is shrunk by this factor, at most kMaxBlendAttempts times, and
-/// left sharp below kSmallestBlend (rad).
+/// An arc that fails its checks is shrunk by this factor until it passes, and left sharp below
+/// kSmallestBlend (rad): however wide the requested blends, a corner stops only where not even
+/// an arc of kSmallestBlend fits.
 constexpr double kBlendShrink = 0.25;
-constexpr int kMaxBlendAttempts = 6;
 constexpr double kSmallestBlend = 1e-4;
 /// Relative slack of the limit check on the samples: the phase-plane integration keeps each
 /// step's path acceleration within the bounds at its ends, and the bounds move a little between.
@@ -205,13 +205,13 @@ std::vector<double> chooseBlends(const ArmContext& arm, const RunPath& path, Run
   if (path.waypoints.size() < 3 || settings.blendDeviation == 0.0) return deviations;
   std::set<std::size_t> reduced;
   std::set<std::size_t> shrunk;  // the corners made smaller by the last attempt
-  for (int attempt = 0; attempt < kMaxBlendAttempts; ++attempt) {
+  for (bool first = true;; first = false) {
     // An arc depends only on its corner's deviation: after the first pass, only the arcs made
     // smaller are checked again.
     const BlendedPath blended(path.waypoints, deviations);
     std::vector<std::size_t> failing;
     for (const PathSegment& piece : blended.segments()) {
-      const bool changed = attempt == 0 || shrunk.count(piece.waypoint) != 0;
+      const bool changed = first || shrunk.count(piece.waypoint) != 0;
       if (piece.kind == PathSegment::Kind::kArc && changed &&
           !arcIsAcceptable(piece, path, settings.verificationResolution, checker)) {
         failing.push_back(piece.waypoint);
@@ -223,7 +223,7 @@ std::vector<double> chooseBlends(const ArmContext& arm, const RunPath& path, Run
       reduced.insert(corner);
       shrunk.insert(corner);
       const double smaller = deviations[corner] * kBlendShrink;
-      deviations[corner] = attempt + 1 == kMaxBlendAttempts || smaller < kSmallestBlend ? 0.0 : smaller;
+      deviations[corner] = smaller < kSmallestBlend ? 0.0 : smaller;
     }
   }
   quality.reducedBlends += static_cast<int>(reduced.size());
