@@ -106,6 +106,45 @@ TEST(GripperGeometry, TheBuiltInGrippersKeepTheirToolFrameAndOpening) {
   EXPECT_NEAR(describeGripper(*panda.robots().front().model).maxOpening, 0.08, 1e-6);
 }
 
+/// Sliding fingers (joints 6 cm apart when open, 2 cm when closed) whose 6 cm long body carries
+/// a 6 mm lip at its root and a pad raised 2 mm over the outer 3 cm: the pads hold objects.
+std::string paddedFingers() {
+  std::string text;
+  for (const auto& [name, side] : {std::pair{"left", 1.0}, {"right", -1.0}}) {
+    char link[900];
+    std::snprintf(link, sizeof link, R"(<link name="%s">
+    <collision><origin xyz="0 %g 0.03"/><geometry><box size="0.02 0.01 0.06"/></geometry></collision>
+    <collision><origin xyz="0 %g 0.0015"/><geometry><box size="0.02 0.006 0.003"/></geometry></collision>
+    <collision><origin xyz="0 %g 0.045"/><geometry><box size="0.02 0.002 0.03"/></geometry></collision></link>
+  <joint name="%s_slide" type="prismatic"><parent link="palm"/><child link="%s"/><origin xyz="0 %g 0.04"/>
+    <axis xyz="0 %g 0"/><limit lower="-0.02" upper="0" effort="1" velocity="1"/>%s</joint>
+)",
+                  name, 0.005 * side, -0.003 * side, -0.001 * side, name, name, 0.03 * side, side,
+                  side > 0 ? "" : R"(<mimic joint="left_slide"/>)");
+    text += link;
+  }
+  return text;
+}
+
+TEST(GripperGeometry, TheGapIsMeasuredWhereThePadsMeetAnObject) {
+  const GripperGeometry gripper = describeGripper(*probe(paddedFingers()));
+  // Between the raised pads, not between the lips at the roots (4.8 cm open, 0.8 cm closed).
+  EXPECT_NEAR(gripper.maxOpening, 0.056, 1e-9);
+  EXPECT_NEAR(gripper.minOpening, 0.016, 1e-9);
+  EXPECT_NEAR(gripper.padDepth, 0.03, 1e-9);
+  // The grasp frame is in the middle of the pads (palm frame: 4 cm to the roots, then 4.5 cm).
+  EXPECT_NEAR(gripper.graspFrame.translation().z(), 0.085, 1e-9);
+  EXPECT_NEAR(gripper.fingertipOffset(), 0.015, 1e-9);
+  // The finger slabs follow the finger: the ones beside the pads stay out of the lips' reach.
+  ASSERT_FALSE(gripper.fingerSlabsCurve.empty());
+  const double lipsInner = 0.024;
+  EXPECT_LT(gripper.fingerBounds.min().y(), -lipsInner + 1e-9);
+  for (const AlignedBox3& slab : gripper.fingerSlabsCurve.back()) {
+    if (slab.min().z() < 0.0) continue;  // beside the pads, past the grasp frame
+    EXPECT_GE(std::min(std::abs(slab.min().y()), std::abs(slab.max().y())), 0.028 - 1e-9);
+  }
+}
+
 TEST(GripperGeometry, OpeningsComeFromThePadsNotFromTheJointValues) {
   const RobotModelPtr model = probe(reversedSlidingFingers());
   const GripperGeometry gripper = describeGripper(*model);

@@ -39,11 +39,13 @@ double fingerHalfExtent(const AlignedBox3& fingers, const Vector3& axisG) {
   return half;
 }
 
-/// Lowest world z of finger bounds `fingers` relative to the TCP for rotation R_WG.
-double fingerLowest(const AlignedBox3& fingers, const Matrix3& R) {
+/// Lowest world z of the finger slabs `slabs` relative to the TCP for rotation R_WG.
+double fingerLowest(const std::vector<AlignedBox3>& slabs, const Matrix3& R) {
   double lowest = 0.0;
-  for (int corner = 0; corner < 8; ++corner) {
-    lowest = std::min(lowest, (R * fingers.corner(static_cast<AlignedBox3::CornerType>(corner))).z());
+  for (const AlignedBox3& slab : slabs) {
+    for (int corner = 0; corner < 8; ++corner) {
+      lowest = std::min(lowest, (R * slab.corner(static_cast<AlignedBox3::CornerType>(corner))).z());
+    }
   }
   return lowest;
 }
@@ -148,6 +150,7 @@ void addGrasps(const GraspGeometryInput& in, const GripperGeometry& gripper, con
   // width, and where the pads are then: linkage fingers move along the approach axis.
   const double approachOpening = std::min(gripper.maxOpening, width + 2.0 * settings.openingMargin);
   const AlignedBox3 fingers = gripper.fingerBoundsBetween(width, approachOpening);
+  const std::vector<AlignedBox3> slabs = gripper.fingerSlabsBetween(width, approachOpening);
   const double pads = gripper.padCentreAt(width);
   const double padHalfWidth = fingerHalfExtent(fingers, R.transpose() * t);
   const double depthHalf = halfExtentAlong(object, in.objectPose, a);
@@ -155,7 +158,7 @@ void addGrasps(const GraspGeometryInput& in, const GripperGeometry& gripper, con
   const double top = centre.z() + halfExtentAlong(object, in.objectPose, kUp);
   for (double offset : graspOffsets(halfExtentAlong(object, in.objectPose, t), padHalfWidth)) {
     Vector3 p = centre + t * offset + a * (depth - depthHalf - pads);
-    const double lift = std::max(0.0, in.supportTop + settings.supportClearance - (p.z() + fingerLowest(fingers, R)));
+    const double lift = std::max(0.0, in.supportTop + settings.supportClearance - (p.z() + fingerLowest(slabs, R)));
     p.z() += lift;
     const std::string label = describe(approach.direction, a, c, offset);
     // Lifted along the closing axis by more than the approach opening leaves free, a pad would
@@ -168,7 +171,7 @@ void addGrasps(const GraspGeometryInput& in, const GripperGeometry& gripper, con
     // Lifted across the closing axis within that play, the object is off the pads' middle: then
     // the TCP itself must be below the top; otherwise the fingertips must be.
     const bool centred = std::abs(lift * c.z()) <= kCentringTolerance;
-    const double lowestHold = centred ? p.z() + fingerLowest(fingers, R) : p.z() + (R * Vector3(0.0, 0.0, pads)).z();
+    const double lowestHold = centred ? p.z() + fingerLowest(slabs, R) : p.z() + (R * Vector3(0.0, 0.0, pads)).z();
     if (lowestHold > top - settings.minimumEngagement) {
       out.rejections.push_back({label, GraspFailure::kNotGraspable,
                                 object.name + ": the fingers cannot close below its top without touching its support"});

@@ -140,11 +140,25 @@ void layoutRadial(const FingerSet& fingers, const std::vector<Vector3>& motion, 
 /// pad (its highest; the tool frame's axis when one finger closes onto it).
 std::pair<double, double> innerFaces(const FingerSet& fingers, const PadLayout& layout, const std::vector<Pose>& poses) {
   double inner = std::numeric_limits<double>::infinity();
-  for (const Vector3& p : fingers.pointsInTool(layout.pads[0], poses)) inner = std::min(inner, p.dot(layout.closing));
+  for (const Vector3& p : padContactPoints(fingers, layout, 0, poses)) inner = std::min(inner, p.dot(layout.closing));
   if (layout.pads.size() < 2) return {inner, 0.0};
   double outer = -std::numeric_limits<double>::infinity();
-  for (const Vector3& p : fingers.pointsInTool(layout.pads[1], poses)) outer = std::max(outer, p.dot(layout.closing));
+  for (const Vector3& p : padContactPoints(fingers, layout, 1, poses)) outer = std::max(outer, p.dot(layout.closing));
   return {inner, outer};
+}
+
+/// The contact face of each pad, looking toward the other pads (a single finger's, the way it
+/// closes).
+void findContactFaces(const FingerSet& fingers, const std::vector<Vector3>& motion, PadLayout& layout) {
+  // Half-way through the travel: rotating fingers turn their pads toward each other as they close.
+  const std::vector<Pose> open = fingers.linkPoses(0.5);
+  for (std::size_t f = 0; f < layout.pads.size(); ++f) {
+    Vector3 inward = f == 0 ? -layout.closing : layout.closing;
+    if (layout.radial) inward = -layout.outward[f];
+    if (!layout.radial && layout.pads.size() == 1) inward = motion[layout.pads[f]].dot(layout.closing) >= 0.0 ? layout.closing : -layout.closing;
+    const FingerLink& pad = fingers.links()[layout.pads[f]];
+    layout.contactFaces.push_back(contactFace(pad, open[static_cast<std::size_t>(pad.link)], inward));
+  }
 }
 
 }  // namespace
@@ -186,7 +200,7 @@ FingerSet::FingerSet(const RobotModel& model, const std::string& toolFrame, cons
   }
   for (int link : moved_) {
     std::vector<Vector3> points = collisionPoints(model.links()[static_cast<std::size_t>(link)]);
-    if (!points.empty()) links_.push_back({link, std::move(points)});
+    if (!points.empty()) links_.push_back({link, std::move(points), collisionFacets(model.links()[static_cast<std::size_t>(link)])});
   }
   if (links_.empty()) {
     std::string names;
@@ -261,6 +275,7 @@ PadLayout layoutPads(const FingerSet& fingers, const std::string& where, const s
   } else {
     layoutRadial(fingers, motion, largest, layout);
   }
+  findContactFaces(fingers, motion, layout);
   return layout;
 }
 
@@ -268,7 +283,7 @@ double padGap(const FingerSet& fingers, const PadLayout& layout, const std::vect
   if (layout.radial) {
     double radius = std::numeric_limits<double>::infinity();
     for (std::size_t f = 0; f < layout.pads.size(); ++f) {
-      for (const Vector3& p : fingers.pointsInTool(layout.pads[f], poses)) {
+      for (const Vector3& p : padContactPoints(fingers, layout, f, poses)) {
         radius = std::min(radius, across(p - layout.axisPoint, layout.approach).dot(layout.outward[f]));
       }
     }

@@ -11,10 +11,18 @@
 
 namespace lang2manip::gripper_detail {
 
-/// A link of a finger with the points of its collision geometry (link frame).
+/// A flat piece of a link's collision surface (link frame): outward unit normal, area, corners.
+struct Facet {
+  Vector3 normal = Vector3::UnitZ();
+  double area = 0.0;
+  std::vector<Vector3> corners;
+};
+
+/// A link of a finger with the points and the flat pieces of its collision geometry (link frame).
 struct FingerLink {
   int link = -1;
   std::vector<Vector3> points;
+  std::vector<Facet> facets;
 };
 
 /// The links the gripper joints move and where their geometry is, over the travel.
@@ -56,6 +64,15 @@ class FingerSet {
   std::vector<Pose> openPoses_;
 };
 
+/// The face of a pad that meets an object, in the pad link's frame: the corners of its facets
+/// (how deep it reaches along the approach axis), and the corners and centres that lie in the
+/// face's layer (where its surface is: a bevelled edge's outer corners stand back from it).
+struct ContactFace {
+  std::vector<Vector3> corners;
+  std::vector<Vector3> surface;
+  [[nodiscard]] bool empty() const noexcept { return surface.empty(); }
+};
+
 /// How the pad gap is measured: two opposed sides (parallel grippers) or radial fingers.
 struct PadLayout {
   /// Closing axis (tool frame, unit, perpendicular to the approach axis).
@@ -69,7 +86,20 @@ struct PadLayout {
   bool radial = false;
   std::vector<Vector3> outward;
   Vector3 axisPoint = Vector3::Zero();
+  /// For each pad: its contact face, where it meets an object (see contactFace). Empty when none
+  /// is found: the whole pad counts.
+  std::vector<ContactFace> contactFaces;
 };
+
+/// Along the approach axis, the band in which the pads' contact faces lie at link poses `poses`
+/// (where their depths overlap; all of them when they do not).
+std::pair<double, double> contactBand(const FingerSet& fingers, const PadLayout& layout, const std::vector<Pose>& poses);
+
+/// The surface points of the contact face of pad `f` (an index into layout.pads) in the tool frame
+/// at link poses `poses` (every point of the pad when it has no contact face): where the pad gap
+/// is measured, not at ribs or lips elsewhere on the finger.
+std::vector<Vector3> padContactPoints(const FingerSet& fingers, const PadLayout& layout, std::size_t f,
+                                      const std::vector<Pose>& poses);
 
 /// Finds the approach axis (unless `approach` gives it: unit, tool frame), the closing axis and
 /// the pads from the fingers' motion between closed and open. Throws InputError when the
@@ -87,5 +117,15 @@ double gapMiddle(const FingerSet& fingers, const PadLayout& layout, const std::v
 /// Points on the collision geometry of `link` in its frame: box corners, cylinder rims, sphere
 /// poles and equator, mesh vertices (at most `limit` per mesh, evenly picked).
 std::vector<Vector3> collisionPoints(const Link& link, std::size_t limit = 4000);
+
+/// The flat pieces of the collision geometry of `link` in its frame: box faces, a cylinder's
+/// side as 16 strips, mesh triangles (spheres have none).
+std::vector<Facet> collisionFacets(const Link& link);
+
+/// The face of `link` that meets an object coming along -`inward`
+/// (tool frame) at pose X_TL: of the facets within about 45 degrees of `inward`, grouped into
+/// layers 1 mm deep along it, the innermost layer of at least a quarter of the largest one's area.
+/// Empty when no facet looks that way.
+ContactFace contactFace(const FingerLink& link, const Pose& X_TL, const Vector3& inward);
 
 }  // namespace lang2manip::gripper_detail

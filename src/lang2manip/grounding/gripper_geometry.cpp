@@ -21,6 +21,8 @@ constexpr int kCurveSamples = 33;
 constexpr double kMinimumTravel = 1e-3;
 /// The tool frame is between the pads when within this of them along the approach axis (m).
 constexpr double kTcpTolerance = 0.01;
+/// Each finger link is described by this many boxes, one per slab across the approach axis.
+constexpr int kFingerSlabs = 6;
 
 std::string millimetres(double value) {
   char buffer[32];
@@ -40,13 +42,13 @@ std::vector<double> openingCurve(const FingerSet& fingers, const PadLayout& layo
   return curve;
 }
 
-/// Bounds of the pads' points along `axis` when open.
+/// Bounds along `axis` of the pads' points in the contact band, when open.
 std::pair<double, double> padRange(const FingerSet& fingers, const PadLayout& layout, const Vector3& axis) {
   const std::vector<Pose>& open = fingers.openPoses();
   double low = std::numeric_limits<double>::infinity();
   double high = -low;
-  for (std::size_t pad : layout.pads) {
-    for (const Vector3& p : fingers.pointsInTool(pad, open)) {
+  for (std::size_t f = 0; f < layout.pads.size(); ++f) {
+    for (const Vector3& p : gripper_detail::padContactPoints(fingers, layout, f, open)) {
       low = std::min(low, p.dot(axis));
       high = std::max(high, p.dot(axis));
     }
@@ -60,9 +62,9 @@ Pose graspFrameOf(const FingerSet& fingers, const PadLayout& layout) {
   const Vector3 a = layout.approach;
   const Vector3 c = layout.closing;
   const Vector3 t = a.cross(c);
-  const auto [aLow, aHigh] = padRange(fingers, layout, a);
-  const auto [tLow, tHigh] = padRange(fingers, layout, t);
   const std::vector<Pose>& open = fingers.openPoses();
+  const auto [aLow, aHigh] = gripper_detail::contactBand(fingers, layout, open);
+  const auto [tLow, tHigh] = padRange(fingers, layout, t);
   const double gap = gripper_detail::padGap(fingers, layout, open);
   const double middle = gripper_detail::gapMiddle(fingers, layout, open);
   const bool between = aLow - kTcpTolerance <= 0.0 && 0.0 <= aHigh + kTcpTolerance && tLow - kTcpTolerance <= 0.0 &&
@@ -73,20 +75,46 @@ Pose graspFrameOf(const FingerSet& fingers, const PadLayout& layout) {
   return X_TH;
 }
 
+/// The finger links' points in H cut into kFingerSlabs slabs along H's z, a box for each.
+std::vector<AlignedBox3> fingerSlabs(const FingerSet& fingers, const std::vector<Pose>& poses, const Pose& X_HT) {
+  std::vector<AlignedBox3> slabs;
+  for (std::size_t i = 0; i < fingers.links().size(); ++i) {
+    std::vector<Vector3> points = fingers.pointsInTool(i, poses);
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (Vector3& p : points) {
+      p = X_HT * p;
+      low = std::min(low, p.z());
+      high = std::max(high, p.z());
+    }
+    const std::size_t first = slabs.size();
+    slabs.resize(first + kFingerSlabs);
+    const double thickness = std::max(high - low, 1e-9) / kFingerSlabs;
+    for (const Vector3& p : points) {
+      const int slab = std::clamp(static_cast<int>((p.z() - low) / thickness), 0, kFingerSlabs - 1);
+      slabs[first + static_cast<std::size_t>(slab)].extend(p);
+    }
+  }
+  return slabs;
+}
+
 void describeFingers(const RobotModel& model, const FingerSet& fingers, const PadLayout& layout, GripperGeometry& g) {
   g.graspFrame = graspFrameOf(fingers, layout);
   const Pose X_HT = g.graspFrame.inverse();
   g.approachAxis = Vector3::UnitZ();
   g.closingAxis = (X_HT.linear() * layout.closing).normalized();
   g.fingerCount = layout.radial ? static_cast<int>(layout.pads.size()) : 2;
-  const auto [aLow, aHigh] = padRange(fingers, layout, layout.approach);
-  g.padDepth = aHigh - aLow;
   const std::vector<Pose>& open = fingers.openPoses();
+  const auto [aLow, aHigh] = gripper_detail::contactBand(fingers, layout, open);
+  g.padDepth = aHigh - aLow;
   double rootLow = aLow;
+  double tip = aHigh;
   for (std::size_t i = 0; i < fingers.links().size(); ++i) {
     for (const Vector3& p : fingers.pointsInTool(i, open)) rootLow = std::min(rootLow, p.dot(layout.approach));
   }
-  g.fingerLength = aHigh - rootLow;
+  for (std::size_t pad : layout.pads) {
+    for (const Vector3& p : fingers.pointsInTool(pad, open)) tip = std::max(tip, p.dot(layout.approach));
+  }
+  g.fingerLength = tip - rootLow;
   for (std::size_t pad : layout.pads) g.padLinks.push_back(model.links()[static_cast<std::size_t>(fingers.links()[pad].link)].name);
   for (int link : fingers.movedLinks()) g.fingerLinks.push_back(model.links()[static_cast<std::size_t>(link)].name);
   // At every sample of the travel: linkage fingers reach farther along the approach axis as
@@ -102,16 +130,9 @@ void describeFingers(const RobotModel& model, const FingerSet& fingers, const Pa
     }
     g.fingerBoundsCurve.push_back(bounds);
     g.fingerBounds.extend(bounds);
-    double low = std::numeric_limits<double>::infinity();
-    double high = -low;
-    for (std::size_t pad : layout.pads) {
-      for (const Vector3& p : fingers.pointsInTool(pad, poses)) {
-        const double z = (X_HT * p).z();
-        low = std::min(low, z);
-        high = std::max(high, z);
-      }
-    }
-    g.padCentreCurve.push_back(0.5 * (low + high));
+    g.fingerSlabsCurve.push_back(fingerSlabs(fingers, poses, X_HT));
+    const auto [low, high] = gripper_detail::contactBand(fingers, layout, poses);
+    g.padCentreCurve.push_back(0.5 * (low + high));  // along the approach axis, relative to when open below
   }
   const double whenOpen = g.padCentreCurve.back();
   for (double& centre : g.padCentreCurve) centre -= whenOpen;
@@ -288,6 +309,19 @@ AlignedBox3 GripperGeometry::fingerBoundsBetween(double narrow, double wide) con
   AlignedBox3 bounds;
   for (std::size_t i = first; i <= end && i < fingerBoundsCurve.size(); ++i) bounds.extend(fingerBoundsCurve[i]);
   return bounds.isEmpty() ? fingerBounds : bounds;
+}
+
+std::vector<AlignedBox3> GripperGeometry::fingerSlabsBetween(double narrow, double wide) const {
+  if (fingerSlabsCurve.empty()) return {fingerBoundsBetween(narrow, wide)};
+  const double last = static_cast<double>(fingerSlabsCurve.size() - 1);
+  const auto first = static_cast<std::size_t>(std::floor(fractionForOpening(*this, std::min(narrow, wide)) * last));
+  const auto end = static_cast<std::size_t>(std::ceil(fractionForOpening(*this, std::max(narrow, wide)) * last));
+  std::vector<AlignedBox3> slabs(fingerSlabsCurve.front().size());
+  for (std::size_t i = first; i <= end && i < fingerSlabsCurve.size(); ++i) {
+    for (std::size_t k = 0; k < slabs.size(); ++k) slabs[k].extend(fingerSlabsCurve[i][k]);
+  }
+  std::erase_if(slabs, [](const AlignedBox3& slab) { return slab.isEmpty(); });
+  return slabs;
 }
 
 double GripperGeometry::padCentreAt(double width) const {

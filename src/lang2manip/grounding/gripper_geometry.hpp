@@ -75,9 +75,15 @@ struct GripperGeometry {
   /// as they close; sliding fingers do not).
   std::vector<AlignedBox3> fingerBoundsCurve;
   std::vector<double> padCentreCurve;
+  /// At the same fractions: the fingers as boxes in H, each finger link cut into slabs across
+  /// the approach axis (a finger that narrows toward its tip is not the box of its base).
+  std::vector<std::vector<AlignedBox3>> fingerSlabsCurve;
 
   /// Bounds in H of the fingers swept while the pad gap goes from `wide` down to `narrow`.
   [[nodiscard]] AlignedBox3 fingerBoundsBetween(double narrow, double wide) const;
+  /// The finger slabs swept while the pad gap goes from `wide` down to `narrow` (each slab the
+  /// union of its boxes over that part of the travel).
+  [[nodiscard]] std::vector<AlignedBox3> fingerSlabsBetween(double narrow, double wide) const;
   /// How far the middle of the pads has moved along the approach axis at pad gap `width` from
   /// where it is when open.
   [[nodiscard]] double padCentreAt(double width) const;
