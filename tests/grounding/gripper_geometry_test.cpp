@@ -145,6 +145,45 @@ TEST(GripperGeometry, TheGapIsMeasuredWhereThePadsMeetAnObject) {
   }
 }
 
+/// One jaw hinged on the palm 1 cm beside a fixed jaw (both 8 cm long along +z); it opens by
+/// turning up to 0.6 rad away from the fixed one.
+std::string jawAgainstFixedJaw() {
+  return R"(<link name="fixed_jaw"><collision><origin xyz="0 -0.005 0.08"/><geometry><box size="0.02 0.01 0.08"/></geometry></collision></link>
+  <joint name="fixed_jaw_mount" type="fixed"><parent link="palm"/><child link="fixed_jaw"/></joint>
+  <link name="jaw"><collision><origin xyz="0 0.005 0.04"/><geometry><box size="0.02 0.01 0.08"/></geometry></collision></link>
+  <joint name="jaw_hinge" type="revolute"><parent link="palm"/><child link="jaw"/><origin xyz="0 0.01 0.04"/><axis xyz="1 0 0"/>
+    <limit lower="-0.6" upper="0" effort="1" velocity="1"/></joint>
+)";
+}
+
+TEST(GripperGeometry, OneJawClosingAgainstAFixedJawIsAGripper) {
+  const RobotModelPtr model = probe(jawAgainstFixedJaw());
+  const Manipulator& arm = model->semantics().manipulators.front();
+  EXPECT_EQ(arm.armJoints, (std::vector<std::string>{"shoulder", "wrist"}));
+  EXPECT_EQ(arm.gripperJoints, std::vector<std::string>{"jaw_hinge"});
+  const GripperGeometry gripper = describeGripper(*model);
+  EXPECT_TRUE(gripper.fixedJaw);
+  EXPECT_EQ(gripper.padLinks, (std::vector<std::string>{"jaw", "palm"}));
+  // Closed (0 rad) the faces are 1 cm apart; open, the jaw's tip stands 8 sin(0.6) cm farther.
+  EXPECT_NEAR(gripper.closedValues.front(), 0.0, 1e-12);
+  EXPECT_NEAR(gripper.minOpening, 0.01, 1e-9);
+  EXPECT_NEAR(gripper.maxOpening, 0.01 + 0.08 * std::sin(0.6), 1e-9);
+  // The jaws reach along the palm's +z: that is where a grasp approaches.
+  const Vector3 approachInTool = gripper.graspFrame.linear() * gripper.approachAxis;
+  EXPECT_NEAR(approachInTool.z(), 1.0, 1e-9);
+}
+
+TEST(GripperGeometry, AWristsLastJointIsNoJaw) {
+  // A short flange on a pitch joint: the palm that carries it lies behind its hinge.
+  const RobotModelPtr model = probe(R"(<link name="flange"><collision><origin xyz="0 0 0.02"/><geometry><box size="0.03 0.03 0.04"/></geometry></collision></link>
+  <joint name="pitch" type="revolute"><parent link="palm"/><child link="flange"/><origin xyz="0 0 0.04"/><axis xyz="1 0 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+)");
+  const Manipulator& arm = model->semantics().manipulators.front();
+  EXPECT_EQ(arm.armJoints, (std::vector<std::string>{"shoulder", "wrist", "pitch"}));
+  EXPECT_TRUE(arm.gripperJoints.empty());
+}
+
 TEST(GripperGeometry, OpeningsComeFromThePadsNotFromTheJointValues) {
   const RobotModelPtr model = probe(reversedSlidingFingers());
   const GripperGeometry gripper = describeGripper(*model);

@@ -50,7 +50,9 @@ json gripperJson(const RobotModel& model, const Manipulator& arm) {
     report["kind"] = "none (moves and pushes; cannot pick)";
     return report;
   }
-  report["kind"] = gripper.fingerCount == 2 ? "parallel" : std::to_string(gripper.fingerCount) + " fingers";
+  report["kind"] = gripper.fixedJaw ? "one jaw against a fixed jaw"
+                   : gripper.fingerCount == 2 ? "parallel"
+                                              : std::to_string(gripper.fingerCount) + " fingers";
   report["opening"] = {{"max", gripper.maxOpening}, {"min", gripper.minOpening}};
   report["pads"] = gripper.padLinks;
   report["pad_depth"] = gripper.padDepth;

@@ -19,6 +19,8 @@ constexpr double kSnapCosine = 0.9;
 constexpr double kMinorMotion = 0.2;
 /// Two closing motions along one line (|cos| above this) belong to a parallel gripper.
 constexpr double kCollinearCosine = 0.85;
+/// A fixed jaw's face starts this far along the moving jaw, from its hinge to its tip.
+constexpr double kJawFaceStart = 0.3;
 
 void addShapePoints(const Shape& shape, std::size_t limit, std::vector<Vector3>& points) {
   std::vector<Vector3> local;
@@ -60,7 +62,31 @@ Vector3 snapped(const Vector3& direction) {
 
 Vector3 across(const Vector3& v, const Vector3& approach) { return v - v.dot(approach) * approach; }
 
+/// A single jaw's fingers reach where its fixed jaw reaches: from the hinge to the fixed jaw's
+/// point farthest from it on the moving jaw's side (at either end of its travel).
+std::optional<Vector3> approachOfJaw(const FingerSet& fingers) {
+  if (!fingers.fixedJaw() || fingers.rootsOpen().empty()) return std::nullopt;
+  const Vector3 hinge = fingers.rootsOpen().front();
+  std::vector<Vector3> sides;
+  for (const double fraction : {0.0, 1.0}) {
+    const std::vector<Pose> poses = fingers.linkPoses(fraction);
+    Vector3 centre = Vector3::Zero();
+    for (std::size_t i = 0; i < fingers.links().size(); ++i) centre += fingers.centroid(i, poses);
+    sides.push_back(centre / static_cast<double>(fingers.links().size()) - hinge);
+  }
+  const Pose& X_TJ = fingers.openPoses()[static_cast<std::size_t>(fingers.fixedJaw()->link)];
+  Vector3 tip = hinge;
+  for (const Vector3& local : fingers.fixedJaw()->points) {
+    const Vector3 p = X_TJ * local;
+    const bool beside = std::any_of(sides.begin(), sides.end(), [&](const Vector3& side) { return (p - hinge).dot(side) > 0.0; });
+    if (beside && (p - hinge).norm() > (tip - hinge).norm()) tip = p;
+  }
+  if ((tip - hinge).norm() < 1e-9) return std::nullopt;
+  return snapped((tip - hinge).normalized());
+}
+
 Vector3 approachOf(const FingerSet& fingers) {
+  if (const std::optional<Vector3> jaw = approachOfJaw(fingers)) return *jaw;
   const std::vector<Pose>& open = fingers.openPoses();
   Vector3 rootMean = Vector3::Zero();
   for (const Vector3& root : fingers.rootsOpen()) rootMean += root;
@@ -136,9 +162,26 @@ void layoutRadial(const FingerSet& fingers, const std::vector<Vector3>& motion, 
   }
 }
 
+/// Along `closing`: the inner face of the fixed jaw and where the tip of the pad's face is (the
+/// point of it reaching farthest along `approach`: a turning jaw holds what fits under its tip),
+/// the one on the + side first.
+std::pair<double, double> padAgainstJaw(const std::vector<Vector3>& pad, const std::vector<Vector3>& jaw, const Vector3& closing,
+                                        const Vector3& approach) {
+  const Vector3 tip = *std::max_element(pad.begin(), pad.end(), [&](const Vector3& a, const Vector3& b) { return a.dot(approach) < b.dot(approach); });
+  double jawLow = std::numeric_limits<double>::infinity(), jawHigh = -jawLow, jawMean = 0.0;
+  for (const Vector3& p : jaw) {
+    jawLow = std::min(jawLow, p.dot(closing));
+    jawHigh = std::max(jawHigh, p.dot(closing));
+    jawMean += p.dot(closing) / static_cast<double>(jaw.size());
+  }
+  return tip.dot(closing) >= jawMean ? std::pair{tip.dot(closing), jawHigh} : std::pair{jawLow, tip.dot(closing)};
+}
+
 /// Along the closing axis: the inner face of the + side pad (its lowest point) and of the - side
 /// pad (its highest; the tool frame's axis when one finger closes onto it).
 std::pair<double, double> innerFaces(const FingerSet& fingers, const PadLayout& layout, const std::vector<Pose>& poses) {
+  const std::vector<Vector3> jaw = jawContactPoints(fingers, layout, poses);
+  if (layout.pads.size() == 1 && !jaw.empty()) return padAgainstJaw(padContactPoints(fingers, layout, 0, poses), jaw, layout.closing, layout.approach);
   double inner = std::numeric_limits<double>::infinity();
   for (const Vector3& p : padContactPoints(fingers, layout, 0, poses)) inner = std::min(inner, p.dot(layout.closing));
   if (layout.pads.size() < 2) return {inner, 0.0};
@@ -150,15 +193,56 @@ std::pair<double, double> innerFaces(const FingerSet& fingers, const PadLayout& 
 /// The contact face of each pad, looking toward the other pads (a single finger's, the way it
 /// closes).
 void findContactFaces(const FingerSet& fingers, const std::vector<Vector3>& motion, PadLayout& layout) {
-  // Half-way through the travel: rotating fingers turn their pads toward each other as they close.
-  const std::vector<Pose> open = fingers.linkPoses(0.5);
+  // Half-way through the travel: rotating fingers turn their pads toward each other as they close;
+  // a single jaw lies along its fixed jaw where it is closed.
+  const bool againstJaw = !layout.radial && layout.pads.size() == 1 && fingers.fixedJaw();
+  const std::vector<Pose> open = fingers.linkPoses(againstJaw ? 0.0 : 0.5);
   for (std::size_t f = 0; f < layout.pads.size(); ++f) {
     Vector3 inward = f == 0 ? -layout.closing : layout.closing;
     if (layout.radial) inward = -layout.outward[f];
     if (!layout.radial && layout.pads.size() == 1) inward = motion[layout.pads[f]].dot(layout.closing) >= 0.0 ? layout.closing : -layout.closing;
     const FingerLink& pad = fingers.links()[layout.pads[f]];
     layout.contactFaces.push_back(contactFace(pad, open[static_cast<std::size_t>(pad.link)], inward));
+    if (againstJaw && !fingers.rootsOpen().empty()) {
+      // The fixed jaw's face toward the pad, ahead of the hinge (not the body behind it).
+      const double hinge = fingers.rootsOpen().front().dot(layout.approach);
+      double reach = hinge;
+      for (const Vector3& p : fingers.pointsInTool(layout.pads[f], open)) reach = std::max(reach, p.dot(layout.approach));
+      const FingerLink& jaw = *fingers.fixedJaw();
+      layout.jawFace = contactFace(jaw, open[static_cast<std::size_t>(jaw.link)], -inward, layout.approach,
+                                   hinge + kJawFaceStart * (reach - hinge));
+    }
   }
+}
+
+/// The geometry of the rigid body (links joined by fixed joints) that `link` belongs to, leaving
+/// out `moved`, as one link in the frame of the body's root; none without geometry.
+std::optional<FingerLink> bodyOf(const RobotModel& model, int link, const std::set<int>& moved) {
+  int root = link;
+  while (model.parentJoint(root) >= 0 && model.joints()[static_cast<std::size_t>(model.parentJoint(root))].type == JointType::kFixed) {
+    root = model.parentLinkOf(model.parentJoint(root));
+  }
+  FingerLink body{root, {}, {}};
+  std::vector<std::pair<int, Pose>> stack{{root, Pose::Identity()}};
+  while (!stack.empty()) {
+    const auto [at, X_RL] = stack.back();
+    stack.pop_back();
+    if (moved.count(at)) continue;
+    const Link& data = model.links()[static_cast<std::size_t>(at)];
+    for (const Vector3& p : collisionPoints(data)) body.points.push_back(X_RL * p);
+    for (Facet facet : collisionFacets(data)) {
+      facet.normal = X_RL.linear() * facet.normal;
+      for (Vector3& corner : facet.corners) corner = X_RL * corner;
+      body.facets.push_back(std::move(facet));
+    }
+    for (int j = 0; j < static_cast<int>(model.joints().size()); ++j) {
+      if (model.parentLinkOf(j) == at && model.joints()[static_cast<std::size_t>(j)].type == JointType::kFixed) {
+        stack.emplace_back(model.childLinkOf(j), X_RL * model.joints()[static_cast<std::size_t>(j)].origin);
+      }
+    }
+  }
+  if (body.points.empty()) return std::nullopt;
+  return body;
 }
 
 }  // namespace
@@ -202,6 +286,7 @@ FingerSet::FingerSet(const RobotModel& model, const std::string& toolFrame, cons
     std::vector<Vector3> points = collisionPoints(model.links()[static_cast<std::size_t>(link)]);
     if (!points.empty()) links_.push_back({link, std::move(points), collisionFacets(model.links()[static_cast<std::size_t>(link)])});
   }
+  if (driven.size() == 1) fixedJaw_ = bodyOf(model, model.parentLinkOf(*driven.begin()), moved);
   if (links_.empty()) {
     std::string names;
     for (const std::string& name : joints) names += (names.empty() ? "" : ", ") + name;

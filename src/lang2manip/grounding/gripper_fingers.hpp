@@ -40,6 +40,9 @@ class FingerSet {
   [[nodiscard]] const std::vector<Vector3>& rootsOpen() const noexcept { return rootsOpen_; }
   /// Poses in the tool frame of every link with the gripper at `fraction` (0 closed, 1 open).
   [[nodiscard]] std::vector<Pose> linkPoses(double fraction) const;
+  /// For a gripper of one jaw that closes against its body (one joint, no mimics): that body's
+  /// geometry as one link (the body's root link, facets and points in its frame). Else none.
+  [[nodiscard]] const std::optional<FingerLink>& fixedJaw() const noexcept { return fixedJaw_; }
   /// linkPoses(1.0), computed once.
   [[nodiscard]] const std::vector<Pose>& openPoses() const noexcept { return openPoses_; }
   /// The points of finger link `i` in the tool frame for link poses `poses`.
@@ -62,6 +65,7 @@ class FingerSet {
   std::vector<FingerLink> links_;
   std::vector<Vector3> rootsOpen_;
   std::vector<Pose> openPoses_;
+  std::optional<FingerLink> fixedJaw_;
 };
 
 /// The face of a pad that meets an object, in the pad link's frame: the corners of its facets
@@ -89,6 +93,9 @@ struct PadLayout {
   /// For each pad: its contact face, where it meets an object (see contactFace). Empty when none
   /// is found: the whole pad counts.
   std::vector<ContactFace> contactFaces;
+  /// With a single pad and a fixed jaw: the jaw's face that meets an object (in the frame of
+  /// FingerSet::fixedJaw()'s link); otherwise empty, and the pad closes onto the tool's axis.
+  ContactFace jawFace;
 };
 
 /// Along the approach axis, the band in which the pads' contact faces lie at link poses `poses`
@@ -98,6 +105,9 @@ std::pair<double, double> contactBand(const FingerSet& fingers, const PadLayout&
 /// The surface points of the contact face of pad `f` (an index into layout.pads) in the tool frame
 /// at link poses `poses` (every point of the pad when it has no contact face): where the pad gap
 /// is measured, not at ribs or lips elsewhere on the finger.
+/// The surface points of the fixed jaw's face in the tool frame (none without one).
+std::vector<Vector3> jawContactPoints(const FingerSet& fingers, const PadLayout& layout, const std::vector<Pose>& poses);
+
 std::vector<Vector3> padContactPoints(const FingerSet& fingers, const PadLayout& layout, std::size_t f,
                                       const std::vector<Pose>& poses);
 
@@ -126,6 +136,8 @@ std::vector<Facet> collisionFacets(const Link& link);
 /// (tool frame) at pose X_TL: of the facets within about 45 degrees of `inward`, grouped into
 /// layers 1 mm deep along it, the innermost layer of at least a quarter of the largest one's area.
 /// Empty when no facet looks that way.
-ContactFace contactFace(const FingerLink& link, const Pose& X_TL, const Vector3& inward);
+/// Only facets whose centres lie at least `nearest` along `approach` (tool frame) count.
+ContactFace contactFace(const FingerLink& link, const Pose& X_TL, const Vector3& inward, const Vector3& approach = Vector3::Zero(),
+                        double nearest = 0.0);
 
 }  // namespace lang2manip::gripper_detail

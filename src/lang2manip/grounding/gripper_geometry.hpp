@@ -41,6 +41,8 @@ struct GripperGeometry {
   Vector3 closingAxis = Vector3::UnitY();
   /// Fingers found on the gripper (2 for a parallel gripper; 0 without a gripper).
   int fingerCount = 0;
+  /// One jaw closing against a fixed jaw on the hand (the fixed jaw's link is the last pad link).
+  bool fixedJaw = false;
   /// Gap between the pads when fully open and when closed (m).
   double maxOpening = 0.0;
   double minOpening = 0.0;

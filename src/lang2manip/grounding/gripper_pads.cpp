@@ -103,7 +103,7 @@ std::vector<Facet> collisionFacets(const Link& link) {
   return facets;
 }
 
-ContactFace contactFace(const FingerLink& link, const Pose& X_TL, const Vector3& inward) {
+ContactFace contactFace(const FingerLink& link, const Pose& X_TL, const Vector3& inward, const Vector3& approach, double nearest) {
   struct Facing {
     double depth;
     std::size_t facet;
@@ -114,7 +114,9 @@ ContactFace contactFace(const FingerLink& link, const Pose& X_TL, const Vector3&
     if ((X_TL.linear() * facet.normal).dot(inward) < kFacingCosine) continue;
     Vector3 centre = Vector3::Zero();
     for (const Vector3& corner : facet.corners) centre += corner;
-    facing.push_back({(X_TL * (centre / static_cast<double>(facet.corners.size()))).dot(inward), i});
+    centre = X_TL * (centre / static_cast<double>(facet.corners.size()));
+    if (centre.dot(approach) < nearest) continue;
+    facing.push_back({centre.dot(inward), i});
   }
   if (facing.empty()) return {};
   std::sort(facing.begin(), facing.end(), [](const Facing& a, const Facing& b) { return a.depth < b.depth; });
@@ -168,7 +170,25 @@ std::pair<double, double> contactBand(const FingerSet& fingers, const PadLayout&
     unionLow = std::min(unionLow, padLow);
     unionHigh = std::max(unionHigh, padHigh);
   }
+  if (!layout.jawFace.empty() && fingers.fixedJaw()) {
+    const Pose& X_TJ = poses[static_cast<std::size_t>(fingers.fixedJaw()->link)];
+    std::vector<Vector3> corners;
+    for (const Vector3& p : layout.jawFace.corners) corners.push_back(X_TJ * p);
+    const auto [jawLow, jawHigh] = rangeAlong(corners, layout.approach);
+    low = std::max(low, jawLow);
+    high = std::min(high, jawHigh);
+    unionLow = std::min(unionLow, jawLow);
+    unionHigh = std::max(unionHigh, jawHigh);
+  }
   return low <= high ? std::pair{low, high} : std::pair{unionLow, unionHigh};
+}
+
+std::vector<Vector3> jawContactPoints(const FingerSet& fingers, const PadLayout& layout, const std::vector<Pose>& poses) {
+  std::vector<Vector3> points;
+  if (layout.jawFace.empty() || !fingers.fixedJaw()) return points;
+  const Pose& X_TJ = poses[static_cast<std::size_t>(fingers.fixedJaw()->link)];
+  for (const Vector3& p : layout.jawFace.surface) points.push_back(X_TJ * p);
+  return points;
 }
 
 std::vector<Vector3> padContactPoints(const FingerSet& fingers, const PadLayout& layout, std::size_t f,

@@ -22,6 +22,7 @@ bool isMovable(const Joint& joint) {
 class TreeWalker {
  public:
   explicit TreeWalker(const RobotModelData& robot) : robot_(robot) {
+    for (const Link& link : robot.links) links_[link.name] = &link;
     std::set<std::string> children;
     for (const Joint& joint : robot.joints) {
       childJoints_[joint.parentLink].push_back(&joint);
@@ -45,7 +46,73 @@ class TreeWalker {
     if (!isMovable(joint)) return false;
     if (joint.type == JointType::kPrismatic) return movableDepthBelow(joint.childLink) <= 1;
     const std::string body = rigidRoot(joint.parentLink);
-    return actuatedOnBody(body) > 1 && movableDepthBelow(joint.childLink) < kFingerJoints && parentJoint_.count(body) > 0;
+    if (parentJoint_.count(body) == 0) return false;
+    return (actuatedOnBody(body) > 1 && movableDepthBelow(joint.childLink) < kFingerJoints) || isSingleJaw(joint);
+  }
+
+  // One jaw that closes against a fixed one (a revolute jaw on a servo, as on many small arms):
+  // the last movable joint, turning across the direction its link reaches out from the hinge,
+  // on a body whose own geometry reaches at least kFixedJawReach as far the same way beside it
+  // (within the jaw's length of the line it reaches along).
+  // A wrist's last joint is no jaw: the body that carries it lies behind the hinge, and a roll
+  // turns about the direction its link reaches.
+  bool isSingleJaw(const Joint& joint) const {
+    constexpr double kLeastJawLength = 0.02;
+    constexpr double kFixedJawReach = 0.6;
+    constexpr double kAcrossCosine = 0.5;
+    if (joint.type != JointType::kRevolute || movableDepthBelow(joint.childLink) > 0) return false;
+    const std::vector<Vector3> jaw = rigidCorners(joint.childLink, joint.origin);
+    const std::vector<Vector3> body = rigidCorners(rigidRoot(joint.parentLink), bodyToParent(joint.parentLink));
+    if (jaw.empty() || body.empty()) return false;
+    const Vector3 hinge = joint.origin.translation();
+    Vector3 centre = Vector3::Zero();
+    for (const Vector3& p : jaw) centre += p;
+    centre /= static_cast<double>(jaw.size());
+    if ((centre - hinge).norm() < 1e-6) return false;
+    const Vector3 out = (centre - hinge).normalized();
+    if (std::abs((joint.origin.linear() * joint.axis).normalized().dot(out)) > kAcrossCosine) return false;
+    double jawReach = 0.0, bodyReach = 0.0;
+    for (const Vector3& p : jaw) jawReach = std::max(jawReach, (p - hinge).dot(out));
+    for (const Vector3& p : body) {
+      const Vector3 offset = p - hinge;
+      const double along = offset.dot(out);
+      // Beside the moving jaw: no farther from the line it reaches along than it is long.
+      if ((offset - along * out).norm() <= jawReach) bodyReach = std::max(bodyReach, along);
+    }
+    return jawReach >= kLeastJawLength && bodyReach >= kFixedJawReach * jawReach;
+  }
+
+  /// The pose of link `link` in the frame of its rigid body's root (through fixed joints) is
+  /// inverted: the root's pose in `link`'s frame.
+  Pose bodyToParent(const std::string& link) const {
+    Pose rootToLink = Pose::Identity();
+    for (std::string at = link; at != rigidRoot(link);) {
+      const Joint* joint = parentJoint_.at(at);
+      rootToLink = joint->origin * rootToLink;
+      at = joint->parentLink;
+    }
+    return rootToLink.inverse();
+  }
+
+  /// The corners of the collision bounds of every link rigidly attached to `link` (through fixed
+  /// joints below it), in the frame X_FL places `link` in.
+  std::vector<Vector3> rigidCorners(const std::string& link, const Pose& X_FL) const {
+    std::vector<Vector3> corners;
+    if (const auto found = links_.find(link); found != links_.end()) {
+      for (const Shape& shape : found->second->collisions) {
+        const AlignedBox3 box = shapeBounds(shape);
+        if (box.isEmpty()) continue;
+        for (int c = 0; c < 8; ++c) corners.push_back(X_FL * box.corner(static_cast<AlignedBox3::CornerType>(c)));
+      }
+    }
+    if (const auto children = childJoints_.find(link); children != childJoints_.end()) {
+      for (const Joint* child : children->second) {
+        if (child->type != JointType::kFixed) continue;
+        const std::vector<Vector3> more = rigidCorners(child->childLink, X_FL * child->origin);
+        corners.insert(corners.end(), more.begin(), more.end());
+      }
+    }
+    return corners;
   }
 
   bool isGripperJoint(const Joint& joint) const {
@@ -207,6 +274,7 @@ class TreeWalker {
   }
 
   const RobotModelData& robot_;
+  std::map<std::string, const Link*> links_;
   std::map<std::string, std::vector<const Joint*>> childJoints_;
   std::map<std::string, const Joint*> parentJoint_;
   std::string root_;
