@@ -55,7 +55,24 @@ TEST(DescribeCli, TheBuiltInPandaIsDescribedFromItsSrdfAndItsFingers) {
   EXPECT_THAT(result.output, HasSubstr("gripper: parallel"));
   EXPECT_THAT(result.output, HasSubstr("opening 0 .. 0.08 m between pads"));
   EXPECT_THAT(result.output, HasSubstr("approach axis (0, 0, 1)"));
+  EXPECT_THAT(result.output, HasSubstr("measured: 2 of 2 pads' contact faces found on their collision surfaces; approach axis "
+                                       "along a tool frame axis; confidence high"));
   EXPECT_THAT(result.output, HasSubstr("object holder: movable, role container (given by its model)"));
+}
+
+TEST(DescribeCli, AGripperMeasuredLessSurelySaysSo) {
+  // Fingers mounted askew on the palm: the approach axis found between them is oblique to the
+  // tool frame, so the description is less sure than the Panda's.
+  const TempDirectory directory;
+  std::string robot = kHingedGripperRobot;
+  for (const char* hinge : {"<origin xyz=\"0 0.03 0.04\"/>", "<origin xyz=\"0 -0.03 0.04\"/>"}) {
+    const std::string origin = hinge;
+    robot.replace(robot.find(origin), origin.size(), origin.substr(0, origin.size() - 2) + " rpy=\"0.8 0.3 0\"/>");
+  }
+  std::ofstream(directory.path() / "leaning.urdf") << robot;
+  const RunResult result = run("describe " + (directory.path() / "leaning.urdf").string(), false);
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("approach axis oblique to the tool frame; confidence medium")) << result.output;
 }
 
 TEST(DescribeCli, AnInferredGripperIsWrittenAsAnSrdfThatReadsBackTheSame) {

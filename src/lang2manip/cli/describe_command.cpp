@@ -29,6 +29,21 @@ struct DescribeOptions {
 
 json vector3(const Vector3& v) { return {v.x(), v.y(), v.z()}; }
 
+/// How the gripper was measured and how sure that is: high when every pad's contact face was
+/// found and the approach axis lies along a tool axis (or was given), low when neither holds.
+void addMeasurement(const Manipulator& arm, const GripperGeometry& gripper, json& report) {
+  constexpr double kAlongAxis = 0.999;
+  const auto pads = static_cast<int>(gripper.padLinks.size());
+  const Vector3 approach = gripper.graspFrame.linear() * gripper.approachAxis;
+  const bool alongToolAxis = arm.approachAxis.has_value() || approach.cwiseAbs().maxCoeff() >= kAlongAxis;
+  const bool facesFound = gripper.padsWithContactFace == pads;
+  report["measured"] = std::to_string(gripper.padsWithContactFace) + " of " + std::to_string(pads) +
+                       " pads' contact faces found on their collision surfaces" +
+                       (facesFound ? "" : " (the others count whole)") + "; approach axis " +
+                       (arm.approachAxis ? "given" : alongToolAxis ? "along a tool frame axis" : "oblique to the tool frame");
+  report["confidence"] = facesFound && alongToolAxis ? "high" : facesFound || alongToolAxis ? "medium" : "low";
+}
+
 json gripperJson(const RobotModel& model, const Manipulator& arm) {
   json report{{"joints", json::array()}};
   GripperGeometry gripper;
@@ -60,6 +75,7 @@ json gripperJson(const RobotModel& model, const Manipulator& arm) {
   report["closing_axis_in_tool_frame"] = vector3(R * gripper.closingAxis);
   report["grasp_frame_in_tool_frame"] = vector3(gripper.graspFrame.translation());
   report["finger_bounds_in_grasp_frame"] = {{"min", vector3(gripper.fingerBounds.min())}, {"max", vector3(gripper.fingerBounds.max())}};
+  addMeasurement(arm, gripper, report);
   return report;
 }
 
@@ -115,7 +131,8 @@ std::string gripperText(const json& gripper) {
          "      approach axis " + triple(gripper["approach_axis_in_tool_frame"]) + " (" +
          gripper["approach_axis_source"].get<std::string>() + "), closing axis " +
          triple(gripper["closing_axis_in_tool_frame"]) + " in the tool frame; grasp frame at " +
-         triple(gripper["grasp_frame_in_tool_frame"]) + "\n";
+         triple(gripper["grasp_frame_in_tool_frame"]) + "\n" + "      measured: " + gripper["measured"].get<std::string>() +
+         "; confidence " + gripper["confidence"].get<std::string>() + "\n";
 }
 
 std::string describeText(const json& report) {

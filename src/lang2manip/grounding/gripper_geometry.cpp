@@ -117,6 +117,8 @@ void describeFingers(const RobotModel& model, const FingerSet& fingers, const Pa
   g.fingerLength = tip - rootLow;
   for (std::size_t pad : layout.pads) g.padLinks.push_back(model.links()[static_cast<std::size_t>(fingers.links()[pad].link)].name);
   g.fixedJaw = layout.pads.size() == 1 && !layout.jawFace.empty() && fingers.fixedJaw();
+  for (const gripper_detail::ContactFace& face : layout.contactFaces) g.padsWithContactFace += face.empty() ? 0 : 1;
+  g.padsWithContactFace += g.fixedJaw ? 1 : 0;
   if (g.fixedJaw) g.padLinks.push_back(model.links()[static_cast<std::size_t>(fingers.fixedJaw()->link)].name);
   for (int link : fingers.movedLinks()) g.fingerLinks.push_back(model.links()[static_cast<std::size_t>(link)].name);
   // At every sample of the travel: linkage fingers reach farther along the approach axis as

@@ -43,6 +43,9 @@ struct GripperGeometry {
   int fingerCount = 0;
   /// One jaw closing against a fixed jaw on the hand (the fixed jaw's link is the last pad link).
   bool fixedJaw = false;
+  /// Pads (and fixed jaw) whose contact face was found on their collision surface; the others
+  /// count whole, which places the gap less surely.
+  int padsWithContactFace = 0;
   /// Gap between the pads when fully open and when closed (m).
   double maxOpening = 0.0;
   double minOpening = 0.0;
