@@ -90,6 +90,17 @@ TEST(ExecutionFailures, PushIntoAnObstacleFailsAtThePushStage) {
   EXPECT_EQ(f.record.finalScene.object("eraser").pose.translation(), scene.object("eraser").pose.translation());
 }
 
+TEST(ExecutionFailures, AnArmThatCannotReachItsDeskSaysWhatToMove) {
+  Scene scene = deskScene("panda");
+  // The arm stands 2.5 m behind its desk: neither the marker nor the holder is within its reach.
+  scene.robot(scene.robots().front().name).basePose.translation().x() -= 2.5;
+  Failed f = executeExpectingFailure(scene, planOf({pickAction("marker")}));
+  EXPECT_EQ(f.failure.stage, "grasp");
+  EXPECT_THAT(f.failure.reason, HasSubstr("pick marker: marker is "));
+  EXPECT_THAT(f.failure.reason, HasSubstr("from the arm base of panda (link panda_link0), beyond its reach of"));
+  EXPECT_THAT(f.failure.reason, HasSubstr("move the robot (its <Home> in the problem file) or marker closer"));
+}
+
 TEST(ExecutionFailures, PreconditionsNameTheObject) {
   const Scene scene = deskScene("panda");
   Failed f = executeExpectingFailure(scene, planOf({pickAction("marker"), pickAction("marker")}));

@@ -166,6 +166,7 @@ std::optional<GroundingAttempt> groundPick(const GroundingContext& c, const Scen
     return refuse(record, "precondition", "cannot pick " + object.name + ": the gripper already holds " + held->object);
   }
   const ReachabilityChecker reach = arm.reachIn(world);
+  if (std::string far = reach.beyondReach(object.name); !far.empty()) return refuse(record, "grasp", "pick " + object.name + ": " + far);
   for (const VectorX& seed : ikSeeds(arm, world)) {
     const auto began = std::chrono::steady_clock::now();
     GraspRequest request;
@@ -206,6 +207,12 @@ std::optional<GroundingAttempt> groundPlace(const GroundingContext& c, const Sce
     return refuse(record, "precondition", "cannot place " + object.name + ": it is not held; pick it first");
   }
   const ReachabilityChecker reach = arm.reachIn(world);
+  const PlacementTarget target = placementTargetFromParams(action.params);
+  if (target.relation == SpatialRelation::kIn && world.findObject(target.target) != nullptr) {
+    if (std::string far = reach.beyondReach(target.target); !far.empty()) {
+      return refuse(record, "placement", "place " + object.name + " in " + target.target + ": " + far);
+    }
+  }
   for (const VectorX& seed : ikSeeds(arm, world)) {
     const auto began = std::chrono::steady_clock::now();
     PlacementRequest request;

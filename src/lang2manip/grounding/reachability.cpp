@@ -61,6 +61,7 @@ ReachabilityChecker::ReachabilityChecker(std::shared_ptr<const CollisionChecker>
   const Manipulator& arm = findManipulator(model(), gripper_->manipulator);
   chainBase_ = this->robot().basePose * computeLinkPose(model(), currentConfiguration(), arm.baseLink);
   chainReach_ = KinematicChain(model(), arm.baseLink, arm.toolFrame).reach();
+  chainBaseLink_ = arm.baseLink;
   armJoints_ = arm.armJoints.size();
   toolFrame_ = arm.toolFrame;
   context_ = std::shared_ptr<CollisionContext>(checker_->makeContext());
@@ -95,6 +96,18 @@ std::string ReachabilityChecker::collisionReason(const VectorX& q, const std::st
     if (!allowedContact(contact, touchable)) pairs += (pairs.empty() ? "" : ", ") + contactText(contact);
   }
   return "in collision: " + pairs;
+}
+
+std::string ReachabilityChecker::beyondReach(const std::string& object) const {
+  const AlignedBox3 bounds = scene().object(object).worldBounds();
+  const Vector3 base = chainBase_.translation();
+  const Vector3 nearest = base.cwiseMax(bounds.min()).cwiseMin(bounds.max());
+  const double distance = (nearest - base).norm();
+  const double reach = chainReach_ + gripper_->graspFrame.translation().norm() + std::max(gripper_->fingertipOffset(), 0.0);
+  if (distance <= reach) return {};
+  return object + " is " + metresText(distance) + " from the arm base of " + robotName_ + " (link " + chainBaseLink_ +
+         "), beyond its reach of " + metresText(reach) + ": move the robot (its <Home> in the problem file) or " + object +
+         " closer";
 }
 
 ReachResult ReachabilityChecker::reach(const Pose& X_WG, const VectorX& seed, double opening,

@@ -87,6 +87,12 @@ class ReachabilityChecker {
   /// whose hand turns with where it is; the caller checks that the turned pose still does.
   [[nodiscard]] std::optional<Pose> turnedToReach(const Pose& X_WG, const VectorX& seed) const;
 
+  /// Why no grasp can reach object `object` of the scene: the nearest point of its bounds lies
+  /// farther from the arm's base than the chain reaches plus the gripper's length ("marker is
+  /// 0.52 m from the arm base of px100 (link base_link), beyond its reach of 0.43 m: move ...").
+  /// Empty when some part of it is within reach.
+  [[nodiscard]] std::string beyondReach(const std::string& object) const;
+
   /// Smallest distance (m) between the robot at `q` and the rest of the world; negative when in
   /// collision.
   [[nodiscard]] double clearance(const VectorX& q) const;
@@ -109,6 +115,7 @@ class ReachabilityChecker {
   ReachSettings settings_;
   Pose chainBase_ = Pose::Identity();
   double chainReach_ = 0.0;
+  std::string chainBaseLink_;
   std::size_t armJoints_ = 0;
   std::string toolFrame_;
   std::shared_ptr<CollisionContext> context_;
