@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <string>
 
 #include "grounding_test_support.hpp"
@@ -17,6 +18,7 @@
 namespace lang2manip::test {
 namespace {
 
+using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
 
@@ -182,6 +184,23 @@ TEST(GripperGeometry, AWristsLastJointIsNoJaw) {
   const Manipulator& arm = model->semantics().manipulators.front();
   EXPECT_EQ(arm.armJoints, (std::vector<std::string>{"shoulder", "wrist", "pitch"}));
   EXPECT_TRUE(arm.gripperJoints.empty());
+}
+
+TEST(GripperGeometry, AnSrdfWhoseOpenAndClosedStatesAreSwappedIsRefusedWithTheFix) {
+  // The pads touch at 0 and are 6 cm apart at -0.03; the SRDF calls 0 "open".
+  const TempDirectory directory;
+  std::ofstream(directory.path() / "probe.urdf") << armWith(reversedSlidingFingers());
+  std::ofstream(directory.path() / "probe.srdf") << R"(<robot name="probe">
+    <group name="arm"><chain base_link="base" tip_link="palm"/></group>
+    <group name="hand"><joint name="left_slide"/><joint name="right_slide"/></group>
+    <group_state name="open" group="hand"><joint name="left_slide" value="0"/></group_state>
+    <group_state name="close" group="hand"><joint name="left_slide" value="-0.03"/></group_state>
+    <end_effector name="hand" parent_link="palm" group="hand" parent_group="arm"/></robot>)";
+  const RobotModelPtr model = readUrdfFile(directory.path() / "probe.urdf");
+  EXPECT_THAT([&] { describeGripper(*model); },
+              ThrowsMessage<InputError>(AllOf(HasSubstr("gripper of probe/arm: the SRDF's state \"open\" puts the pads 0.0 mm apart"),
+                                              HasSubstr("its state \"close\" 60.0 mm: the two are swapped (joint left_slide"),
+                                              HasSubstr("swap their values in the SRDF"))));
 }
 
 TEST(GripperGeometry, OpeningsComeFromThePadsNotFromTheJointValues) {

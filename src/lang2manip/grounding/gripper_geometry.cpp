@@ -234,7 +234,8 @@ Matrix3 toolRotation(const Vector3& approach) {
 void describeGripperJoints(const RobotModel& model, const Manipulator& manipulator, GripperGeometry& g, bool mayReverse = true) {
   const std::string context = where(model, manipulator);
   const FingerSet fingers(model, g.toolFrame, g.gripperJoints, g.closedValues, g.openValues);
-  if (mayReverse && fingers.spread(0.0) > fingers.spread(1.0)) {
+  const bool statesGiven = !manipulator.gripperOpenState.empty() && !manipulator.gripperClosedState.empty();
+  if (mayReverse && !statesGiven && fingers.spread(0.0) > fingers.spread(1.0)) {
     // The fingers spread wider at the "closed" end: the travel runs the other way.
     std::swap(g.openValues, g.closedValues);
     describeGripperJoints(model, manipulator, g, false);
@@ -242,6 +243,15 @@ void describeGripperJoints(const RobotModel& model, const Manipulator& manipulat
   }
   const PadLayout layout = gripper_detail::layoutPads(fingers, context, manipulator.approachAxis);
   g.openingCurve = openingCurve(fingers, layout);
+  if (statesGiven && g.openingCurve.front() > g.openingCurve.back() + kMinimumTravel) {
+    // The SRDF says which end is open, and the fingers say the other.
+    throw InputError(context + ": the SRDF's state \"" + manipulator.gripperOpenState + "\" puts the pads " +
+                     millimetres(g.openingCurve.back()) + " apart and its state \"" + manipulator.gripperClosedState + "\" " +
+                     millimetres(g.openingCurve.front()) + ": the two are swapped (joint " + g.gripperJoints.front() + ": \"" +
+                     manipulator.gripperOpenState + "\" " + std::to_string(g.openValues.front()) + ", \"" +
+                     manipulator.gripperClosedState + "\" " + std::to_string(g.closedValues.front()) +
+                     "); swap their values in the SRDF");
+  }
   if (mayReverse && g.openingCurve.front() > g.openingCurve.back()) {
     // The limits' "open" end is where the pads meet: the travel runs the other way.
     std::swap(g.openValues, g.closedValues);

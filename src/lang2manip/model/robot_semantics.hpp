@@ -56,6 +56,10 @@ struct Manipulator {
   /// Gripper joint values when open and when closed (same order as gripperJoints).
   std::vector<double> gripperOpen;
   std::vector<double> gripperClosed;
+  /// The SRDF state (e.g. "open") the open values come from, and the one of the closed values;
+  /// empty when they come from the joint limits (which do not say which end is open).
+  std::string gripperOpenState;
+  std::string gripperClosedState;
   /// The direction (unit, in the tool frame) a grasp or push moves the tool into the object,
   /// when given (SRDF <lang2manip_approach>, --approach-axis); otherwise it is measured from
   /// the fingers (from their roots towards the pads) or, without a gripper, the tool frame's +z.

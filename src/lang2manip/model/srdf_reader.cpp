@@ -220,18 +220,19 @@ std::vector<std::string> movableJointsOf(const PlanningGroup& group, const TreeI
   return joints;
 }
 
-double namedValue(const RobotSemantics& semantics, const std::string& group,
-                  std::initializer_list<const char*> names, const std::string& joint,
-                  double fallback) {
+/// The value of `joint` in the first of the group's states named `names`, and that state's name;
+/// `fallback` and an empty name when none gives it.
+std::pair<double, std::string> namedValue(const RobotSemantics& semantics, const std::string& group,
+                                          std::initializer_list<const char*> names, const std::string& joint, double fallback) {
   for (const char* name : names) {
     for (const NamedState& state : semantics.namedStates) {
       if (state.group != group || state.name != name) continue;
       for (const auto& [stateJoint, value] : state.values) {
-        if (stateJoint == joint) return value;
+        if (stateJoint == joint) return {value, name};
       }
     }
   }
-  return fallback;
+  return {fallback, {}};
 }
 
 void addGripper(Manipulator& arm, const EndEffector& effector, const RobotSemantics& semantics,
@@ -240,10 +241,12 @@ void addGripper(Manipulator& arm, const EndEffector& effector, const RobotSemant
   for (const std::string& joint : movableJointsOf(*gripper, tree)) {
     const JointLimits& limits = tree.joints.at(joint)->limits;
     arm.gripperJoints.push_back(joint);
-    arm.gripperOpen.push_back(
-        namedValue(semantics, gripper->name, {"open", "opened"}, joint, limits.upper));
-    arm.gripperClosed.push_back(
-        namedValue(semantics, gripper->name, {"close", "closed"}, joint, limits.lower));
+    const auto [open, openState] = namedValue(semantics, gripper->name, {"open", "opened"}, joint, limits.upper);
+    const auto [closed, closedState] = namedValue(semantics, gripper->name, {"close", "closed"}, joint, limits.lower);
+    arm.gripperOpen.push_back(open);
+    arm.gripperClosed.push_back(closed);
+    if (!openState.empty()) arm.gripperOpenState = openState;
+    if (!closedState.empty()) arm.gripperClosedState = closedState;
   }
 }
 
