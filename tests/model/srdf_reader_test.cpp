@@ -109,6 +109,20 @@ TEST(SrdfReader, APrismaticTorsoIsPartOfTheArmNotAFinger) {
   EXPECT_THAT(semantics.manipulators[0].gripperJoints, ElementsAre("finger"));
 }
 
+TEST(SrdfReader, AServoHornThatTurnsFreelyOnTheHandIsNoFinger) {
+  // The fingers slide; the servo that drives them through a linkage the URDF does not hold shows
+  // only as a continuous joint turning a horn on the hand.
+  RobotModelData data = gripperArm();
+  data.links.push_back({"horn", {}, {}});
+  data.joints.push_back(joint("servo", JointType::kContinuous, "hand", "horn"));
+  const RobotSemantics semantics = inferSemantics(data);
+  ASSERT_EQ(semantics.manipulators.size(), 1U);
+  EXPECT_THAT(semantics.manipulators[0].armJoints, ElementsAre("j1", "j2"));
+  EXPECT_THAT(semantics.manipulators[0].gripperJoints, ElementsAre("finger"));
+  EXPECT_THAT(semantics.manipulators[0].idleHandJoints, ElementsAre("servo"));
+  EXPECT_EQ(semantics.manipulators[0].gripperOpen.size(), 1U);
+}
+
 // An arm carrying a hand of three fingers with three joints each, none a mimic: one gripper.
 TEST(SrdfReader, TheFingersOfAHandAreOneGripper) {
   RobotModelData data;

@@ -56,6 +56,7 @@ json gripperJson(const RobotModel& model, const Manipulator& arm) {
   for (std::size_t i = 0; i < gripper.gripperJoints.size(); ++i) {
     report["joints"].push_back({{"name", gripper.gripperJoints[i]}, {"open", gripper.openValues[i]}, {"closed", gripper.closedValues[i]}});
   }
+  report["idle_joints"] = arm.idleHandJoints;
   const Matrix3 R = gripper.graspFrame.linear();
   report["approach_axis_in_tool_frame"] = vector3(R * gripper.approachAxis);
   report["approach_axis_source"] = arm.approachAxis ? "given"
@@ -119,6 +120,10 @@ std::string gripperText(const json& gripper) {
   std::string text = "    gripper: " + gripper["kind"].get<std::string>() + "\n";
   for (const json& joint : gripper["joints"]) {
     text += "      joint " + joint["name"].get<std::string>() + ": open " + number(joint["open"]) + ", closed " + number(joint["closed"]) + "\n";
+  }
+  for (const json& joint : gripper.value("idle_joints", json::array())) {
+    text += "      joint " + joint.get<std::string>() +
+            " turns without limits on the hand: no finger, not driven (its coupling to the fingers is not in the URDF)\n";
   }
   if (!gripper.contains("opening")) {
     return text + "      approach axis " + triple(gripper["approach_axis_in_tool_frame"]) + " in the tool frame (" +

@@ -56,6 +56,9 @@ struct Manipulator {
   /// Gripper joint values when open and when closed (same order as gripperJoints).
   std::vector<double> gripperOpen;
   std::vector<double> gripperClosed;
+  /// Joints on the hand that turn without limits beside finger joints that have them (a servo's
+  /// horn whose linkage to the fingers the URDF does not hold): no fingers, and not driven.
+  std::vector<std::string> idleHandJoints;
   /// The SRDF state (e.g. "open") the open values come from, and the one of the closed values;
   /// empty when they come from the joint limits (which do not say which end is open).
   std::string gripperOpenState;

@@ -249,6 +249,24 @@ class TreeWalker {
     return end;
   }
 
+  /// A joint that turns without limits among gripper joints that have them moves no finger the
+  /// way the others do (a servo horn): it is left out of the gripper.
+  void setIdleHandJoints(Manipulator& arm) const {
+    const auto turnsFreely = [&](const std::string& name) {
+      return std::any_of(robot_.joints.begin(), robot_.joints.end(),
+                         [&](const Joint& joint) { return joint.name == name && joint.type == JointType::kContinuous; });
+    };
+    const auto limited = std::count_if(arm.gripperJoints.begin(), arm.gripperJoints.end(), [&](const std::string& name) { return !turnsFreely(name); });
+    if (limited == 0) return;
+    for (std::size_t i = arm.gripperJoints.size(); i-- > 0;) {
+      if (!turnsFreely(arm.gripperJoints[i])) continue;
+      arm.idleHandJoints.insert(arm.idleHandJoints.begin(), arm.gripperJoints[i]);
+      arm.gripperJoints.erase(arm.gripperJoints.begin() + static_cast<std::ptrdiff_t>(i));
+      arm.gripperOpen.erase(arm.gripperOpen.begin() + static_cast<std::ptrdiff_t>(i));
+      arm.gripperClosed.erase(arm.gripperClosed.begin() + static_cast<std::ptrdiff_t>(i));
+    }
+  }
+
   Manipulator manipulatorEndingAt(const Joint& tip) const {
     Manipulator arm;
     arm.name = "arm";
@@ -269,6 +287,7 @@ class TreeWalker {
         arm.gripperClosed.push_back(joint.limits.lower);
       }
     }
+    setIdleHandJoints(arm);
     arm.toolFrame = toolFrameBelow(tip.childLink, arm.gripperJoints);
     return arm;
   }
