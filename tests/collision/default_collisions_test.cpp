@@ -121,6 +121,7 @@ TEST(SelfContact, LinksWhoseFacesMeetAtZeroDepthTouchAndDeeperOverlapCollides) {
   FclCheckerSettings settings;
   settings.allowedCollisions.disableNever = false;
   settings.allowedCollisions.disableAlways = false;
+  settings.allowedCollisions.disableDefault = false;
   const FclCollisionChecker checker(scene, settings);
   const auto context = checker.makeContext();
   EXPECT_TRUE(checker.isStateValid(0, VectorX::Zero(2), *context)) << contactList(checker.checkState(0, VectorX::Zero(2), {}, *context));
@@ -128,6 +129,56 @@ TEST(SelfContact, LinksWhoseFacesMeetAtZeroDepthTouchAndDeeperOverlapCollides) {
   const CollisionReport report = checker.checkState(0, pressed, {}, *context);
   EXPECT_FALSE(report.valid);
   EXPECT_THAT(contactList(report), HasSubstr("pads/left - pads/right"));
+}
+
+TEST(SelfContact, APartNoArmMovesThatOverlapsWhereTheRobotStartsIsAllowed) {
+  // A bellows on a slide of its own under the torso (the arm's first joint lifts the torso; no
+  // arm joint drives the slide) sits 2 cm into the base at 0, as a vendor left it; the arm is
+  // checked against it as ever.
+  const TempDirectory directory;
+  Scene scene;
+  SceneRobot robot;
+  robot.name = "torso";
+  robot.model = readUrdfString(R"(<robot name="torso">
+  <link name="base"><collision><origin xyz="0 0 0.05"/><geometry><box size="0.3 0.3 0.1"/></geometry></collision></link>
+  <link name="bellows"><collision><origin xyz="0.3 0 -0.04"/><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <link name="torso"><collision><origin xyz="0 0 0.1"/><geometry><box size="0.04 0.04 0.1"/></geometry></collision></link>
+  <link name="upper"><collision><origin xyz="0 0 0.25"/><geometry><box size="0.04 0.04 0.3"/></geometry></collision></link>
+  <link name="fore"><collision><origin xyz="0 0 0.15"/><geometry><box size="0.04 0.04 0.3"/></geometry></collision></link>
+  <joint name="lift" type="prismatic"><parent link="base"/><child link="torso"/><origin xyz="0 0 0.1"/><axis xyz="0 0 1"/>
+    <limit lower="0" upper="0.3" effort="1" velocity="1"/></joint>
+  <joint name="bellows_slide" type="prismatic"><parent link="torso"/><child link="bellows"/><origin xyz="-0.12 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="0" upper="0.3" effort="1" velocity="1"/></joint>
+  <joint name="shoulder" type="revolute"><parent link="torso"/><child link="upper"/><origin xyz="0 0 0.1"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="elbow" type="revolute"><parent link="upper"/><child link="fore"/><origin xyz="0 0 0.4"/><axis xyz="0 1 0"/>
+    <limit lower="-2.5" upper="2.5" effort="1" velocity="1"/></joint>
+  <link name="wrist"/><link name="hand"><collision><origin xyz="0 0 0.02"/><geometry><box size="0.04 0.04 0.04"/></geometry></collision></link>
+  <link name="fore_roll"/>
+  <joint name="forearm_roll" type="revolute"><parent link="fore"/><child link="fore_roll"/><origin xyz="0 0 0.3"/><axis xyz="0 0 1"/>
+    <limit lower="-2" upper="2" effort="1" velocity="1"/></joint>
+  <joint name="wrist_pitch" type="revolute"><parent link="fore_roll"/><child link="wrist"/><axis xyz="0 1 0"/>
+    <limit lower="-2" upper="2" effort="1" velocity="1"/></joint>
+  <joint name="wrist_roll" type="revolute"><parent link="wrist"/><child link="hand"/><axis xyz="0 0 1"/>
+    <limit lower="-2" upper="2" effort="1" velocity="1"/></joint>
+</robot>)",
+                               "torso.urdf", directory.path(), {});
+  robot.configuration = VectorX::Zero(7);
+  scene.addRobot(robot);
+  ASSERT_FALSE(robot.model->semantics().manipulators.empty());
+  ASSERT_EQ(robot.model->semantics().manipulators.front().armJoints, (std::vector<std::string>{"lift", "shoulder", "elbow", "forearm_roll", "wrist_pitch", "wrist_roll"}));
+  const FclCollisionChecker checker(scene);
+  const RobotModel& model = *scene.robots()[0].model;
+  EXPECT_EQ(checker.allowedCollisions(0).reason(model.linkIndex("base"), model.linkIndex("bellows")), AllowedReason::kDefault);
+  EXPECT_EQ(allowedReasonName(AllowedReason::kDefault), "default");
+  const auto context = checker.makeContext();
+  EXPECT_TRUE(checker.isStateValid(0, VectorX::Zero(7), *context)) << contactList(checker.checkState(0, VectorX::Zero(7), {}, *context));
+  // Only parts no arm joint drives: the arm's links are not allowed against the bellows for
+  // where they stand at 0.
+  for (const char* link : {"torso", "upper", "fore", "hand"}) {
+    EXPECT_NE(checker.allowedCollisions(0).reason(model.linkIndex(link), model.linkIndex("bellows")), AllowedReason::kDefault) << link;
+    EXPECT_NE(checker.allowedCollisions(0).reason(model.linkIndex(link), model.linkIndex("base")), AllowedReason::kDefault) << link;
+  }
 }
 
 TEST(DefaultCollisions, AreWrittenBackByTheSrdfWriter) {

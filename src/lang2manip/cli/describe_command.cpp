@@ -186,7 +186,7 @@ void addComputedDisabledPairs(const Scene& scene, RobotSemantics& semantics) {
       if (all[static_cast<std::size_t>(a)].collisions.empty() || all[static_cast<std::size_t>(b)].collisions.empty()) continue;
       const AllowedReason reason = matrix.reason(a, b);
       const char* name = reason == AllowedReason::kAdjacent ? "Adjacent" : reason == AllowedReason::kNever ? "Never"
-                         : reason == AllowedReason::kAlways ? "Always" : nullptr;
+                         : reason == AllowedReason::kAlways ? "Always" : reason == AllowedReason::kDefault ? "Default" : nullptr;
       if (name != nullptr) semantics.disabledCollisions.push_back({all[static_cast<std::size_t>(a)].name, all[static_cast<std::size_t>(b)].name, name});
     }
   }

@@ -117,7 +117,7 @@ bool readReasons(std::istream& in, int links, AllowedCollisionMatrix& matrix) {
     if (!std::getline(in, row) || row.size() != static_cast<std::size_t>(links)) return false;
     for (int b = 0; b < links; ++b) {
       const int reason = row[static_cast<std::size_t>(b)] - '0';
-      if (reason < 0 || reason > static_cast<int>(AllowedReason::kAlways)) return false;
+      if (reason < 0 || reason > static_cast<int>(AllowedReason::kDefault)) return false;
       if ((a == b) != (reason == static_cast<int>(AllowedReason::kSameLink))) return false;
       if (b > a && reason != 0) matrix.allow(a, b, static_cast<AllowedReason>(reason));
       if (b < a && matrix.reason(a, b) != static_cast<AllowedReason>(reason)) return false;
@@ -162,6 +162,7 @@ std::string allowedCollisionKey(const RobotModel& model, const AllowedCollisionS
   digest.add(settings.disableNever);
   digest.add(settings.disableAlways);
   digest.add(settings.alwaysFraction);
+  digest.add(settings.disableDefault);
   digest.add(static_cast<int>(model.links().size()));
   for (const Link& link : model.links()) {
     digest.add(link.name);

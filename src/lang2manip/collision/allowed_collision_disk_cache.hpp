@@ -17,7 +17,7 @@ namespace lang2manip {
 
 /// Bump when computeAllowedCollisionMatrix() or the link collision test it is given changes
 /// what it returns for the same model and settings: older files then no longer match any key.
-inline constexpr int kAllowedCollisionAlgorithmVersion = 1;
+inline constexpr int kAllowedCollisionAlgorithmVersion = 4;
 
 /// The directory the matrices are kept in: $LANG2MANIP_CACHE_DIR, else
 /// $XDG_CACHE_HOME/lang2manip, else $HOME/.cache/lang2manip; nullopt when none is set or

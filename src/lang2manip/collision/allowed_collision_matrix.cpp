@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numeric>
+#include <set>
 
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/core/random.hpp"
@@ -63,6 +64,62 @@ void allowSrdf(const RobotModel& model, AllowedCollisionMatrix& matrix) {
   }
 }
 
+/// For each link: whether its own joint is one a manipulator drives (arm, gripper, or a mimic of
+/// one), and whether any joint above it is.
+struct PlanningMotion {
+  std::vector<char> driven;
+  std::vector<char> moved;
+};
+
+PlanningMotion planningMotion(const RobotModel& model) {
+  std::set<std::string> planned;
+  for (const Manipulator& arm : model.semantics().manipulators) {
+    planned.insert(arm.armJoints.begin(), arm.armJoints.end());
+    planned.insert(arm.gripperJoints.begin(), arm.gripperJoints.end());
+  }
+  PlanningMotion motion{std::vector<char>(model.links().size(), 0), std::vector<char>(model.links().size(), 0)};
+  for (std::size_t link = 1; link < model.links().size(); ++link) {  // parents come first
+    const int joint = model.parentJoint(static_cast<int>(link));
+    const int source = model.mimicSource(joint);
+    const std::string& followed =
+        source >= 0 ? model.joints()[static_cast<std::size_t>(model.variableJoints()[static_cast<std::size_t>(source)])].name : "";
+    motion.driven[link] = planned.count(model.joints()[static_cast<std::size_t>(joint)].name) != 0 || planned.count(followed) != 0 ? 1 : 0;
+    motion.moved[link] = motion.driven[link] != 0 || motion.moved[static_cast<std::size_t>(model.parentLinkOf(joint))] != 0 ? 1 : 0;
+  }
+  return motion;
+}
+
+/// Allows the pairs that collide in the default configuration (every joint at 0, or at the limit
+/// nearest 0) between a part on a movable joint no manipulator drives (a torso's bellows, which
+/// the real robot moves out of the way by itself) and a link no manipulator moves.
+void allowDefault(const RobotModel& model, const LinkCollisionTest& test, AllowedCollisionMatrix& matrix) {
+  const std::size_t links = static_cast<std::size_t>(matrix.linkCount());
+  const PlanningMotion motion = planningMotion(model);
+  const auto passive = [&](std::size_t link) {
+    return link > 0 && motion.driven[link] == 0 &&
+           model.joints()[static_cast<std::size_t>(model.parentJoint(static_cast<int>(link)))].type != JointType::kFixed;
+  };
+  std::vector<char> toTest(links * links, 0);
+  bool any = false;
+  for (std::size_t a = 0; a < links; ++a) {
+    for (std::size_t b = 0; b < links; ++b) {
+      const bool candidate = a != b && ((passive(a) && motion.moved[b] == 0) || (passive(b) && motion.moved[a] == 0)) &&
+                             !matrix.isAllowed(static_cast<int>(a), static_cast<int>(b));
+      toTest[a * links + b] = candidate ? 1 : 0;
+      any |= candidate;
+    }
+  }
+  if (!any) return;
+  std::vector<char> inCollision(links * links, 0);
+  const VectorX q = VectorX::Zero(model.lowerLimits().size()).cwiseMax(model.lowerLimits()).cwiseMin(model.upperLimits());
+  test(q, toTest, inCollision);
+  for (std::size_t a = 0; a < links; ++a) {
+    for (std::size_t b = a + 1; b < links; ++b) {
+      if (inCollision[a * links + b] != 0) matrix.allow(static_cast<int>(a), static_cast<int>(b), AllowedReason::kDefault);
+    }
+  }
+}
+
 void allowSampled(const RobotModel& model, const LinkCollisionTest& test,
                   const AllowedCollisionSettings& settings, AllowedCollisionMatrix& matrix) {
   if (settings.samples < 1) {
@@ -119,6 +176,7 @@ std::string allowedReasonName(AllowedReason reason) {
     case AllowedReason::kSrdf: return "srdf";
     case AllowedReason::kNever: return "never";
     case AllowedReason::kAlways: return "always";
+    case AllowedReason::kDefault: return "default";
   }
   return "none";
 }
@@ -184,6 +242,7 @@ AllowedCollisionMatrix computeAllowedCollisionMatrix(const RobotModel& model,
   AllowedCollisionMatrix matrix(static_cast<int>(model.links().size()));
   allowAdjacent(model, matrix);
   allowSrdf(model, matrix);
+  if (settings.disableDefault) allowDefault(model, test, matrix);
   if (settings.disableNever || settings.disableAlways) allowSampled(model, test, settings, matrix);
   return matrix;
 }

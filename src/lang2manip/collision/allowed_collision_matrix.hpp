@@ -14,7 +14,7 @@
 namespace lang2manip {
 
 /// Why a link pair is allowed to touch (kNone: it is checked).
-enum class AllowedReason : std::uint8_t { kNone, kSameLink, kAdjacent, kSrdf, kNever, kAlways };
+enum class AllowedReason : std::uint8_t { kNone, kSameLink, kAdjacent, kSrdf, kNever, kAlways, kDefault };
 
 /// "none", "same link", "adjacent", "srdf", "never", "always".
 std::string allowedReasonName(AllowedReason reason);
@@ -59,6 +59,11 @@ struct AllowedCollisionSettings {
   /// setup assistant uses 95 %): faces that touch at zero depth flicker between colliding and
   /// free from one sample to the next.
   double alwaysFraction = 0.95;
+  /// Disable pairs that collide in the robot's default configuration, every joint at 0 or the
+  /// limit nearest it (MoveIt's "Default"), between a part on a movable joint no manipulator
+  /// drives and a link no manipulator moves: a part the vendor left overlapping where the robot
+  /// starts, such as a torso's bellows in its base, which the real robot moves by itself.
+  bool disableDefault = true;
 };
 
 /// Tells, for configuration `q`, which link pairs collide: sets inCollision[a * linkCount + b]
