@@ -21,9 +21,9 @@ build: deps
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
 # The paper's task offline: "put the marker and eraser in the holder" on the Panda desk scene,
-# planned, grounded into grasps, IK and motions, executed and verified; files in lang2manip-run/.
+# planned, grounded into grasps, IK and motions, executed and verified; files in lang2manip-out/run/.
 demo: build
-	$(BUILD_DIR)/src/lang2manip/cli/lang2manip run --out lang2manip-run
+	$(BUILD_DIR)/src/lang2manip/cli/lang2manip run --out lang2manip-out/run
 
 # The browser tests of the viewer need Debian's chromium (installed here, not for `make demo`);
 # LANG2MANIP_REQUIRE_BROWSER=1 makes a missing one a failure instead of a skipped test.

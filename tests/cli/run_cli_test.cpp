@@ -299,14 +299,18 @@ TEST(RunCli, APickByARobotWithoutGripperIsRefusedSayingSo) {
   EXPECT_THAT(result.output, HasSubstr("it can move and push"));
 }
 
-TEST(RunCli, AFailedTaskWritesItsPartialResultsAndExitsWithTwo) {
+TEST(RunCli, AFailedTaskReplacesTheEarlierOutputsWithoutATrajectoryUnlessAskedAndExitsWithTwo) {
   const TempDirectory directory;
-  const RunResult result =
-      run("run --task \"put the eraser 300 cm to the left of the holder\" --rounds 1" + kBudgets + " --out " + directory.path().string());
+  const fs::path out = directory.path() / "out";
+  const RunResult succeeded = run("run --task \"put the marker in the holder\"" + kBudgets + " --out " + out.string());
+  ASSERT_EQ(succeeded.exitCode, 0) << succeeded.output;
+  const std::string failing = "run --task \"put the eraser 300 cm to the left of the holder\" --rounds 1" + kBudgets + " --out " + out.string();
+  const RunResult result = run(failing);
   EXPECT_EQ(result.exitCode, 2) << result.output;
   EXPECT_THAT(result.output, HasSubstr("FAILED"));
   EXPECT_THAT(result.output, HasSubstr("the task did not succeed"));
-  const json report = readJson(directory.path() / "report.json");
+  EXPECT_THAT(result.output, HasSubstr("no trajectory written"));
+  const json report = readJson(out / "report.json");
   ASSERT_TRUE(report.is_object());
   EXPECT_FALSE(report["success"].get<bool>());
   ASSERT_EQ(report["actions"].size(), 2u);
@@ -314,8 +318,63 @@ TEST(RunCli, AFailedTaskWritesItsPartialResultsAndExitsWithTwo) {
   EXPECT_EQ(report["actions"][1]["status"], "failed");
   EXPECT_EQ(report["actions"][1]["stage"], "placement");
   EXPECT_THAT(report["actions"][1]["reason"].get<std::string>(), HasSubstr("eraser"));
-  EXPECT_EQ(readJson(directory.path() / "trajectory.json")["segments"].size(), 1u);
-  EXPECT_TRUE(fs::exists(directory.path() / "plan.json"));
+  EXPECT_TRUE(fs::exists(out / "plan.json"));
+  for (const char* name : {"trajectory.json", "trajectory.csv", "robot_trajectory.json", "partial_trajectory.json"}) {
+    EXPECT_FALSE(fs::exists(out / name)) << name << ": the earlier run's motion or a failed run's must not be there";
+  }
+  EXPECT_TRUE(readJson(fs::path(out.string() + ".previous") / "report.json")["success"].get<bool>()) << "the earlier set is kept";
+  EXPECT_TRUE(fs::exists(fs::path(out.string() + ".previous") / "trajectory.json"));
+
+  const RunResult partial = run(failing + " --keep-partial");
+  EXPECT_EQ(partial.exitCode, 2) << partial.output;
+  EXPECT_EQ(readJson(out / "partial_trajectory.json")["segments"].size(), 1u);
+  EXPECT_TRUE(fs::exists(out / "partial_trajectory.csv"));
+  EXPECT_TRUE(fs::exists(out / "partial_robot_trajectory.json"));
+  EXPECT_FALSE(fs::exists(out / "trajectory.json"));
+}
+
+TEST(RunCli, OutputDirectoriesThatMayNotBeReplacedAreRefusedBeforeTheRun) {
+  const TempDirectory directory;
+  const fs::path foreign = directory.path() / "notes";
+  fs::create_directories(foreign);
+  std::ofstream(foreign / "thesis.tex") << "years of work";
+  RunResult result = run("run --out " + foreign.string());
+  EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("run: --out " + foreign.string() + ": holds files lang2manip did not write"));
+  EXPECT_THAT(result.output, ::testing::Not(HasSubstr("SUCCESS")));
+  result = run("run --out " + (directory.path() / "file").string() + " --task \"put the marker in the holder\"" + kBudgets);
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  std::ofstream(directory.path() / "plain") << "x";
+  EXPECT_THAT(run("run --out " + (directory.path() / "plain").string()).output, HasSubstr("exists and is not a directory"));
+  EXPECT_THAT(run("run --out .").output, HasSubstr("is the current directory"));
+  EXPECT_THAT(run("run --out ''").output, HasSubstr("--out: must name a directory"));
+  result = run("run --force --out " + foreign.string() + " --task \"put the marker in the holder\"" + kBudgets);
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_TRUE(fs::exists(fs::path(foreign.string() + ".previous") / "thesis.tex"));
+}
+
+TEST(RunCli, AnInterruptedRunLeavesTheEarlierSetOrAWholeNewOne) {
+  const TempDirectory directory;
+  const fs::path out = directory.path() / "out";
+  ASSERT_EQ(run("run --task \"put the marker in the holder\"" + kBudgets + " --out " + out.string()).exitCode, 0);
+  for (const char* delay : {"0.05", "0.3", "0.8", "2"}) {
+    const std::string command = std::string("timeout -s INT ") + delay + " " + LANG2MANIP_CLI_PATH + " run --out " + out.string() + kBudgets;
+    const int status = std::system((command + " > /dev/null 2>&1").c_str());
+    (void)status;
+    const json report = readJson(out / "report.json");
+    ASSERT_TRUE(report.is_object()) << "after SIGINT at " << delay << " s no whole report";
+    const std::string task = report["task"].get<std::string>();
+    const bool earlier = task == "put the marker in the holder";
+    EXPECT_TRUE(earlier || task == "put the marker and eraser in the holder") << task;
+    EXPECT_EQ(readJson(out / "viewer.json")["task"].get<std::string>(), task) << "files of two runs mixed after SIGINT at " << delay << " s";
+    ASSERT_EQ(run("run --task \"put the marker in the holder\"" + kBudgets + " --out " + out.string()).exitCode, 0);
+    std::size_t entries = 0;
+    for (const auto& entry : fs::directory_iterator(directory.path())) {
+      EXPECT_EQ(entry.path().filename().string().find(".partial-"), std::string::npos) << "left over: " << entry.path();
+      ++entries;
+    }
+    EXPECT_EQ(entries, 2u) << "out and out.previous";
+  }
 }
 
 TEST(BenchTaskCli, RandomizedTrialsPrintSuccessFeasibilityAndTheBaselineRatio) {

@@ -107,6 +107,10 @@ window.lang2manipViewer = {
     renderNow();
   },
   render: renderNow,
+  /** World position (x, y, z; z up) of a node of the scene at the current time, or null. */
+  nodeWorldPosition(name) {
+    return view ? view.nodeWorldPosition(name) : null;
+  },
 };
 
 // ---- playback ----------------------------------------------------------------------------------

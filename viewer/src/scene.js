@@ -259,6 +259,22 @@ export class SceneView {
     this.needsRender = true;
   }
 
+  /**
+   * World (z-up) position of the origin of the node named `name` (its glTF name, e.g. a link
+   * "panda/panda_hand") as the scene is posed now; null when no node has that name.
+   */
+  nodeWorldPosition(name) {
+    let found = null;
+    if (!this.model) return null;
+    this.model.traverse((object) => {
+      if (!found && gltfName(object) === name) found = object;
+    });
+    if (!found) return null;
+    found.updateWorldMatrix(true, false);
+    const p = new Vector3().setFromMatrixPosition(found.matrixWorld);
+    return [p.x, -p.z, p.y];
+  }
+
   /** Collision geometry instead of the visual one. */
   setCollision(on) {
     for (const entity of this.entities) {

@@ -4,7 +4,7 @@
 // Usage: node test/browser-test.mjs --url URL [--screenshot FILE] [--expect-actions N]
 //          [--expect-animation] [--expect-source inline|url|session] [--expect-error TEXT]
 //          [--expect-time T] [--no-play] [--min-scene-share F] [--timeout SECONDS] [--chromium PATH] [--viewport WxH]
-//          [--expect-text ID=TEXT]...
+//          [--expect-text ID=TEXT]... [--expect-position NODE@T=X,Y,Z]...
 // URL may be file:///.../run.html or http://127.0.0.1:PORT/...; with `#sheet=` in it the page is
 // checked as a contact sheet. Exits 0 when every check passed, 1 with "FAIL: ..." otherwise.
 import { chromium } from 'playwright-core';
@@ -16,10 +16,10 @@ const USAGE =
   'usage: node test/browser-test.mjs --url URL [--screenshot FILE] [--expect-actions N] [--expect-animation]\n' +
   '         [--expect-source inline|url|session] [--expect-error TEXT] [--expect-time T] [--no-play]\n' +
   '         [--min-scene-share F] [--timeout SECONDS]\n' +
-  '         [--chromium PATH] [--viewport WxH] [--expect-text ID=TEXT]...';
+  '         [--chromium PATH] [--viewport WxH] [--expect-text ID=TEXT]... [--expect-position NODE@T=X,Y,Z]...';
 
 function parseArgs(argv) {
-  const args = { url: null, screenshot: null, expectActions: null, expectAnimation: false, expectSource: null, expectError: null, expectTime: null, play: true, minSceneShare: 0.01, timeout: 120, chromium: process.env.CHROMIUM || '/usr/bin/chromium', viewport: [1280, 800], expectTexts: [] };
+  const args = { url: null, screenshot: null, expectActions: null, expectAnimation: false, expectSource: null, expectError: null, expectTime: null, play: true, minSceneShare: 0.01, timeout: 120, chromium: process.env.CHROMIUM || '/usr/bin/chromium', viewport: [1280, 800], expectTexts: [], expectPositions: [] };
   for (let i = 0; i < argv.length; i++) {
     const name = argv[i];
     const value = () => {
@@ -42,6 +42,18 @@ function parseArgs(argv) {
       const [id, ...text] = value().split('=');
       if (!id || text.length === 0) throw new Error('--expect-text needs ID=TEXT');
       args.expectTexts.push({ id, text: text.join('=') });
+    }
+    else if (name === '--expect-position') {
+      // NODE@T=X,Y,Z: at time T the node's origin is at (X, Y, Z) in the world (z up), within 2 mm.
+      const text = value();
+      const at = text.lastIndexOf('@');
+      const equals = text.indexOf('=', at);
+      const position = text.slice(equals + 1).split(',').map(Number);
+      const time = Number(text.slice(at + 1, equals));
+      if (at <= 0 || equals < 0 || position.length !== 3 || !position.every(Number.isFinite) || !Number.isFinite(time)) {
+        throw new Error(`--expect-position needs NODE@T=X,Y,Z, got "${text}"`);
+      }
+      args.expectPositions.push({ node: text.slice(0, at), time, position });
     }
     else if (name === '--help' || name === '-h') {
       console.log(USAGE);
@@ -162,6 +174,21 @@ async function run(args) {
       check(!info.playing, 'the viewer plays, expected it paused at the #t= time');
     }
     log(`source ${info.source}, ${info.entities} links/objects, ${info.toolPaths} tool paths, tree ${info.hasTree}, animation ${info.hasAnimation}, duration ${info.duration.toFixed(2)} s`);
+
+    // Where the page draws a node at a time is where forward kinematics puts it.
+    for (const { node, time, position } of args.expectPositions) {
+      const shown = await page.evaluate(([name, t]) => {
+        window.lang2manipViewer.pause();
+        window.lang2manipViewer.seek(t);
+        return window.lang2manipViewer.nodeWorldPosition(name);
+      }, [node, time]);
+      check(shown !== null, `the scene has no node "${node}"`);
+      const distance = Math.hypot(...shown.map((v, i) => v - position[i]));
+      check(distance < 0.002, `at t = ${time} the page draws "${node}" at (${shown.map((v) => v.toFixed(4)).join(', ')}), ` +
+        `forward kinematics puts it at (${position.map((v) => v.toFixed(4)).join(', ')}): ${(distance * 1000).toFixed(1)} mm apart`);
+      log(`at t = ${time.toFixed(3)} s "${node}" is drawn within ${(distance * 1000).toFixed(2)} mm of forward kinematics`);
+    }
+    if (args.expectPositions.length) await page.evaluate((t) => window.lang2manipViewer.seek(t), info.time);
 
     if (sheet) {
       const expected = new URL(args.url).hash.match(/sheet=([^&]*)/)[1].split(',').filter((x) => x.trim() !== '').length;

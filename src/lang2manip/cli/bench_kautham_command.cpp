@@ -3,7 +3,7 @@
 
 #include <chrono>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +14,7 @@
 #include "lang2manip/cli/bench_commands.hpp"
 #include "lang2manip/cli/bench_statistics.hpp"
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/output_files.hpp"
 #include "lang2manip/model/kautham_benchmark.hpp"
 #include "lang2manip/planning/benchmark_log.hpp"
 #include "lang2manip/planning/planning_session.hpp"
@@ -79,12 +80,15 @@ void runBenchmark(const KauthamBenchOptions& options, std::ostream& out) {
     report["problems"].push_back(figures);
   }
   experiment.totalDuration = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  const std::string log = options.log.empty() ? benchmark.logFile : options.log;
+  // Only where asked: the file's own log name would write into whatever directory this runs in.
+  const std::string& log = options.log;
   if (!log.empty()) {
-    std::ofstream file(log);
-    if (!file) throw InputError("bench kautham: cannot write the log " + log);
-    writeOmplBenchmarkLog(experiment, file);
+    std::ostringstream text;
+    writeOmplBenchmarkLog(experiment, text);
+    writeFileAtomically(log, text.str(), "bench kautham: --log");
     report["log"] = log;
+  } else if (!benchmark.logFile.empty()) {
+    report["log_not_written"] = benchmark.logFile;
   }
   if (options.json) {
     out << report.dump(2) << '\n';
@@ -105,6 +109,9 @@ void runBenchmark(const KauthamBenchOptions& options, std::ostream& out) {
     out << "accepted with no effect: " << names << "\n";
   }
   if (report.contains("log")) out << "wrote OMPL's benchmark log " << log << "\n";
+  if (report.contains("log_not_written")) {
+    out << "the benchmark file names the log " << benchmark.logFile << "; pass --log FILE to write it\n";
+  }
 }
 
 }  // namespace
@@ -115,7 +122,7 @@ void addBenchKauthamCommand(CLI::App& bench, std::ostream& out) {
   command->add_option("FILE", options->file, "Kautham benchmark file (<Benchmark> root)")->required();
   command->add_option("--runs", options->runs, "Runs per problem (default: the file's runCount)")->check(CLI::PositiveNumber);
   command->add_option("--time-limit", options->timeLimit, "Seconds per run (default: the file's maxTime)")->check(CLI::PositiveNumber);
-  command->add_option("--log", options->log, "Write OMPL's benchmark log to FILE (default: the file's filename parameter)");
+  command->add_option("--log", options->log, "Write OMPL's benchmark log to FILE (the benchmark file's own log name is only reported, never written unasked)");
   command->add_option("--seed", options->seed, "Random seed")->capture_default_str();
   command->add_flag("--json", options->json, "Print JSON");
   command->callback([options, &out] { runBenchmark(*options, out); });

@@ -3,7 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <map>
 #include <memory>
 #include <set>
@@ -18,6 +18,7 @@
 #include "lang2manip/cli/parameter_assignment.hpp"
 #include "lang2manip/collision/fcl_collision_checker.hpp"
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/output_files.hpp"
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/model/moveit_scene_reader.hpp"
 #include "lang2manip/model/urdf_reader.hpp"
@@ -190,9 +191,9 @@ void writeLog(const MbmOptions& options, const PlannerSettings& settings, std::v
   BenchmarkPlannerRuns planner{"geometric_" + settings.planner(), {}, std::move(runs)};
   for (const auto& [name, value] : settings.omplParameters()) planner.common[name] = value;
   experiment.planners.push_back(std::move(planner));
-  std::ofstream file(options.log);
-  if (!file) throw InputError("--log: cannot write " + options.log);
-  writeOmplBenchmarkLog(experiment, file);
+  std::ostringstream text;
+  writeOmplBenchmarkLog(experiment, text);
+  writeFileAtomically(options.log, text.str(), "bench mbm: --log");
 }
 
 void runMbm(const MbmOptions& options, std::ostream& out) {

@@ -10,6 +10,7 @@
 #include "lang2manip/collision/fcl_collision_checker.hpp"
 #include "lang2manip/cli/problem_loading.hpp"
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/output_files.hpp"
 #include "lang2manip/grounding/gripper_geometry.hpp"
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/model/srdf_writer.hpp"
@@ -215,9 +216,7 @@ void describe(const DescribeOptions& options, std::ostream& out) {
       }
     }
     addComputedDisabledPairs(loaded.problem.scene, semantics);
-    std::ofstream file(options.writeSrdf);
-    file << srdfString(model, semantics);
-    if (!file) throw InputError("describe --write-srdf: cannot write " + options.writeSrdf);
+    writeFileAtomically(options.writeSrdf, srdfString(model, semantics), "describe: --write-srdf");
     report["srdf"] = options.writeSrdf;
   }
   out << (options.json ? report.dump(2) + "\n" : describeText(report));

@@ -7,6 +7,7 @@
 #include "lang2manip/cli/commands.hpp"
 #include "lang2manip/cli/problem_loading.hpp"
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/output_files.hpp"
 #include "lang2manip/model/gltf_writer.hpp"
 
 namespace lang2manip {
@@ -39,9 +40,7 @@ void writeGltf(const GltfCommandOptions& options, std::ostream& out) {
   gltf.geometry = options.collision ? GltfGeometry::kCollision : GltfGeometry::kVisual;
   GltfSummary summary;
   const std::string glb = sceneToGlb(posedScene(loaded, options.goal), gltf, &summary);
-  std::ofstream file(options.out, std::ios::binary);
-  file << glb;
-  if (!file) throw InputError("gltf: cannot write " + options.out);
+  writeFileAtomically(options.out, glb, "gltf: --out");
   out << "wrote " << options.out << ": " << summary.nodes << " shapes, " << summary.meshes << " meshes, " << summary.triangles
       << " triangles, " << glb.size() << " bytes\n";
 }

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -19,6 +20,7 @@
 #include "lang2manip/cli/commands.hpp"
 #include "lang2manip/cli/run_page.hpp"
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/output_files.hpp"
 #include "lang2manip/core/json_limits.hpp"
 #include "lang2manip/model/viewer_document.hpp"
 
@@ -36,6 +38,7 @@ struct RenderOptions {
   std::string camera;
   std::string out;
   std::string chromium;
+  bool force = false;
   int columns = 3;
   double timeoutSeconds = 120.0;
 };
@@ -256,11 +259,10 @@ void render(const RenderOptions& options, std::ostream& out) {
   const std::vector<ViewerMoment>& moments = input.moments;
   const std::string chromium = findChromium(options.chromium);
   const fs::path out_ = options.out.empty() ? run / "render" : fs::path(options.out);
-  std::error_code error;
-  fs::create_directories(out_, error);
-  if (error) throw InputError("render: cannot create " + out_.string() + ": " + error.message());
-  const fs::path work = fs::temp_directory_path() / ("lang2manip-render-" + std::to_string(::getpid()));
-  fs::create_directories(work);
+  OutputDirectory set(out_, "render: --out", options.force);
+  std::string workTemplate = (fs::temp_directory_path() / "lang2manip-render-XXXXXX").string();
+  if (::mkdtemp(workTemplate.data()) == nullptr) throw InputError("render: cannot create a temporary directory: " + std::string(std::strerror(errno)));
+  const fs::path work = workTemplate;
   struct Cleanup {
     fs::path path;
     ~Cleanup() {
@@ -268,7 +270,7 @@ void render(const RenderOptions& options, std::ostream& out) {
       fs::remove_all(path, ignored);
     }
   } cleanup{work};
-  std::ofstream(work / "run.html", std::ios::binary) << runPageHtml(input.document, input.glb, viewerScript());
+  writeFileAtomically(work / "run.html", runPageHtml(input.document, input.glb, viewerScript()), "render");
   const Snapshotter snapshots(chromium, work / "run.html", work / "profile", options.timeoutSeconds);
   const std::string camera = options.camera.empty() ? "" : "&camera=" + options.camera;
   const int columns = std::min(options.columns, static_cast<int>(moments.size()));
@@ -281,13 +283,13 @@ void render(const RenderOptions& options, std::ostream& out) {
   if (page.state != "rendered") throw InputError("render: the viewer did not finish drawing " + run.string() + " (its state: \"" + page.state + "\")");
   for (std::size_t i = 0; i < moments.size(); ++i) {
     const std::string index = (i + 1 < 10 ? "0" : "") + std::to_string(i + 1);
-    const fs::path png = out_ / (index + "-" + fileLabel(moments[i].label) + ".png");
-    snapshots.shoot("t=" + hashText(moments[i].time) + "&ui=0" + camera, png, width, height);
-    out << "  " << png.string() << "  (" << moments[i].label << ", t = " << hashText(moments[i].time) << " s)\n";
+    const std::string png = index + "-" + fileLabel(moments[i].label) + ".png";
+    snapshots.shoot("t=" + hashText(moments[i].time) + "&ui=0" + camera, set.stagingDirectory() / png, width, height);
+    out << "  " << (out_ / png).string() << "  (" << moments[i].label << ", t = " << hashText(moments[i].time) << " s)\n";
   }
-  const fs::path sheetFile = out_ / "contact-sheet.png";
-  snapshots.shoot(sheet, sheetFile, width, sheetHeight);
-  out << "  " << sheetFile.string() << "  (contact sheet of " << moments.size() << " moments)\n";
+  snapshots.shoot(sheet, set.stagingDirectory() / "contact-sheet.png", width, sheetHeight);
+  set.commit();
+  out << "  " << (out_ / "contact-sheet.png").string() << "  (contact sheet of " << moments.size() << " moments)\n";
 }
 
 }  // namespace
@@ -301,7 +303,9 @@ void addRenderCommand(CLI::App& app, std::ostream& out) {
   command->add_option("--size", options->size, "Width x height of each snapshot in pixels")->capture_default_str();
   command->add_option("--camera", options->camera, "AZIMUTH,ELEVATION[,DISTANCE]: degrees from +x towards +y, degrees up, metres");
   command->add_option("--columns", options->columns, "Columns of the contact sheet")->capture_default_str();
-  command->add_option("--out", options->out, "Output directory (default: RUN_DIR/render)");
+  command->add_option("--out", options->out,
+                      "Output directory (default: RUN_DIR/render); replaced whole, the earlier pictures kept in DIR.previous");
+  command->add_flag("--force", options->force, "Use --out even when it holds files lang2manip did not write (kept in DIR.previous)");
   command->add_option("--chromium", options->chromium, "The Chromium program (default: chromium on the PATH)");
   command->add_option("--timeout", options->timeoutSeconds, "Seconds one snapshot may take")->capture_default_str();
   command->callback([options, &out] { render(*options, out); });

@@ -1,7 +1,6 @@
 // `lang2manip run`: instruction -> plan -> grounded, executed and verified trajectories.
 
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -12,6 +11,7 @@
 #include "lang2manip/cli/task_planner_choice.hpp"
 #include "lang2manip/cli/task_run.hpp"
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/output_files.hpp"
 #include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/planning/planner_registry.hpp"
@@ -23,7 +23,9 @@ namespace fs = std::filesystem;
 
 struct RunOptions {
   RunRequest request;
-  std::string out = "lang2manip-run";
+  std::string out = "lang2manip-out/run";
+  bool force = false;
+  bool keepPartial = false;
   bool json = false;
   bool html = false;
   std::string timing = trajectoryTimingName(ExecutionSettings{}.timing);
@@ -50,45 +52,27 @@ RunRequest checkedRequest(const RunOptions& options) {
       throw InputError(std::string("run: ") + flag + " " + problem);
     }
   }
-  if (options.out.empty()) throw InputError("run: --out must name a directory");
   if (!request.motionPlanner.empty()) (void)canonicalPlannerName(request.motionPlanner);
   return request;
 }
 
-/// The output directory, created; an existing file of that name is an error.
-fs::path prepareOutput(const std::string& directory) {
-  const fs::path path(directory);
-  std::error_code error;
-  if (fs::exists(path, error) && !fs::is_directory(path, error)) {
-    throw InputError("run: --out " + directory + ": exists and is not a directory");
-  }
-  fs::create_directories(path, error);
-  if (error) throw InputError("run: --out " + directory + ": cannot create the directory: " + error.message());
-  return path;
-}
-
-void writeFile(const fs::path& path, const std::string& text) {
-  std::ofstream file(path, std::ios::binary);
-  file << text;
-  file.close();
-  if (!file) throw InputError("run: cannot write " + path.string());
-}
-
-/// Writes the run's documents into `out`; the names of the files written, in order.
-std::vector<std::string> writeDocuments(const fs::path& out, const RunDocuments& documents) {
+/// Writes the run's documents into `set`; the names of the files written, in order. The motion
+/// of a run that did not succeed is written only with `keepPartial`, under "partial_" names.
+std::vector<std::string> writeDocuments(OutputDirectory& set, const RunDocuments& documents, bool keepPartial) {
   std::vector<std::string> written;
   const auto write = [&](const std::string& name, const std::string& text) {
-    writeFile(out / name, text);
+    set.write(name, text);
     written.push_back(name);
   };
   write("observation.json", documents.observation.dump(2) + "\n");
   write("observation.txt", documents.observationText);
   write("prompt.txt", documents.prompt);
   if (documents.plan) write("plan.json", documents.plan->dump(2) + "\n");
-  if (documents.trajectory) {
-    write("trajectory.json", documents.trajectory->dump(2) + "\n");
-    write("trajectory.csv", documents.trajectoryCsv);
-    write("robot_trajectory.json", documents.robotTrajectory.dump(1) + "\n");
+  if (documents.trajectory && (documents.success || keepPartial)) {
+    const auto name = [&](const std::string& file) { return trajectoryDocumentName(file, documents.success); };
+    write(name("trajectory.json"), documents.trajectory->dump(2) + "\n");
+    write(name("trajectory.csv"), documents.trajectoryCsv);
+    write(name("robot_trajectory.json"), documents.robotTrajectory.dump(1) + "\n");
   }
   write("report.json", documents.report.dump(2) + "\n");
   write("scene.glb", documents.sceneGlb);
@@ -107,23 +91,29 @@ RunDocuments runTaskNamingFlags(const RunRequest& request) {
 
 void runCommand(const RunOptions& options, std::ostream& out) {
   const RunRequest request = checkedRequest(options);
-  // Before the long work: a missing viewer is an error now, not after the run.
+  // Before the long work: a missing viewer or an output directory that may not be replaced is an
+  // error now, not after the run.
   const std::string viewer = options.html ? viewerScript() : "";
-  const fs::path directory = prepareOutput(options.out);
+  OutputDirectory set(options.out, "run: --out", options.force);
   const RunDocuments documents = runTaskNamingFlags(request);
-  std::vector<std::string> written = writeDocuments(directory, documents);
+  std::vector<std::string> written = writeDocuments(set, documents, options.keepPartial);
   if (options.html) {
-    writeFile(directory / "run.html", runPageHtml(documents.viewerDocument, documents.sceneGlb, viewer));
+    set.write("run.html", runPageHtml(documents.viewerDocument, documents.sceneGlb, viewer));
     written.push_back("run.html");
   }
+  set.commit();
   if (options.json) {
     out << documents.report.dump(2) << '\n';
   } else {
     std::string list;
     for (const std::string& name : written) list += (list.empty() ? "" : ", ") + name;
-    out << documents.summary << "  wrote " << directory.string() << "/ (" << list << ")\n";
+    out << documents.summary << "  wrote " << options.out << "/ (" << list << ")\n";
+    if (!documents.success && documents.trajectory && !options.keepPartial) {
+      out << "  no trajectory written: the task did not succeed (--keep-partial writes what was executed as "
+             "partial_trajectory.json)\n";
+    }
   }
-  if (!documents.success) throw TaskFailedError("run: the task did not succeed; see " + (directory / "report.json").string());
+  if (!documents.success) throw TaskFailedError("run: the task did not succeed; see " + (fs::path(options.out) / "report.json").string());
 }
 
 }  // namespace
@@ -150,7 +140,14 @@ void addRunCommand(CLI::App& app, std::ostream& out) {
   command->add_option("--seed", options->request.seed, "Random seed of planners, IK restarts and placement samples")->capture_default_str();
   command->add_option("--time-limit", options->request.timeLimit, "Seconds one motion query may take")->capture_default_str();
   command->add_option("--ik-timeout", options->request.ikTimeout, "Seconds of IK search per pose")->capture_default_str();
-  command->add_option("--out", options->out, "Output directory")->capture_default_str();
+  command->add_option("--out", options->out,
+                      "Output directory; replaced whole by each run (the earlier outputs kept in DIR.previous)")
+      ->capture_default_str();
+  command->add_flag("--force", options->force,
+                    "Use --out even when it holds files lang2manip did not write (they are kept in DIR.previous)");
+  command->add_flag("--keep-partial", options->keepPartial,
+                    "When the task does not succeed, still write what was executed, as partial_trajectory.json, "
+                    "partial_trajectory.csv and partial_robot_trajectory.json");
   command->add_option("--velocity-scaling", options->request.velocityScaling,
                       "Fraction of every joint's velocity limit the trajectories use, in (0, 1]")
       ->capture_default_str();

@@ -1,6 +1,5 @@
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +13,7 @@
 #include "lang2manip/cli/run_page.hpp"
 #include "lang2manip/cli/solve_scene.hpp"
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/output_files.hpp"
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/planning/motion_plan_json.hpp"
 #include "lang2manip/planning/planning_session.hpp"
@@ -121,30 +121,50 @@ json rejectedQueryJson(std::size_t index, const PlanningSession& session, const 
           {"duration", 0.0}};
 }
 
-/// Writes the report and each query's trajectory as CSV; the files written.
+/// The CSV files of an earlier solve written beside `file` (FILE.csv, FILE_query<N>.csv).
+std::vector<std::filesystem::path> earlierTrajectoryFiles(const std::filesystem::path& file) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> found;
+  const fs::path directory = file.parent_path().empty() ? fs::path(".") : file.parent_path();
+  const std::string stem = file.stem().string();
+  std::error_code error;
+  for (const fs::directory_entry& entry : fs::directory_iterator(directory, error)) {
+    const std::string name = entry.path().filename().string();
+    const bool single = name == stem + ".csv";
+    const std::size_t digits = stem.size() + 6;  // after "<stem>_query"
+    const bool perQuery = name.rfind(stem + "_query", 0) == 0 && entry.path().extension() == ".csv" &&
+                          name.size() > digits + 4 && name.find_first_not_of("0123456789", digits) == name.size() - 4;
+    if ((single || perQuery) && entry.is_regular_file(error)) found.push_back(entry.path());
+  }
+  return found;
+}
+
+/// Writes the report and the trajectory of each solved query as CSV, each file whole (never
+/// through a link); CSV files of an earlier solve beside it are removed, so the files beside the
+/// report are all of this solve. The files written.
 std::vector<std::string> writeOutputs(const std::string& out, const json& report, const std::vector<JointTrajectory>& trajectories) {
   const std::filesystem::path file(out);
-  std::ofstream stream(file);
-  if (!stream) throw InputError("--out: cannot write " + file.string());
-  stream << report.dump(2) << '\n';
+  writeFileAtomically(file, report.dump(2) + "\n", "solve: --out");
   std::vector<std::string> written{file.string()};
+  std::vector<std::filesystem::path> stale = earlierTrajectoryFiles(file);
   for (std::size_t q = 0; q < trajectories.size(); ++q) {
+    if (trajectories[q].points.empty()) continue;
     std::filesystem::path csv = file;
     csv.replace_extension(trajectories.size() == 1 ? ".csv" : "_query" + std::to_string(q + 1) + ".csv");
-    std::ofstream csvStream(csv);
-    if (!csvStream) throw InputError("--out: cannot write " + csv.string());
-    csvStream << trajectoryToCsv(trajectories[q]);
+    writeFileAtomically(csv, trajectoryToCsv(trajectories[q]), "solve: --out");
     written.push_back(csv.string());
+    std::erase(stale, csv);
   }
+  std::error_code error;
+  for (const std::filesystem::path& path : stale) std::filesystem::remove(path, error);
   return written;
 }
 
 /// solve --html: the page of the solved queries.
 void writeSolvePage(const std::string& file, const std::string& name, const KauthamProblem& problem, const json& report,
                     const std::vector<SolvedQuery>& queries, const std::string& viewer) {
-  std::ofstream page(file, std::ios::binary);
-  page << runPageHtml(solveViewerDocument(name, report, queries), solveSceneGlb(problem, queries), viewer);
-  if (!page) throw InputError("--html: cannot write " + file);
+  writeFileAtomically(file, runPageHtml(solveViewerDocument(name, report, queries), solveSceneGlb(problem, queries), viewer),
+                      "solve: --html");
 }
 
 void runSolve(const SolveOptions& options, std::ostream& out) {

@@ -10,15 +10,25 @@ namespace {
 
 using nlohmann::json;
 
-/// The scene with the robots where `controls` put them.
-void moveRobots(const KauthamProblem& problem, const VectorX& controls, Scene& scene) {
-  std::vector<double> values(controls.data(), controls.data() + controls.size());
-  for (double& value : values) value = std::clamp(value, 0.0, 1.0);
-  const RobotStates states = robotStatesFromControls(problem, values, "trajectory");
+void setRobotStates(const RobotStates& states, Scene& scene) {
   for (std::size_t r = 0; r < scene.robots().size(); ++r) {
     scene.robot(scene.robots()[r].name).basePose = states.basePoses[r];
     scene.setConfiguration(scene.robots()[r].name, states.configurations[r]);
   }
+}
+
+/// The scene with the robots where the planning state `controls` (a tree vertex) puts them.
+void moveRobotsToControls(const KauthamProblem& problem, const VectorX& controls, Scene& scene) {
+  std::vector<double> values(controls.data(), controls.data() + controls.size());
+  for (double& value : values) value = std::clamp(value, 0.0, 1.0);
+  setRobotStates(robotStatesFromControls(problem, values, "exploration tree"), scene);
+}
+
+/// The scene with the robots at a trajectory point's positions (joint values, base axes).
+void moveRobotsToPositions(const KauthamProblem& problem, const VectorX& positions, Scene& scene) {
+  setRobotStates(robotStatesFromDofPositions(problem, std::vector<double>(positions.data(), positions.data() + positions.size()),
+                                             "trajectory"),
+                 scene);
 }
 
 /// The first robot's tool frame (its first manipulator's) or last link: where paths are drawn.
@@ -45,7 +55,7 @@ void addTree(const KauthamProblem& problem, const SolvedQuery& query, GlbBuilder
   Scene scene = problem.scene;
   std::vector<Vector3> points;
   for (const VectorX& vertex : query.tree.vertices) {
-    moveRobots(problem, vertex, scene);
+    moveRobotsToControls(problem, vertex, scene);
     points.push_back(tipPosition(scene));
   }
   addExplorationGraph(builder, "exploration_tree/" + std::to_string(query.index), points, query.tree.edges);
@@ -63,7 +73,7 @@ std::string solveSceneGlb(const KauthamProblem& problem, const std::vector<Solve
   for (const SolvedQuery& query : queries) {
     std::vector<Vector3> path;
     for (const TrajectoryPoint& point : query.trajectory.points) {
-      moveRobots(problem, point.positions, scene);
+      moveRobotsToPositions(problem, point.positions, scene);
       path.push_back(tipPosition(scene));
       const double time = start + point.time;
       if (!times.empty() && time <= times.back()) continue;

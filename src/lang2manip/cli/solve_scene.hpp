@@ -12,7 +12,8 @@
 
 namespace lang2manip {
 
-/// One query of a solve: its trajectory and exploration graph in the problem's robot controls.
+/// One query of a solve: its trajectory (joint values and base axes, as the planning space's
+/// trajectories hold them) and its exploration graph (vertices in the problem's robot controls).
 struct SolvedQuery {
   std::size_t index = 0;
   /// "solved", "no_path", "invalid_query", ...

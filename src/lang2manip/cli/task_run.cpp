@@ -232,4 +232,6 @@ RunDocuments runTask(const RunRequest& request, const RunControl& control) {
   return documents;
 }
 
+std::string trajectoryDocumentName(const std::string& name, bool success) { return success ? name : "partial_" + name; }
+
 }  // namespace lang2manip

@@ -104,6 +104,12 @@ struct RunDocuments {
   bool success = false;
 };
 
+/// The name a document of the executed motion ("trajectory.json", "trajectory.csv",
+/// "robot_trajectory.json") goes under: itself for a run that succeeded, "partial_" before it for
+/// one that did not (written or served only when asked: a failed run's motion is not one to send
+/// to an arm).
+std::string trajectoryDocumentName(const std::string& name, bool success);
+
 /// A name in a run request that nothing is registered under. field() is "planner", "ik" or "arm"
 /// (`run`'s --planner, --ik, --arm and the run request's body fields); the message lists the
 /// valid names.

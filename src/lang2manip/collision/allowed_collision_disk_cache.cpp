@@ -13,7 +13,9 @@
 #include <system_error>
 #include <type_traits>
 
+#include "lang2manip/core/error.hpp"
 #include "lang2manip/core/log.hpp"
+#include "lang2manip/core/output_files.hpp"
 
 namespace lang2manip {
 namespace {
@@ -211,23 +213,12 @@ bool storeAllowedCollisions(const fs::path& directory, const std::string& key, c
   std::error_code error;
   fs::create_directories(directory, error);
   if (error) return false;
-  std::random_device entropy;
-  const fs::path temporary =
-      directory / ("." + fileFor(directory, key).filename().string() + "." + std::to_string(::getpid()) + "." +
-                   std::to_string(entropy()));
-  {
-    std::ofstream out(temporary, std::ios::trunc);
-    out << matrixText(key, model, matrix);
-    out.flush();
-    if (!out) {
-      fs::remove(temporary, error);
-      return false;
-    }
+  try {
+    writeFileAtomically(fileFor(directory, key), matrixText(key, model, matrix), "collision-matrix cache");
+    return true;
+  } catch (const InputError&) {
+    return false;
   }
-  fs::rename(temporary, fileFor(directory, key), error);
-  if (!error) return true;
-  fs::remove(temporary, error);
-  return false;
 }
 
 AllowedCollisionMatrix storedOrComputedAllowedCollisions(const RobotModel& model,

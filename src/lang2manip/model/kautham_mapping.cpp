@@ -1,6 +1,7 @@
 // Kautham's control -> configuration formula (kautham-format.md):
 // p_d = clamp(sum_j eig_j * k_dj * (c_j - 0.5) + offset_d), q = lower + p * (upper - lower).
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 
 #include "lang2manip/core/rotation.hpp"
@@ -154,9 +155,12 @@ ControlSet defaultRobotControls(const KauthamProblem& problem) {
   return set;
 }
 
-RobotStates robotStatesFromControls(const KauthamProblem& problem,
-                                    const std::vector<double>& controls, const std::string& what) {
-  const std::vector<double> p = problem.robotControls.dofValues(controls, what);
+namespace {
+
+/// Robot states from one value per DOF of the robot controls: `jointValue(d, target)` for a
+/// joint, `baseFraction(d)` (the DOF's [0, 1] value) for a base axis.
+template <typename JointValue, typename BaseFraction>
+RobotStates robotStatesFromDofs(const KauthamProblem& problem, JointValue jointValue, BaseFraction baseFraction) {
   const std::vector<DofTarget> targets = resolveDofTargets(problem, problem.robotControls, true);
   RobotStates states;
   std::vector<BaseDofs> bases(problem.robots.size());
@@ -166,18 +170,49 @@ RobotStates robotStatesFromControls(const KauthamProblem& problem,
   for (std::size_t d = 0; d < targets.size(); ++d) {
     const DofTarget& target = targets[d];
     const auto entity = static_cast<std::size_t>(target.entity);
-    if (target.kind != DofKind::kJoint) {
-      bases[entity].values[baseSlot(target.kind)] = p[d];
-      continue;
+    if (target.kind == DofKind::kJoint) {
+      states.configurations[entity][target.variable] = jointValue(d, target);
+    } else {
+      bases[entity].values[baseSlot(target.kind)] = baseFraction(d, target);
     }
-    const RobotModel& model = *problem.scene.robots()[entity].model;
-    const auto [lower, upper] = kauthamJointRange(model, target.variable);
-    states.configurations[entity][target.variable] = lower + p[d] * (upper - lower);
   }
   for (std::size_t r = 0; r < problem.robots.size(); ++r) {
     states.basePoses.push_back(basePose(problem.robots[r].home, problem.robots[r].limits, bases[r]));
   }
   return states;
+}
+
+}  // namespace
+
+RobotStates robotStatesFromControls(const KauthamProblem& problem,
+                                    const std::vector<double>& controls, const std::string& what) {
+  const std::vector<double> p = problem.robotControls.dofValues(controls, what);
+  return robotStatesFromDofs(
+      problem,
+      [&](std::size_t d, const DofTarget& target) {
+        const auto [lower, upper] = kauthamJointRange(*problem.scene.robots()[static_cast<std::size_t>(target.entity)].model, target.variable);
+        return lower + p[d] * (upper - lower);
+      },
+      [&](std::size_t d, const DofTarget&) { return p[d]; });
+}
+
+RobotStates robotStatesFromDofPositions(const KauthamProblem& problem, const std::vector<double>& positions,
+                                        const std::string& what) {
+  if (positions.size() != problem.robotControls.dofs.size()) {
+    throw InputError(what + ": " + std::to_string(positions.size()) + " values for the " +
+                     std::to_string(problem.robotControls.dofs.size()) + " DOFs of the robot controls");
+  }
+  for (std::size_t d = 0; d < positions.size(); ++d) {
+    if (!std::isfinite(positions[d])) throw InputError(what + ": value " + std::to_string(d + 1) + " is not a finite number");
+  }
+  return robotStatesFromDofs(
+      problem, [&](std::size_t d, const DofTarget&) { return positions[d]; },
+      [&](std::size_t d, const DofTarget& target) {
+        if (target.kind > DofKind::kZ) return positions[d];
+        const auto& range = axisLimits(problem.robots[static_cast<std::size_t>(target.entity)].limits, target.kind);
+        if (!range || range->second <= range->first) return positions[d];
+        return (positions[d] - range->first) / (range->second - range->first);
+      });
 }
 
 std::vector<Pose> obstaclePosesFromControls(const KauthamProblem& problem,

@@ -96,6 +96,14 @@ struct RobotStates {
 RobotStates robotStatesFromControls(const KauthamProblem& problem,
                                     const std::vector<double>& controls, const std::string& what);
 
+/// The robots' states at `positions`: one value per DOF of the robot control set, in its order, in
+/// the DOF's own unit (a joint's value; a base axis in metres within its <Limits>, a base rotation
+/// as Kautham's unit value), as trajectories of the problem's control space hold them. Joints no
+/// DOF names sit mid-range, as robotStatesFromControls() puts them. Throws InputError for the
+/// wrong number of values or a value that is not finite.
+RobotStates robotStatesFromDofPositions(const KauthamProblem& problem, const std::vector<double>& positions,
+                                        const std::string& what);
+
 /// Object poses (one per scene object) for obstacle control values.
 std::vector<Pose> obstaclePosesFromControls(const KauthamProblem& problem,
                                             const std::vector<double>& controls,
