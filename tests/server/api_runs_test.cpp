@@ -73,6 +73,25 @@ TEST(ApiRuns, ARunStreamsItsProgressAndKeepsItsDocuments) {
   EXPECT_THAT(resumed->body, ::testing::Not(HasSubstr("data: ")));
 }
 
+TEST(ApiRuns, AFailedRunServesItsMotionOnlyUnderPartialNames) {
+  ApiTestServer server;
+  const auto started = server.postJson("/api/runs", {{"task", "put the eraser 300 cm to the left of the holder"}, {"rounds", 1}});
+  ASSERT_EQ(started->status, 202) << started->body;
+  const std::string id = bodyOf(started)["id"];
+  const std::vector<json> events = streamedEvents(server, id);
+  ASSERT_FALSE(events.empty());
+  ASSERT_EQ(events.back()["state"], "failed") << events.back().dump();
+  const std::string files = "/api/runs/" + id + "/files/";
+  for (const char* name : {"trajectory.json", "trajectory.csv", "robot_trajectory.json"}) {
+    const auto refused = server.get(files + name);
+    EXPECT_EQ(refused->status, 404) << name;
+    EXPECT_THAT(refused->body, HasSubstr("did not succeed: what it executed is partial_" + std::string(name))) << refused->body;
+    EXPECT_EQ(server.get(files + "partial_" + name)->status, 200) << name;
+  }
+  EXPECT_EQ(bodyOf(server.get(files + "partial_trajectory.json"))["segments"].size(), 1U);
+  EXPECT_FALSE(bodyOf(server.get(files + "report.json"))["success"].get<bool>());
+}
+
 TEST(ApiRuns, QueuedAndRunningRunsCanBeCancelled) {
   ApiTestServer server;
   const std::string first = bodyOf(server.postJson("/api/runs", json::object()))["id"];
