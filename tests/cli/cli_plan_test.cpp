@@ -104,12 +104,14 @@ TEST(CliPlan, OfflinePlansOnOtherBuiltInProblems) {
   expectPaperPlanJson(result.output);
 }
 
-TEST(CliPlan, AnInstructionTheOfflinePlannerCannotGroundIsAClearError) {
+TEST(CliPlan, AnInstructionTheOfflinePlannerCannotGroundIsAClearErrorExitingAsRunDoes) {
   const RunResult result = run("plan --task \"put the flamingo in the holder\"", true, kCleanEnvironment);
-  EXPECT_EQ(result.exitCode, 1);
-  EXPECT_THAT(result.output, HasSubstr("lang2manip: error: plan: offline could not plan"));
+  EXPECT_EQ(result.exitCode, 2) << "the task could not be done, as `run` says of it";
+  EXPECT_THAT(result.output, HasSubstr("lang2manip: plan: offline could not plan"));
   EXPECT_THAT(result.output, HasSubstr("flamingo"));
   EXPECT_THAT(result.output, Not(HasSubstr("attempts:"))) << "the error is said once";
+  const TempDirectory directory;
+  EXPECT_EQ(run("run --task \"put the flamingo in the holder\" --out " + directory.path().string(), true, kCleanEnvironment).exitCode, 2);
 }
 
 TEST(CliPlan, EachProtocolPlansThePaperTaskThroughItsFakeServer) {
@@ -158,8 +160,8 @@ TEST(CliPlan, FailingEveryRoundExitsNonZeroListingTheAttempts) {
   server.enqueueAnswer(R"({"actions": [{"action": "place", "object": "marker", "params": {"relation": "in", "target": "holder"}}]})");
   const RunResult result =
       run("plan " + kPaperTask + " --llm ollama:llama3.1 --rounds 2", true, environmentFor(server));
-  EXPECT_EQ(result.exitCode, 1) << result.output;
-  EXPECT_THAT(result.output, HasSubstr("lang2manip: error: plan: no acceptable plan from ollama:llama3.1 after 2 rounds"));
+  EXPECT_EQ(result.exitCode, 2) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("lang2manip: plan: no acceptable plan from ollama:llama3.1 after 2 rounds"));
   EXPECT_THAT(result.output, HasSubstr("round 1 (unusable answer)"));
   EXPECT_THAT(result.output, HasSubstr("round 2 (invalid plan)"));
   EXPECT_THAT(result.output, HasSubstr("marker is not held"));
@@ -200,7 +202,7 @@ TEST(CliPlan, ReplayMissIsAClearError) {
   }
   const RunResult result =
       run("plan --task \"put the eraser in the holder\" --llm gemini:test --llm-replay " + file, true, kCleanEnvironment);
-  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_EQ(result.exitCode, 2) << "as `run` ends when its planner has no answer";
   EXPECT_THAT(result.output, HasSubstr("no recorded answer for this request (1 calls recorded"));
   EXPECT_THAT(result.output, HasSubstr("Record it first with --llm-record"));
   const RunResult missingFile = run("plan " + kPaperTask + " --llm gemini:test --llm-replay " +
@@ -232,6 +234,7 @@ TEST(CliPlan, MissingApiKeyNamesTheVariable) {
     const RunResult result = run("plan " + kPaperTask + " --llm " + spec, true, kCleanEnvironment);
     EXPECT_EQ(result.exitCode, 1) << spec;
     EXPECT_THAT(result.output, HasSubstr("no API key; " + message)) << spec;
+    EXPECT_THAT(result.output, Not(HasSubstr("option"))) << "there is no option for a key: " << spec;
   }
 }
 
@@ -263,7 +266,7 @@ TEST(CliPlan, ResponseSizeLimitIsAnOptionAndAClearError) {
   server.enqueueAnswer(R"({"reasoning": ")" + std::string(10000, 'x') + R"(", "actions": []})");
   RunResult result =
       run("plan " + kPaperTask + " --llm ollama:m --llm-max-response-bytes 2000", true, environmentFor(server));
-  EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_EQ(result.exitCode, 2) << result.output;
   EXPECT_THAT(result.output, HasSubstr("is larger than the response size limit of 2000 bytes"));
   for (const char* bytes : {"0", "-5"}) {
     result = run("plan " + kPaperTask + " --llm ollama:m --llm-max-response-bytes " + bytes, true, kCleanEnvironment);
@@ -294,9 +297,9 @@ TEST(CliPlan, HangingServerEndsAtTheTimeoutWithAClearError) {
   const RunResult result =
       run("plan " + kPaperTask + " --llm openai:test-model --llm-timeout 0.5", true, environmentFor(server));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_EQ(result.exitCode, 2) << result.output;
   EXPECT_LT(seconds, 10.0);
-  EXPECT_THAT(result.output, HasSubstr("lang2manip: error: plan: the LLM call of openai:test-model failed"));
+  EXPECT_THAT(result.output, HasSubstr("lang2manip: plan: the LLM call of openai:test-model failed"));
   // Whichever fires first, the per-attempt limit or the call's budget, the message gives the 0.5 s.
   EXPECT_THAT(result.output, ::testing::ContainsRegex("(within|time budget of) 0.5 s"));
   EXPECT_THAT(result.output, Not(HasSubstr(kApiKey)));
@@ -306,7 +309,7 @@ TEST(CliPlan, UnauthorizedNamesTheKeyVariableWithoutPrintingTheKey) {
   FakeLlmServer server(FakeLlmProtocol::kAnthropic);
   server.enqueueError(401, "invalid x-api-key");
   const RunResult result = run("plan " + kPaperTask + " --llm anthropic:claude-test", true, environmentFor(server));
-  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_EQ(result.exitCode, 2);
   EXPECT_THAT(result.output, HasSubstr("check the API key in ANTHROPIC_API_KEY"));
   EXPECT_THAT(result.output, Not(HasSubstr(kApiKey)));
   EXPECT_EQ(server.requestCount(), 1U);

@@ -377,6 +377,40 @@ TEST(RunCli, AnInterruptedRunLeavesTheEarlierSetOrAWholeNewOne) {
   }
 }
 
+/// report.json's "trajectory" of `run ARGUMENTS --out DIRECTORY`.
+json trajectoryReport(const std::string& arguments, const fs::path& directory) {
+  const RunResult result = run("run " + arguments + " --task \"put the marker in the holder\"" + kBudgets + " --out " + directory.string());
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  return readJson(directory / "report.json")["trajectory"];
+}
+
+TEST(RunCli, RunsUseSafeScalingByDefaultTheRobotsMoveItDefaultsAndFullSpeedOnlyWhenAsked) {
+  const TempDirectory directory;
+  const json defaults = trajectoryReport("", directory.path() / "defaults");
+  EXPECT_EQ(defaults["velocity_scaling"], 0.5);
+  EXPECT_EQ(defaults["acceleration_scaling"], 0.25);
+  EXPECT_EQ(defaults["scaling_from"], (json{{"velocity", "default"}, {"acceleration", "default"}}));
+  const json full = trajectoryReport("--full-speed", directory.path() / "full");
+  EXPECT_EQ(full["velocity_scaling"], 1.0);
+  EXPECT_EQ(full["acceleration_scaling"], 1.0);
+  EXPECT_LT(full["duration"].get<double>(), defaults["duration"].get<double>());
+  const json mixed = trajectoryReport("--full-speed --velocity-scaling 0.3", directory.path() / "mixed");
+  EXPECT_EQ(mixed["velocity_scaling"], 0.3);
+  EXPECT_EQ(mixed["scaling_from"], (json{{"velocity", "request"}, {"acceleration", "full speed"}}));
+
+  // A robot whose MoveIt joint_limits.yaml gives default scaling factors runs with them.
+  const fs::path data = directory.path() / "data";
+  fs::copy(test::testDataDirectory().parent_path().parent_path() / "data", data, fs::copy_options::recursive);
+  const fs::path limits = data / "models/robots/panda/panda.joint_limits.yaml";
+  const std::string text = test::readFileText(limits);
+  std::ofstream(limits) << "default_velocity_scaling_factor: 0.3\ndefault_acceleration_scaling_factor: 0.2\n" << text;
+  const json robots = trajectoryReport((data / "problems/desk/panda_desk.xml").string(), directory.path() / "robot");
+  EXPECT_EQ(robots["velocity_scaling"], 0.3);
+  EXPECT_EQ(robots["acceleration_scaling"], 0.2);
+  EXPECT_EQ(robots["scaling_from"], (json{{"velocity", "joint_limits.yaml"}, {"acceleration", "joint_limits.yaml"}}));
+  EXPECT_THAT(run("run --velocity-scaling 0 --out " + (directory.path() / "bad").string()).output, HasSubstr("--velocity-scaling"));
+}
+
 TEST(BenchTaskCli, RandomizedTrialsPrintSuccessFeasibilityAndTheBaselineRatio) {
   const RunResult result = run("bench task --trials 2 --seed 4 --json", false);
   ASSERT_EQ(result.exitCode, 0) << result.output;

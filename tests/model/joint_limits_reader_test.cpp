@@ -118,6 +118,25 @@ joint_limits:
   EXPECT_FALSE(limits.joints[1].maxVelocity || limits.joints[1].maxAcceleration || limits.joints[1].minPosition);
 }
 
+TEST_F(JointLimitsFileTest, MoveIt2sWrapperIsReadAndTheScalingDefaultsGoOnTheModel) {
+  const RobotModel model = applied(R"(robot_description_planning:
+  default_velocity_scaling_factor: 0.1
+  default_acceleration_scaling_factor: 0.2
+  joint_limits:
+    shoulder:
+      has_acceleration_limits: true
+      max_acceleration: 3
+)");
+  EXPECT_EQ(model.scalingDefaults().velocity, 0.1);
+  EXPECT_EQ(model.scalingDefaults().acceleration, 0.2);
+  EXPECT_EQ(model.accelerationLimit(model.variableIndex("shoulder")), 3.0);
+  const RobotModel plain = applied("joint_limits: {}\n");
+  EXPECT_FALSE(plain.scalingDefaults().velocity || plain.scalingDefaults().acceleration);
+  EXPECT_THAT(failure("robot_description_planning:\n  joint_limits: {}\nextra: 1\n"), HasSubstr("unknown key 'robot_description_planning'"));
+  EXPECT_THAT(failure("robot_description_planning:\n  default_velocity_scaling_factor: 2\n  joint_limits: {}\n"),
+              HasSubstr("must be in (0, 1], got 2"));
+}
+
 TEST_F(JointLimitsFileTest, AValueWithoutItsFlagIsIgnoredWithAWarning) {
   const WarningLog log;
   const JointLimitsFile limits = read(R"(joint_limits:

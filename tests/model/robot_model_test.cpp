@@ -128,7 +128,7 @@ TEST(RobotModelTest, AccelerationAndJerkLimitsAreUnknownUnlessGivenAndMustBePosi
   EXPECT_FALSE(model.jerkLimit(model.variableIndex("j1")));
   data.joints[1].limits.acceleration = 0.0;
   EXPECT_EQ(errorMessage([&] { RobotModel{data}; }),
-            "chain.urdf: joint \"j1\" acceleration limit must be a positive finite number, got 0.000000");
+            "chain.urdf: joint \"j1\" acceleration limit must be a positive finite number, got 0");
   data.joints[1].limits.acceleration.reset();
   data.joints[1].limits.jerk = std::numeric_limits<double>::infinity();
   EXPECT_EQ(errorMessage([&] { RobotModel{data}; }),
@@ -158,7 +158,7 @@ TEST(RobotModelTest, SetJointLimitsChecksAndUpdatesTheVariableLimits) {
   // Bad limits are refused and change nothing.
   limits.lower = 2.0;
   EXPECT_THAT(errorMessage([&] { model.setJointLimits(j1, limits); }),
-              HasSubstr("chain.urdf: joint \"j1\" has lower limit 2.000000 above upper limit 1.000000"));
+              HasSubstr("chain.urdf: joint \"j1\" has lower limit 2 above upper limit 1"));
   limits.lower = -0.5;
   limits.acceleration = -1.0;
   EXPECT_THAT(errorMessage([&] { model.setJointLimits(j1, limits); }), HasSubstr("acceleration limit must be a positive"));

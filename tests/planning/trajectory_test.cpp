@@ -59,7 +59,10 @@ TEST(TrajectoryFiles, JointTrajectoryJsonAndCsv) {
   const JointTrajectory trajectory = timeParameterize(*space, {planarStart(), planarGoal()});
   const nlohmann::json json = trajectoryToJson(trajectory);
   EXPECT_EQ(json["joint_names"], (nlohmann::json{"shoulder", "elbow"})) << "the URDF's names";
-  EXPECT_EQ(json["joint_robots"], (nlohmann::json{"planar", "planar"}));
+  EXPECT_EQ(trajectoryJointRobots(trajectory), (nlohmann::json{"planar", "planar"}));
+  for (const auto& [key, value] : json.items()) {
+    EXPECT_TRUE(key == "joint_names" || key == "points") << key << ": not a field of trajectory_msgs/JointTrajectory";
+  }
   const nlohmann::json& last = json["points"].back();
   EXPECT_EQ(last["positions"].size(), 2u);
   const double seconds = last["time_from_start"]["sec"].get<double>() + last["time_from_start"]["nanosec"].get<double>() * 1e-9;

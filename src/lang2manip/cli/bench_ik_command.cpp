@@ -26,6 +26,7 @@
 #include "lang2manip/kinematics/ik_solver.hpp"
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/model/urdf_reader.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 
 namespace lang2manip {
 namespace {
@@ -170,7 +171,7 @@ std::string reportText(const nlohmann::json& report) {
   std::string text = "IK benchmark (TRAC-IK protocol): robot " +
                      report["robot"].get<std::string>() + ", " +
                      std::to_string(report["samples"].get<int>()) + " samples, budget " +
-                     std::to_string(report["timeout_ms"].get<double>()) + " ms, seed " +
+                     numberText(report["timeout_ms"].get<double>()) + " ms, seed " +
                      std::to_string(report["seed"].get<std::uint64_t>()) + "\n";
   std::snprintf(line, sizeof line, "%-14s %9s %10s %10s %16s %22s %12s\n", "solver", "success",
                 "median ms", "p95 ms", "mean ms (succ.)", "median vs kdl_restarts",

@@ -86,7 +86,8 @@ void runPlanner(const PlanOptions& options, const Scene& scene, std::ostream& ou
   RepairOptions repair;
   repair.maxRounds = options.rounds;
   const RepairResult result = planWithRepair(selected.planner(), request, nullptr, repair, StopCondition::never());
-  if (!result.succeeded()) throw PlanningError("plan: " + result.failure);
+  // As `run` does for the same failure: the command ran and its task could not be done (exit 2).
+  if (!result.succeeded()) throw TaskFailedError("plan: " + result.failure);
   if (options.json) {
     out << toJson(*result.plan).dump(2) << '\n';
   } else {

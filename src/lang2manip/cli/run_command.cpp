@@ -26,6 +26,8 @@ struct RunOptions {
   std::string out = "lang2manip-out/run";
   bool force = false;
   bool keepPartial = false;
+  double velocityScaling = 0.0;
+  double accelerationScaling = 0.0;
   bool json = false;
   bool html = false;
   std::string timing = trajectoryTimingName(ExecutionSettings{}.timing);
@@ -48,7 +50,8 @@ RunRequest checkedRequest(const RunOptions& options) {
   if (!(request.ikTimeout > 0.0)) throw InputError("run: --ik-timeout must be a positive number of seconds");
   for (const auto& [value, flag] : {std::pair{request.velocityScaling, "--velocity-scaling"},
                                     std::pair{request.accelerationScaling, "--acceleration-scaling"}}) {
-    if (const std::string problem = scalingProblem(value); !problem.empty()) {
+    if (!value) continue;
+    if (const std::string problem = scalingProblem(*value); !problem.empty()) {
       throw InputError(std::string("run: ") + flag + " " + problem);
     }
   }
@@ -148,12 +151,15 @@ void addRunCommand(CLI::App& app, std::ostream& out) {
   command->add_flag("--keep-partial", options->keepPartial,
                     "When the task does not succeed, still write what was executed, as partial_trajectory.json, "
                     "partial_trajectory.csv and partial_robot_trajectory.json");
-  command->add_option("--velocity-scaling", options->request.velocityScaling,
-                      "Fraction of every joint's velocity limit the trajectories use, in (0, 1]")
-      ->capture_default_str();
-  command->add_option("--acceleration-scaling", options->request.accelerationScaling,
-                      "Fraction of every joint's acceleration limit the trajectories use, in (0, 1]")
-      ->capture_default_str();
+  command->add_option("--velocity-scaling", options->velocityScaling,
+                      "Fraction of every joint's velocity limit the trajectories use, in [0.01, 1] (default: the robot's "
+                      "joint_limits.yaml default_velocity_scaling_factor, else 0.5)");
+  command->add_option("--acceleration-scaling", options->accelerationScaling,
+                      "Fraction of every joint's acceleration limit the trajectories use, in [0.01, 1] (default: the robot's "
+                      "joint_limits.yaml default_acceleration_scaling_factor, else 0.25)");
+  command->add_flag("--full-speed", options->request.fullSpeed,
+                    "Use all of every joint's velocity and acceleration limits (what --velocity-scaling or "
+                    "--acceleration-scaling name still holds)");
   command->add_option("--timing", options->timing,
                       "How motions are timed: time-optimal (motions joined and blended, stops only where the gripper "
                       "acts) or rest-to-rest (a stop at every waypoint)")
@@ -162,7 +168,9 @@ void addRunCommand(CLI::App& app, std::ostream& out) {
                     "Keep each transit planner's exploration graph (scene.glb draws it green at the tool frame)");
   command->add_flag("--html", options->html, "Also write run.html: the scene, the motion and the plan in one page that opens offline");
   command->add_flag("--json", options->json, "Print the report (report.json) to standard output instead of the summary");
-  command->callback([options, task, &out] {
+  command->callback([options, task, command, &out] {
+    if (command->count("--velocity-scaling") > 0) options->request.velocityScaling = options->velocityScaling;
+    if (command->count("--acceleration-scaling") > 0) options->request.accelerationScaling = options->accelerationScaling;
     if (!options->request.planFile.empty() && task->count() == 0) options->request.task.clear();
     if (options->request.planFile == "-") {
       options->request.planFile = "standard input";

@@ -186,8 +186,10 @@ json runReportJson(const RunOutcome& outcome) {
     report["trajectory"] = qualityJson(quality);
     report["trajectory"]["duration"] = duration;
     report["trajectory"]["timing"] = outcome.timing;
-    report["trajectory"]["velocity_scaling"] = outcome.velocityScaling;
-    report["trajectory"]["acceleration_scaling"] = outcome.accelerationScaling;
+    report["trajectory"]["velocity_scaling"] = outcome.scaling.velocity;
+    report["trajectory"]["acceleration_scaling"] = outcome.scaling.acceleration;
+    report["trajectory"]["scaling_from"] = {{"velocity", outcome.scaling.velocitySource},
+                                            {"acceleration", outcome.scaling.accelerationSource}};
     report["path_length"] = lengths.toJson();
   }
   report["actions"] = actions;

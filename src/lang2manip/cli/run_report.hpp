@@ -11,6 +11,21 @@
 
 namespace lang2manip {
 
+/// The fractions of the joint limits a run uses when neither the request nor the robot's
+/// joint_limits.yaml names them: half the velocity limits and a quarter of the acceleration
+/// limits (MoveIt's Panda configuration allows a quarter of the datasheet accelerations).
+inline constexpr double kDefaultRunVelocityScaling = 0.5;
+inline constexpr double kDefaultRunAccelerationScaling = 0.25;
+
+/// The scaling a run uses, and where each came from ("request", "full speed",
+/// "joint_limits.yaml", "default").
+struct RunScaling {
+  double velocity = kDefaultRunVelocityScaling;
+  double acceleration = kDefaultRunAccelerationScaling;
+  std::string velocitySource = "default";
+  std::string accelerationSource = "default";
+};
+
 /// Everything a run produced.
 struct RunOutcome {
   std::string problem;
@@ -21,8 +36,7 @@ struct RunOutcome {
   long seed = 1;
   /// How the trajectories were timed ("time-optimal", "rest-to-rest") and the limit fractions.
   std::string timing;
-  double velocityScaling = 1.0;
-  double accelerationScaling = 1.0;
+  RunScaling scaling;
   RepairResult repair;
   /// The execution of the last plan tried (the accepted one on success); null when no plan got
   /// as far as execution.

@@ -56,7 +56,7 @@ json queryJson(std::size_t index, const PlanningSession& session, const MotionPl
           {"statistics", motionPlanStatisticsToJson(plan.statistics)},
           {"path_dof_names", session.pathDofNames()},
           {"path", pathToJson(plan.path)},
-          {"trajectory", trajectoryToJson(plan.trajectory)},
+          {"trajectory", trajectoryToJson(plan.trajectory)}, {"trajectory_joint_robots", trajectoryJointRobots(plan.trajectory)},
           {"duration", plan.trajectory.duration()}};
 }
 

@@ -48,7 +48,7 @@ void chooseGoals(const std::string& task, const Scene& scene, const std::string&
   if (run.repair.plan) run.goals = goalsImpliedByPlan(*run.repair.plan);
 }
 
-ExecutionSettings executionSettings(const RunRequest& request) {
+ExecutionSettings executionSettings(const RunRequest& request, const RunScaling& scaling) {
   ExecutionSettings settings;
   settings.manipulator = request.arm;
   if (!request.motionPlanner.empty()) settings.defaultPlanner = request.motionPlanner;
@@ -58,8 +58,8 @@ ExecutionSettings executionSettings(const RunRequest& request) {
   settings.reach.ikTimeoutSeconds = request.ikTimeout;
   if (request.recordTree) settings.recordTreeEdges = kRecordedTreeEdges;
   settings.timing = request.timing;
-  settings.velocityScaling = request.velocityScaling;
-  settings.accelerationScaling = request.accelerationScaling;
+  settings.velocityScaling = scaling.velocity;
+  settings.accelerationScaling = scaling.acceleration;
   return settings;
 }
 
@@ -189,7 +189,8 @@ RunDocuments runTask(const RunRequest& request, const RunControl& control) {
   const LoadedProblem loaded = loadProblem(request.problem, request.robot, request.scene);
   const Scene& scene = loaded.problem.scene;
   checkRunNames(request, scene);
-  TaskExecutor executor(scene, executionSettings(request));
+  const RunScaling scaling = chooseRunScaling(request, *scene.robots().front().model);
+  TaskExecutor executor(scene, executionSettings(request, scaling));
   const SelectedTaskPlanner selected = taskPlannerFor(request, scene, executor.arm().robotName(), executor.arm().manipulator().name);
   if (control.seedOmpl) ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(request.seed));
 
@@ -201,8 +202,7 @@ RunDocuments runTask(const RunRequest& request, const RunControl& control) {
   outcome.manipulator = executor.arm().manipulator().name;
   outcome.seed = request.seed;
   outcome.timing = trajectoryTimingName(request.timing);
-  outcome.velocityScaling = request.velocityScaling;
-  outcome.accelerationScaling = request.accelerationScaling;
+  outcome.scaling = scaling;
   RunDocuments documents;
   report(control.progress, {ProgressStage::kObserve, 0, -1, "", outcome.robot});
   observe(request, scene, outcome.robot, outcome.manipulator, documents, outcome.observationSeconds);
@@ -233,5 +233,25 @@ RunDocuments runTask(const RunRequest& request, const RunControl& control) {
 }
 
 std::string trajectoryDocumentName(const std::string& name, bool success) { return success ? name : "partial_" + name; }
+
+RunScaling chooseRunScaling(const RunRequest& request, const RobotModel& robot) {
+  RunScaling scaling;
+  const auto choose = [&](const std::optional<double>& requested, const std::optional<double>& robotDefault, double& value,
+                          std::string& source) {
+    if (requested) {
+      value = *requested;
+      source = "request";
+    } else if (request.fullSpeed) {
+      value = 1.0;
+      source = "full speed";
+    } else if (robotDefault) {
+      value = *robotDefault;
+      source = "joint_limits.yaml";
+    }
+  };
+  choose(request.velocityScaling, robot.scalingDefaults().velocity, scaling.velocity, scaling.velocitySource);
+  choose(request.accelerationScaling, robot.scalingDefaults().acceleration, scaling.acceleration, scaling.accelerationSource);
+  return scaling;
+}
 
 }  // namespace lang2manip

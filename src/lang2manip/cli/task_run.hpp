@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lang2manip/cli/problem_loading.hpp"
+#include "lang2manip/cli/run_report.hpp"
 #include "lang2manip/cli/task_planner_choice.hpp"
 #include "lang2manip/core/progress.hpp"
 #include "lang2manip/core/stop_condition.hpp"
@@ -74,11 +75,17 @@ struct RunRequest {
   double ikTimeout = ExecutionSettings{}.reach.ikTimeoutSeconds;
   /// Keep the transit planners' exploration graphs (drawn green by the viewer).
   bool recordTree = false;
-  /// How trajectories are timed, and the fractions of the joint limits they use.
+  /// How trajectories are timed, and the fractions of the joint limits they use: as given, else
+  /// all of both with fullSpeed, else the robot's joint_limits.yaml defaults, else
+  /// kDefaultRunVelocityScaling and kDefaultRunAccelerationScaling (chooseRunScaling()).
   TrajectoryTiming timing = ExecutionSettings{}.timing;
-  double velocityScaling = ExecutionSettings{}.velocityScaling;
-  double accelerationScaling = ExecutionSettings{}.accelerationScaling;
+  std::optional<double> velocityScaling;
+  std::optional<double> accelerationScaling;
+  bool fullSpeed = false;
 };
+
+/// The scaling `request` runs with on `robot` (see RunRequest::velocityScaling).
+RunScaling chooseRunScaling(const RunRequest& request, const RobotModel& robot);
 
 /// What a run produced: the contents of the files `run` writes.
 struct RunDocuments {

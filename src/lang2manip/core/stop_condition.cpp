@@ -5,13 +5,14 @@
 #include <string>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 
 namespace lang2manip {
 
 StopCondition StopCondition::afterSeconds(double seconds) {
   if (!std::isfinite(seconds) || seconds <= 0.0) {
     throw InputError("time budget must be a positive number of seconds, got " +
-                     std::to_string(seconds));
+                     numberText(seconds));
   }
   StopCondition condition;
   condition.deadline_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(

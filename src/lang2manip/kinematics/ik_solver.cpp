@@ -8,6 +8,7 @@
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/kinematics/dls_ik_solver.hpp"
 #include "lang2manip/kinematics/kdl_ik_solver.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 
 namespace lang2manip {
 namespace {
@@ -103,7 +104,7 @@ IkTarget checkedTarget(const IkTarget& target) {
 void checkScalars(const IkRequest& request) {
   if (!(request.timeoutSeconds > 0.0) || !std::isfinite(request.timeoutSeconds)) {
     throw InputError("IK time budget must be > 0 seconds and finite (got " +
-                     std::to_string(request.timeoutSeconds) + ")");
+                     numberText(request.timeoutSeconds) + ")");
   }
   if (!(request.positionTolerance > 0.0) || !(request.orientationTolerance > 0.0)) {
     throw InputError("IK tolerances must be > 0");

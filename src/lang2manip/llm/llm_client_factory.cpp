@@ -115,7 +115,7 @@ std::pair<std::string, std::string> keyFor(const ProviderInfo& info,
   if (info.keyOptional(endpoint)) return {"", variables};
   throw LlmError(LlmErrorKind::kConfiguration,
                  std::string(info.name) + ": no API key; set " + variables +
-                     " in the environment (or pass the key as an option)");
+                     " in the environment lang2manip runs in (keys are read only from there, never from the command line)");
 }
 
 }  // namespace

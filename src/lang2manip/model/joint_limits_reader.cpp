@@ -214,11 +214,17 @@ void narrowPositions(const JointLimitsEntry& entry, const Joint& joint, double l
 JointLimitsFile readJointLimitsFile(const std::filesystem::path& file) {
   JointLimitsFile result;
   result.source = file.string();
-  moveit_yaml::readYamlFile(file, [&](const YamlValue& root) { readTopLevel(root, result); });
+  moveit_yaml::readYamlFile(file, [&](const YamlValue& root) {
+    // MoveIt 2 packages may write the file under the parameter it is loaded as.
+    const bool wrapped = root.isMap() && root.entries().size() == 1 &&
+                         root.entries().front().first.text("a name") == "robot_description_planning";
+    readTopLevel(wrapped ? root.child("robot_description_planning") : root, result);
+  });
   return result;
 }
 
 void applyJointLimits(const JointLimitsFile& limits, RobotModel& model, double lengthScale) {
+  model.setScalingDefaults({limits.defaultVelocityScalingFactor, limits.defaultAccelerationScalingFactor});
   std::vector<std::pair<int, JointLimits>> changes;
   for (const JointLimitsEntry& entry : limits.joints) {
     const SourceLocation where{limits.source, entry.line};

@@ -4,8 +4,8 @@
 ///
 /// The format (MoveIt's `config/joint_limits.yaml`):
 /// ```yaml
-/// default_velocity_scaling_factor: 0.1        # optional, in (0, 1]; read, kept, not applied
-/// default_acceleration_scaling_factor: 0.1    # optional, in (0, 1]; read, kept, not applied
+/// default_velocity_scaling_factor: 0.1        # optional, in (0, 1]; a run's default scaling
+/// default_acceleration_scaling_factor: 0.1    # optional, in (0, 1]; a run's default scaling
 /// joint_limits:
 ///   panda_joint1:
 ///     has_velocity_limits: true
@@ -23,7 +23,8 @@
 /// given. A value whose flag is false or absent is ignored with a warning (as MoveIt 2 ignores
 /// it). ros2_control's keys for soft limits and deceleration (has_soft_limits, k_position,
 /// k_velocity, soft_lower_limit, soft_upper_limit, has_deceleration_limits, max_deceleration,
-/// angle_wraparound) are accepted and ignored; any other key is an error.
+/// angle_wraparound) are accepted and ignored; any other key is an error. The whole may sit under
+/// one `robot_description_planning:` key, as MoveIt 2 packages write it.
 
 #include <filesystem>
 #include <optional>
@@ -57,8 +58,8 @@ struct JointLimitsFile {
   std::string source;
   /// In file order.
   std::vector<JointLimitsEntry> joints;
-  /// MoveIt's defaults for scaling a request's limits, in (0, 1]: kept for callers, not applied
-  /// (lang2manip's speed factor is a planner setting).
+  /// MoveIt's defaults for scaling a request's limits, in (0, 1]: applyJointLimits() puts them
+  /// on the model (RobotModel::scalingDefaults()), where runs take them as MoveIt does.
   std::optional<double> defaultVelocityScalingFactor;
   std::optional<double> defaultAccelerationScalingFactor;
 };

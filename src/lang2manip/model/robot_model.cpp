@@ -80,15 +80,15 @@ void checkJoint(Joint& joint, const SourceLocation& where) {
   }
   for (const auto& [bound, name] : {std::pair{&limits.acceleration, "acceleration"}, std::pair{&limits.jerk, "jerk"}}) {
     if (*bound && !(std::isfinite(**bound) && **bound > 0.0)) {
-      throw InputError(where, what + " " + name + " limit must be a positive finite number, got " + std::to_string(**bound));
+      throw InputError(where, what + " " + name + " limit must be a positive finite number, got " + numberText(**bound));
     }
   }
   if (joint.type == JointType::kPrismatic) {
     requirePositionInRange(Vector3(limits.lower, limits.upper, 0.0), what + " limits (lower, upper, 0)", where);
   }
   if (isMovable(joint.type) && limits.lower > limits.upper) {
-    throw InputError(where, what + " has lower limit " + std::to_string(limits.lower) +
-                                " above upper limit " + std::to_string(limits.upper));
+    throw InputError(where, what + " has lower limit " + numberText(limits.lower) +
+                                " above upper limit " + numberText(limits.upper));
   }
   if (joint.mimic) {
     requireFinite(joint.mimic->multiplier, what + " mimic multiplier", where);

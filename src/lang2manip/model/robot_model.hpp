@@ -148,6 +148,17 @@ class RobotModel {
   /// (RobotModelPtr points to const) cannot be changed.
   void setJointLimits(int joint, const JointLimits& limits);
 
+  /// MoveIt's default_velocity_scaling_factor and default_acceleration_scaling_factor of the
+  /// robot's joint_limits.yaml, in (0, 1]; nullopt where it gave none. Runs use them unless a
+  /// request names its own scaling.
+  struct ScalingDefaults {
+    std::optional<double> velocity;
+    std::optional<double> acceleration;
+  };
+  [[nodiscard]] const ScalingDefaults& scalingDefaults() const noexcept { return scalingDefaults_; }
+  /// Sets scalingDefaults() (a reader completing the model, as setJointLimits()).
+  void setScalingDefaults(const ScalingDefaults& defaults) { scalingDefaults_ = defaults; }
+
   /// Value of joint `joint` for configuration `q` (mimics applied; 0 for fixed joints).
   [[nodiscard]] double jointValue(int joint, const VectorX& q) const noexcept;
 
@@ -189,6 +200,7 @@ class RobotModel {
   VectorX lower_;
   VectorX upper_;
   VectorX velocity_;
+  ScalingDefaults scalingDefaults_;
 };
 
 using RobotModelPtr = std::shared_ptr<const RobotModel>;

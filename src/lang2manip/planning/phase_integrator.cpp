@@ -8,6 +8,7 @@
 
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/planning/switching_points.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 
 namespace lang2manip::totg {
 namespace {
@@ -109,7 +110,7 @@ void PhaseIntegrator::countStep() {
   if (++steps_ <= maxSteps_) return;
   throw InputError("time-optimal parameterization: more than " + std::to_string(maxSteps_) +
                    " integration steps (a very long trajectory for the time step " +
-                   std::to_string(timeStep_) + " s); use a larger time step");
+                   numberText(timeStep_) + " s); use a larger time step");
 }
 
 // From forward_.back() with the maximum path acceleration (the first step with

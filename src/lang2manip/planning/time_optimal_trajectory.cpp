@@ -10,6 +10,7 @@
 #include "lang2manip/planning/blended_path.hpp"
 #include "lang2manip/planning/phase_integrator.hpp"
 #include "lang2manip/planning/phase_plane.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 
 namespace lang2manip {
 namespace {
@@ -49,7 +50,7 @@ void checkLimits(const VectorX& limits, const std::vector<std::string>& names, c
   for (Eigen::Index i = 0; i < limits.size(); ++i) {
     if (!(limits[i] > 0.0 && std::isfinite(limits[i]))) {
       throw badInput("joint " + names[static_cast<std::size_t>(i)] + " has " + kind + " limit " +
-                     std::to_string(limits[i]) + "; it must be positive and finite");
+                     numberText(limits[i]) + "; it must be positive and finite");
     }
   }
 }

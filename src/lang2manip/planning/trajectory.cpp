@@ -113,7 +113,7 @@ std::string checkTrajectoryLimits(const PlanningSpace& space, const JointTraject
   double previousTime = -1.0;
   for (std::size_t p = 0; p < trajectory.points.size(); ++p) {
     const TrajectoryPoint& point = trajectory.points[p];
-    const std::string where = "point " + std::to_string(p) + " (t = " + std::to_string(point.time) + " s)";
+    const std::string where = "point " + std::to_string(p) + " (t = " + numberText(point.time) + " s)";
     if (!(point.time > previousTime)) return where + ": time does not increase";
     previousTime = point.time;
     for (Eigen::Index j = 0; j < point.velocities.size(); ++j) {
@@ -164,12 +164,14 @@ nlohmann::json trajectoryToJson(const JointTrajectory& trajectory) {
                         {"nanosec", nanoseconds}}}});
   }
   std::vector<std::string> labels;
-  std::vector<std::string> robots;
-  for (const TrajectoryJoint& joint : trajectoryJoints(trajectory.jointNames)) {
-    labels.push_back(joint.label);
-    robots.push_back(joint.robot);
-  }
-  return {{"joint_names", labels}, {"joint_robots", robots}, {"points", points}};
+  for (const TrajectoryJoint& joint : trajectoryJoints(trajectory.jointNames)) labels.push_back(joint.label);
+  return {{"joint_names", labels}, {"points", points}};
+}
+
+nlohmann::json trajectoryJointRobots(const JointTrajectory& trajectory) {
+  nlohmann::json robots = nlohmann::json::array();
+  for (const TrajectoryJoint& joint : trajectoryJoints(trajectory.jointNames)) robots.push_back(joint.robot);
+  return robots;
 }
 
 std::string trajectoryToCsv(const JointTrajectory& trajectory) {

@@ -68,10 +68,14 @@ struct TrajectoryJoint {
 /// The joints named `names` ("robot/joint", as PlanningSpace::trajectoryJointNames() gives them).
 std::vector<TrajectoryJoint> trajectoryJoints(const std::vector<std::string>& names);
 
-/// {"joint_names": [labels], "joint_robots": [each joint's robot], "points": [{"positions",
-/// "velocities", "accelerations", "time_from_start": {"sec", "nanosec"}}]}: a
-/// trajectory_msgs/JointTrajectory with the URDF's joint names (see TrajectoryJoint).
+/// {"joint_names": [labels], "points": [{"positions", "velocities", "accelerations",
+/// "time_from_start": {"sec", "nanosec"}}]}: a trajectory_msgs/JointTrajectory with the URDF's
+/// joint names (see TrajectoryJoint) and nothing else, so that ROS's message loaders take it.
 nlohmann::json trajectoryToJson(const JointTrajectory& trajectory);
+
+/// Each joint's robot, parallel to trajectoryToJson()'s "joint_names" (files put it beside the
+/// message, as "trajectory_joint_robots").
+nlohmann::json trajectoryJointRobots(const JointTrajectory& trajectory);
 
 /// CSV with a header: time, then each joint's label (TrajectoryJoint), <label>_velocity,
 /// <label>_acceleration.

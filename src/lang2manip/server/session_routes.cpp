@@ -161,7 +161,7 @@ std::vector<ApiRoute> plannerVerbs(SessionRegistry& sessions) {
   routes.push_back(verb(sessions, "GET", "getPath", false, [](ClientSession& session, const ApiRequest&) {
     const MotionPlan& plan = session.planning.getPath();
     return json{{"dof_names", session.planning.pathDofNames()}, {"path", pathToJson(plan.path)},
-                {"trajectory", trajectoryToJson(plan.trajectory)}, {"duration", plan.trajectory.duration()}};
+                {"trajectory", trajectoryToJson(plan.trajectory)}, {"trajectory_joint_robots", trajectoryJointRobots(plan.trajectory)}, {"duration", plan.trajectory.duration()}};
   }));
   return routes;
 }

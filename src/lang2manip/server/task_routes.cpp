@@ -95,11 +95,14 @@ std::pair<RunRequest, std::string> runRequestOf(const json& request, const Serve
     throw ApiError(400, "bad_request", std::string("body field \"timing\": ") + error.what());
   }
   for (const auto& [field, value] : {std::pair{"velocity_scaling", &run.velocityScaling}, std::pair{"acceleration_scaling", &run.accelerationScaling}}) {
-    *value = body::number(request, field, *value);
-    if (const std::string problem = scalingProblem(*value); !problem.empty()) {
+    if (!request.contains(field) || request[field].is_null()) continue;  // the robot's or the default scaling
+    const double given = body::number(request, field, 0.0);
+    if (const std::string problem = scalingProblem(given); !problem.empty()) {
       throw ApiError(400, "bad_request", std::string("body field \"") + field + "\": " + problem);
     }
+    *value = given;
   }
+  run.fullSpeed = body::boolean(request, "full_speed", false);
   try {
     std::string problem = checkRunNames(run);  // as `run` does, but before the run waits in the queue
     return {std::move(run), std::move(problem)};
@@ -122,7 +125,7 @@ std::vector<ApiRoute> taskRoutes(RunRegistry& runs, const ServerOptions& options
                                                 {"events", "/api/runs/" + id + "/events"}},
                                                202);
                     },
-                    {"problem", "robot", "task", "llm", "planner", "ik", "arm", "rounds", "seed", "time_limit", "ik_timeout", "record_tree",
+                    {"problem", "robot", "task", "llm", "planner", "ik", "arm", "rounds", "seed", "time_limit", "ik_timeout", "record_tree", "full_speed",
                      "timing", "velocity_scaling", "acceleration_scaling"}});
   routes.push_back({"GET", "/api/runs", [&runs](const ApiRequest&) { return ApiResponse::json(runs.list()); }});
   routes.push_back({"GET", "/api/runs/{run}", [&runs](const ApiRequest& request) {
