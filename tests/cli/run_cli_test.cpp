@@ -107,15 +107,33 @@ TEST(RunCli, ThePaperTaskOfflineSucceedsAndWritesEveryFile) {
   expectTimesIncrease(trajectory);
   EXPECT_EQ(readFileText(directory.path() / "trajectory.csv").rfind("action,time,panda_joint1,", 0), 0u);
   const json moveit = readJson(directory.path() / "robot_trajectory.json");
-  EXPECT_EQ(moveit["joint_trajectory"]["joint_names"].size(), 8u);
+  EXPECT_EQ(moveit["joint_trajectory"]["joint_names"].size(), 7u) << "the arm's joints, as MoveIt executes a group";
   EXPECT_EQ(moveit["joint_trajectory"]["header"]["frame_id"], "panda_link0");
   double last = -1.0;
   for (const json& point : moveit["joint_trajectory"]["points"]) {
     EXPECT_GT(secondsOf(point["time_from_start"]), last);
     last = secondsOf(point["time_from_start"]);
-    EXPECT_EQ(point["positions"].size(), 8u);
+    EXPECT_EQ(point["positions"].size(), 7u);
   }
   EXPECT_NEAR(last, trajectory["duration"].get<double>(), 1e-6);
+  const json gripper = readJson(directory.path() / "gripper_trajectory.json");
+  EXPECT_EQ(gripper["joint_names"], json::array({"panda_finger_joint1"}));
+  for (const auto& [key, value] : gripper.items()) {
+    EXPECT_TRUE(key == "header" || key == "joint_names" || key == "points") << key << ": not a JointTrajectory field";
+  }
+  EXPECT_NEAR(secondsOf(gripper["points"].back()["time_from_start"]), last, 1e-6);
+  const json events = readJson(directory.path() / "gripper_events.json")["events"];
+  ASSERT_EQ(events.size(), 4u);
+  const std::vector<std::pair<std::string, std::string>> expected{
+      {"attach", "marker"}, {"detach", "marker"}, {"attach", "eraser"}, {"detach", "eraser"}};
+  double previous = 0.0;
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    EXPECT_EQ(events[i]["event"], expected[i].first);
+    EXPECT_EQ(events[i]["object"], expected[i].second);
+    EXPECT_EQ(events[i]["link"], "panda_hand_tcp");
+    EXPECT_GT(events[i]["time"].get<double>(), previous);
+    previous = events[i]["time"].get<double>();
+  }
   EXPECT_EQ(readJson(directory.path() / "plan.json")["actions"].size(), 4u);
   EXPECT_THAT(readFileText(directory.path() / "prompt.txt"), HasSubstr("put the marker and eraser in the holder"));
 }
@@ -319,7 +337,8 @@ TEST(RunCli, AFailedTaskReplacesTheEarlierOutputsWithoutATrajectoryUnlessAskedAn
   EXPECT_EQ(report["actions"][1]["stage"], "placement");
   EXPECT_THAT(report["actions"][1]["reason"].get<std::string>(), HasSubstr("eraser"));
   EXPECT_TRUE(fs::exists(out / "plan.json"));
-  for (const char* name : {"trajectory.json", "trajectory.csv", "robot_trajectory.json", "partial_trajectory.json"}) {
+  for (const char* name : {"trajectory.json", "trajectory.csv", "robot_trajectory.json", "gripper_trajectory.json", "gripper_events.json",
+                           "partial_trajectory.json"}) {
     EXPECT_FALSE(fs::exists(out / name)) << name << ": the earlier run's motion or a failed run's must not be there";
   }
   EXPECT_TRUE(readJson(fs::path(out.string() + ".previous") / "report.json")["success"].get<bool>()) << "the earlier set is kept";
@@ -330,6 +349,7 @@ TEST(RunCli, AFailedTaskReplacesTheEarlierOutputsWithoutATrajectoryUnlessAskedAn
   EXPECT_EQ(readJson(out / "partial_trajectory.json")["segments"].size(), 1u);
   EXPECT_TRUE(fs::exists(out / "partial_trajectory.csv"));
   EXPECT_TRUE(fs::exists(out / "partial_robot_trajectory.json"));
+  EXPECT_TRUE(fs::exists(out / "partial_gripper_events.json"));
   EXPECT_FALSE(fs::exists(out / "trajectory.json"));
 }
 

@@ -53,7 +53,7 @@ TEST(RunHtml, ThePaperTaskIsOneSelfContainedPageUnderFiveMegabytes) {
     EXPECT_THAT(wrote, HasSubstr(entry.path().filename().string())) << "not listed";
     ++files;
   }
-  EXPECT_EQ(files, 11U);
+  EXPECT_EQ(files, 13U);
   const fs::path page = temporary.path() / "run.html";
   ASSERT_TRUE(fs::exists(page));
   EXPECT_LT(fs::file_size(page), 5U << 20);

@@ -71,11 +71,8 @@ std::vector<std::string> writeDocuments(OutputDirectory& set, const RunDocuments
   write("observation.txt", documents.observationText);
   write("prompt.txt", documents.prompt);
   if (documents.plan) write("plan.json", documents.plan->dump(2) + "\n");
-  if (documents.trajectory && (documents.success || keepPartial)) {
-    const auto name = [&](const std::string& file) { return trajectoryDocumentName(file, documents.success); };
-    write(name("trajectory.json"), documents.trajectory->dump(2) + "\n");
-    write(name("trajectory.csv"), documents.trajectoryCsv);
-    write(name("robot_trajectory.json"), documents.robotTrajectory.dump(1) + "\n");
+  if (documents.success || keepPartial) {
+    for (const auto& [name, text] : motionDocuments(documents)) write(trajectoryDocumentName(name, documents.success), text);
   }
   write("report.json", documents.report.dump(2) + "\n");
   write("scene.glb", documents.sceneGlb);
@@ -150,7 +147,7 @@ void addRunCommand(CLI::App& app, std::ostream& out) {
                     "Use --out even when it holds files lang2manip did not write (they are kept in DIR.previous)");
   command->add_flag("--keep-partial", options->keepPartial,
                     "When the task does not succeed, still write what was executed, as partial_trajectory.json, "
-                    "partial_trajectory.csv and partial_robot_trajectory.json");
+                    "partial_trajectory.csv, partial_robot_trajectory.json, ...");
   command->add_option("--velocity-scaling", options->velocityScaling,
                       "Fraction of every joint's velocity limit the trajectories use, in [0.01, 1] (default: the robot's "
                       "joint_limits.yaml default_velocity_scaling_factor, else 0.5)");

@@ -222,6 +222,10 @@ RunDocuments runTask(const RunRequest& request, const RunControl& control) {
     documents.trajectory = runTrajectoryJson(*outcome.execution, joints);
     documents.trajectoryCsv = runTrajectoryCsv(*outcome.execution, joints);
     documents.robotTrajectory = moveItRobotTrajectory(*outcome.execution, joints);
+    if (!joints.gripper.empty()) {
+      documents.gripperTrajectory = gripperJointTrajectory(*outcome.execution, joints);
+      documents.gripperEvents = gripperEvents(*outcome.execution, joints);
+    }
   }
   documents.report = runReportJson(outcome);
   documents.summary = runSummary(outcome);
@@ -230,6 +234,19 @@ RunDocuments runTask(const RunRequest& request, const RunControl& control) {
   documents.viewerDocument = viewerRunDocument(request.task, documents.report, outcome.execution, outcome.robot,
                                                documents.observationText, documents.prompt);
   return documents;
+}
+
+std::vector<std::pair<std::string, std::string>> motionDocuments(const RunDocuments& documents) {
+  std::vector<std::pair<std::string, std::string>> files;
+  if (!documents.trajectory) return files;
+  files.emplace_back("trajectory.json", documents.trajectory->dump(2) + "\n");
+  files.emplace_back("trajectory.csv", documents.trajectoryCsv);
+  files.emplace_back("robot_trajectory.json", documents.robotTrajectory.dump(1) + "\n");
+  if (documents.gripperTrajectory) {
+    files.emplace_back("gripper_trajectory.json", documents.gripperTrajectory->dump(1) + "\n");
+    files.emplace_back("gripper_events.json", documents.gripperEvents.dump(2) + "\n");
+  }
+  return files;
 }
 
 std::string trajectoryDocumentName(const std::string& name, bool success) { return success ? name : "partial_" + name; }

@@ -101,6 +101,9 @@ struct RunDocuments {
   std::optional<nlohmann::json> trajectory;
   std::string trajectoryCsv;
   nlohmann::json robotTrajectory;
+  /// gripper_trajectory.json and gripper_events.json; absent for a robot without a gripper.
+  std::optional<nlohmann::json> gripperTrajectory;
+  nlohmann::json gripperEvents;
   /// scene.glb and viewer.json: the scene with the executed motion animated and the tool paths,
   /// and what the viewer lists beside it (run_scene.hpp).
   std::string sceneGlb;
@@ -111,8 +114,12 @@ struct RunDocuments {
   bool success = false;
 };
 
-/// The name a document of the executed motion ("trajectory.json", "trajectory.csv",
-/// "robot_trajectory.json") goes under: itself for a run that succeeded, "partial_" before it for
+/// The names of the documents of the executed motion that `documents` has, in the order they are
+/// written: trajectory.json, trajectory.csv, robot_trajectory.json, gripper_trajectory.json and
+/// gripper_events.json (the last two for a robot with a gripper), each with its content.
+std::vector<std::pair<std::string, std::string>> motionDocuments(const RunDocuments& documents);
+
+/// The name a document of the executed motion (one of motionDocuments()) goes under: itself for a run that succeeded, "partial_" before it for
 /// one that did not (written or served only when asked: a failed run's motion is not one to send
 /// to an arm).
 std::string trajectoryDocumentName(const std::string& name, bool success);

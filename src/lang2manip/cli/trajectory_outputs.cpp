@@ -58,6 +58,22 @@ json jointTrajectory(const JointTrajectory& trajectory, const std::vector<std::s
   return {{"joint_names", names}, {"points", points}};
 }
 
+json headerJson(const TrajectoryJoints& joints) {
+  return {{"frame_id", joints.frame}, {"stamp", {{"sec", 0}, {"nanosec", 0}}}};
+}
+
+/// The joints `names` over the whole run as one JointTrajectory, times from the run's start.
+json wholeRun(const ExecutionRecord& execution, const TrajectoryJoints& joints, const std::vector<std::string>& names) {
+  json points = json::array();
+  double last = -1.0;
+  for (const auto& [action, trajectory] : timedActions(execution)) {
+    if (trajectory.points.empty()) continue;
+    const json part = jointTrajectory(trajectory, names, columnsOf(trajectory, joints.robot, names), 0.0, last);
+    for (const json& point : part["points"]) points.push_back(point);
+  }
+  return {{"joint_names", names}, {"points", points}};
+}
+
 std::vector<std::string> allJoints(const TrajectoryJoints& joints) {
   std::vector<std::string> all = joints.arm;
   all.insert(all.end(), joints.gripper.begin(), joints.gripper.end());
@@ -72,6 +88,7 @@ TrajectoryJoints trajectoryJoints(const ArmContext& arm) {
   joints.frame = arm.model().links().front().name;
   joints.arm = arm.manipulator().armJoints;
   joints.gripper = arm.manipulator().gripperJoints;
+  joints.toolFrame = arm.manipulator().toolFrame;
   return joints;
 }
 
@@ -122,17 +139,34 @@ std::string runTrajectoryCsv(const ExecutionRecord& execution, const TrajectoryJ
 }
 
 json moveItRobotTrajectory(const ExecutionRecord& execution, const TrajectoryJoints& joints) {
-  const std::vector<std::string> names = allJoints(joints);
-  json points = json::array();
-  double last = -1.0;
+  const json header = headerJson(joints);
+  json arm = wholeRun(execution, joints, joints.arm);
+  arm["header"] = header;
+  return {{"joint_trajectory", arm},
+          {"multi_dof_joint_trajectory", {{"header", header}, {"joint_names", json::array()}, {"points", json::array()}}}};
+}
+
+json gripperJointTrajectory(const ExecutionRecord& execution, const TrajectoryJoints& joints) {
+  json gripper = wholeRun(execution, joints, joints.gripper);
+  gripper["header"] = headerJson(joints);
+  return gripper;
+}
+
+json gripperEvents(const ExecutionRecord& execution, const TrajectoryJoints& joints) {
+  json events = json::array();
   for (const auto& [action, trajectory] : timedActions(execution)) {
     if (trajectory.points.empty()) continue;
-    const json part = jointTrajectory(trajectory, names, columnsOf(trajectory, joints.robot, names), 0.0, last);
-    for (const json& point : part["points"]) points.push_back(point);
+    const double start = trajectory.points.front().time;
+    for (std::size_t k = 0; k < action->segments.size() && k < action->segmentEndTimes.size(); ++k) {
+      const GripperEvent event = action->segments[k].gripperEvent;
+      if (event == GripperEvent::kNone) continue;
+      events.push_back({{"time", start + action->segmentEndTimes[k]},
+                        {"event", event == GripperEvent::kGrasp ? "attach" : "detach"},
+                        {"object", action->action.object},
+                        {"link", joints.toolFrame}});
+    }
   }
-  const json header{{"frame_id", joints.frame}, {"stamp", {{"sec", 0}, {"nanosec", 0}}}};
-  return {{"joint_trajectory", {{"header", header}, {"joint_names", names}, {"points", points}}},
-          {"multi_dof_joint_trajectory", {{"header", header}, {"joint_names", json::array()}, {"points", json::array()}}}};
+  return {{"events", events}};
 }
 
 }  // namespace lang2manip

@@ -215,9 +215,11 @@ RunEventBatch RunRegistry::events(const std::string& id, std::size_t from, std::
 std::pair<std::string, std::string> RunRegistry::document(const std::string& id, const std::string& name) const {
   static const std::vector<std::string> kNames{"plan.json",        "report.json",     "trajectory.json", "trajectory.csv", "observation.json",
                                                "observation.txt", "prompt.txt",      "viewer.json",     "scene.glb",      "robot_trajectory.json",
-                                               "partial_trajectory.json", "partial_trajectory.csv", "partial_robot_trajectory.json"};
+                                               "gripper_trajectory.json", "gripper_events.json",
+                                               "partial_trajectory.json", "partial_trajectory.csv", "partial_robot_trajectory.json",
+                                               "partial_gripper_trajectory.json", "partial_gripper_events.json"};
   if (std::find(kNames.begin(), kNames.end(), name) == kNames.end()) {
-    throw ApiError(404, "not_found", "no document \"" + name.substr(0, 80) + "\": a run has plan.json, report.json, trajectory.json, trajectory.csv, observation.json, observation.txt, prompt.txt, viewer.json, scene.glb, robot_trajectory.json (partial_trajectory.json, partial_trajectory.csv and partial_robot_trajectory.json when it did not succeed)");
+    throw ApiError(404, "not_found", "no document \"" + name.substr(0, 80) + "\": a run has plan.json, report.json, trajectory.json, trajectory.csv, observation.json, observation.txt, prompt.txt, viewer.json, scene.glb, robot_trajectory.json, gripper_trajectory.json, gripper_events.json (the motion's documents named partial_... when it did not succeed)");
   }
   const std::lock_guard lock(mutex_);
   const std::shared_ptr<Run> run = find(id);
@@ -232,14 +234,10 @@ std::pair<std::string, std::string> RunRegistry::document(const std::string& id,
   if (name == "viewer.json") return {"application/json", text(documents.viewerDocument)};
   if (name == "scene.glb") return {"model/gltf-binary", documents.sceneGlb};
   if (name == "plan.json" && documents.plan) return {"application/json", text(*documents.plan)};
-  if (documents.trajectory) {
-    const auto named = [&](const std::string& file) { return name == trajectoryDocumentName(file, documents.success); };
-    if (named("trajectory.json")) return {"application/json", text(*documents.trajectory)};
-    if (named("trajectory.csv")) return {"text/csv", documents.trajectoryCsv};
-    if (named("robot_trajectory.json")) return {"application/json", text(documents.robotTrajectory)};
-    if (!documents.success && (name == "trajectory.json" || name == "trajectory.csv" || name == "robot_trajectory.json")) {
-      throw ApiError(404, "not_found", "run " + id + " did not succeed: what it executed is partial_" + name + ", not " + name);
-    }
+  for (const auto& [file, content] : motionDocuments(documents)) {
+    const std::string type = file.ends_with(".csv") ? "text/csv" : "application/json";
+    if (name == trajectoryDocumentName(file, documents.success)) return {type, content};
+    if (name == file) throw ApiError(404, "not_found", "run " + id + " did not succeed: what it executed is partial_" + name + ", not " + name);
   }
   throw ApiError(404, "not_found", "run " + id + " produced no " + name + " (no plan reached that stage)");
 }
