@@ -6,9 +6,11 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -49,6 +51,9 @@ RobotModelData chainData() {
 std::string keyOf(RobotModelData data, const AllowedCollisionSettings& settings = {}) {
   return allowedCollisionKey(RobotModel(std::move(data)), settings);
 }
+
+/// A check that believes every stored matrix.
+const auto kTrusted = [](const AllowedCollisionMatrix&) { return true; };
 
 /// A 3-link matrix with every reason once.
 AllowedCollisionMatrix sampleMatrix() {
@@ -166,6 +171,43 @@ TEST(AllowedCollisionDiskCache, FilesThatDoNotReadBackAreIgnored) {
   }
 }
 
+TEST(AllowedCollisionDiskCache, AFifoADeviceOrAHugeFileIsNotRead) {
+  const TempDirectory directory;
+  const RobotModel model(chainData());
+  ASSERT_TRUE(storeAllowedCollisions(directory.path(), "k", model, sampleMatrix()));
+  const fs::path file = [&] {
+    for (const auto& entry : fs::directory_iterator(directory.path())) return entry.path();
+    return fs::path();
+  }();
+  fs::remove(file);
+  ASSERT_EQ(::mkfifo(file.c_str(), 0600), 0);
+  EXPECT_FALSE(readStoredAllowedCollisions(directory.path(), "k", model).has_value()) << "a FIFO would block forever";
+  fs::remove(file);
+  fs::create_symlink("/dev/zero", file);
+  EXPECT_FALSE(readStoredAllowedCollisions(directory.path(), "k", model).has_value()) << "/dev/zero never ends";
+  fs::remove(file);
+  std::ofstream(file) << std::string(1 << 20, '0');
+  EXPECT_FALSE(readStoredAllowedCollisions(directory.path(), "k", model).has_value());
+}
+
+TEST(AllowedCollisionMatrixConfirmation, AStoredMatrixAllowingMoreThanTheSamplesShowIsRefuted) {
+  AllowedCollisionMatrix reference(3);
+  reference.allow(0, 1, AllowedReason::kAdjacent);
+  reference.allow(1, 2, AllowedReason::kAdjacent);
+  AllowedCollisionMatrix honest(3);
+  honest.allow(0, 1, AllowedReason::kAdjacent);
+  EXPECT_TRUE(allowsNoMoreThan(honest, reference));
+  AllowedCollisionMatrix forged = reference;
+  forged.allow(0, 2, AllowedReason::kNever);
+  EXPECT_FALSE(allowsNoMoreThan(forged, reference));
+  EXPECT_FALSE(allowsNoMoreThan(AllowedCollisionMatrix(2), reference));
+  AllowedCollisionSettings settings;
+  const AllowedCollisionSettings quick = confirmationSettings(settings);
+  EXPECT_EQ(quick.samples, 64);
+  EXPECT_EQ(quick.seed, settings.seed) << "the first of the same samples";
+  EXPECT_EQ(quick.alwaysFraction, 0.6);
+}
+
 TEST(AllowedCollisionDiskCache, UnwritableDirectoryIsReportedNotFatal) {
   const TempDirectory directory;
   std::ofstream(directory.path() / "file") << "x";
@@ -174,7 +216,7 @@ TEST(AllowedCollisionDiskCache, UnwritableDirectoryIsReportedNotFatal) {
   ScopedVariable cache("LANG2MANIP_CACHE_DIR", (directory.path() / "file" / "below").string());
   int calls = 0;
   const AllowedCollisionMatrix matrix =
-      storedOrComputedAllowedCollisions(model, {}, [&] { ++calls; return sampleMatrix(); });
+      storedOrComputedAllowedCollisions(model, {}, [&] { ++calls; return sampleMatrix(); }, kTrusted);
   EXPECT_EQ(calls, 1);
   expectSameMatrix(matrix, sampleMatrix());
 }
@@ -190,14 +232,18 @@ TEST(AllowedCollisionDiskCache, SecondRequestReadsTheFileAndOffComputesEveryTime
   {
     ScopedVariable cache("LANG2MANIP_CACHE_DIR", directory.path().string());
     EXPECT_EQ(allowedCollisionCacheDirectory(), directory.path());
-    (void)storedOrComputedAllowedCollisions(model, {}, compute);
-    expectSameMatrix(storedOrComputedAllowedCollisions(model, {}, compute), sampleMatrix());
+    (void)storedOrComputedAllowedCollisions(model, {}, compute, kTrusted);
+    expectSameMatrix(storedOrComputedAllowedCollisions(model, {}, compute, kTrusted), sampleMatrix());
     EXPECT_EQ(calls, 1);
+    // A stored matrix its check does not confirm is computed again and replaced.
+    const auto refuted = [](const AllowedCollisionMatrix&) { return false; };
+    expectSameMatrix(storedOrComputedAllowedCollisions(model, {}, compute, refuted), sampleMatrix());
+    EXPECT_EQ(calls, 2);
   }
   ScopedVariable off("LANG2MANIP_CACHE_DIR", "off");
   EXPECT_FALSE(allowedCollisionCacheDirectory().has_value());
-  (void)storedOrComputedAllowedCollisions(model, {}, compute);
-  EXPECT_EQ(calls, 2);
+  (void)storedOrComputedAllowedCollisions(model, {}, compute, kTrusted);
+  EXPECT_EQ(calls, 3);
 }
 
 TEST(AllowedCollisionDiskCache, DirectoryFollowsXdgThenHome) {
@@ -240,20 +286,30 @@ TEST(AllowedCollisionDiskCache, CheckerOfAFreshModelReadsWhatTheFirstComputed) {
   const fs::path file = fs::directory_iterator(directory.path())->path();
   std::string text = readFileText(file);
   const std::size_t rows = text.find('\n', text.find("links ")) + 1;
-  // Make the stored file say something the computation never does (every pair allowed as
-  // "always"), keeping it well formed: the third checker must use it, proving it was read.
   const Scene scene = robotOnlyScene("ur5");
   const RobotModel& model = *scene.robots()[0].model;
-  std::string rewritten = text.substr(0, rows);
-  for (const Link& link : model.links()) rewritten += link.name + "\n";
   const int links = static_cast<int>(model.links().size());
-  for (int a = 0; a < links; ++a) {
-    for (int b = 0; b < links; ++b) rewritten += a == b ? '1' : '5';
-    rewritten += '\n';
-  }
-  std::ofstream(file, std::ios::trunc) << rewritten;
+  const auto rewrite = [&](const std::function<char(int, int)>& cell) {
+    std::string rewritten = text.substr(0, rows);
+    for (const Link& link : model.links()) rewritten += link.name + "\n";
+    for (int a = 0; a < links; ++a) {
+      for (int b = 0; b < links; ++b) rewritten += a == b ? '1' : cell(a, b);
+      rewritten += '\n';
+    }
+    std::ofstream(file, std::ios::trunc) << rewritten;
+  };
+  // A file that allows fewer pairs than the computation (nothing but adjacent pairs) is believed:
+  // the third checker uses it, proving it was read.
+  const AllowedCollisionMatrix& computed = *first.sharedAllowedCollisions(0);
+  rewrite([&](int a, int b) { return computed.reason(a, b) == AllowedReason::kAdjacent ? '2' : '0'; });
   const FclCollisionChecker third(robotOnlyScene("ur5"));
-  EXPECT_EQ(third.sharedAllowedCollisions(0)->reason(0, links - 1), AllowedReason::kAlways);
+  EXPECT_EQ(third.sharedAllowedCollisions(0)->count(AllowedReason::kNever), 0);
+  // A file claiming every pair is allowed ("always") is checked against the first samples and
+  // refuted: the matrix is computed again, and the file replaced by it.
+  rewrite([](int, int) { return '5'; });
+  const FclCollisionChecker fourth(robotOnlyScene("ur5"));
+  expectSameMatrix(*fourth.sharedAllowedCollisions(0), computed);
+  EXPECT_THAT(readFileText(file), ::testing::Not(::testing::HasSubstr(std::string(static_cast<std::size_t>(links - 1), '5'))));
 }
 
 }  // namespace

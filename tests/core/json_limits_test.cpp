@@ -85,6 +85,16 @@ TEST(JsonLimitsTest, EveryNlohmannFailureBecomesAnInputErrorNamingTheDocument) {
             18446744073709551615ULL);
 }
 
+TEST(JsonLimitsTest, AKeyGivenTwiceInOneObjectIsRefusedAtAnyDepth) {
+  const JsonLimits limits;
+  EXPECT_THAT([&] { (void)parseJsonWithinLimits(R"({"actions": [], "actions": [1]})", limits, "plan file p.json"); },
+              ::testing::ThrowsMessage<InputError>(::testing::HasSubstr("plan file p.json: not valid JSON here: the key \"actions\" appears twice")));
+  EXPECT_THROW((void)parseJsonWithinLimits(R"({"a": [{"x": 1, "y": 2, "x": 3}]})", limits, "body"), InputError);
+  // The same key in sibling or nested objects is not a duplicate.
+  const nlohmann::json value = parseJsonWithinLimits(R"({"a": {"a": 1}, "b": [{"a": 2}, {"a": 3}]})", limits, "body");
+  EXPECT_EQ(value["b"][1]["a"], 3);
+}
+
 TEST(JsonLimitsTest, BoundedDumpNeverSerialisesTheWholeValue) {
   json big = json::array();
   for (int i = 0; i < 100000; ++i) big.push_back(i);

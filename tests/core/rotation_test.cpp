@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace lang2manip {
@@ -60,6 +62,18 @@ TEST(Rotation, KauthamUnitCubeMap) {
   EXPECT_NEAR(q.y(), s * std::cos(2 * kPi * 0.25), 1e-12);
   EXPECT_NEAR(q.z(), s * std::sin(kPi * 0.5), 1e-12);
   EXPECT_NEAR(q.w(), s * std::cos(kPi * 0.5), 1e-12);
+}
+
+TEST(Rotation, UnitQuaternionsOfHugeOrTinyComponentsAreTheirRotationAndZeroIsNone) {
+  const std::optional<Quaternion> huge = unitQuaternion(0.0, 0.0, 0.0, 1e300);
+  ASSERT_TRUE(huge.has_value());
+  EXPECT_NEAR(std::abs(huge->z()), 1.0, 1e-12) << "a half turn about z, not no rotation";
+  const std::optional<Quaternion> tiny = unitQuaternion(1e-300, 1e-300, 0.0, 0.0);
+  ASSERT_TRUE(tiny.has_value());
+  EXPECT_NEAR(tiny->w(), std::sqrt(0.5), 1e-12);
+  EXPECT_FALSE(unitQuaternion(0.0, 0.0, 0.0, 0.0).has_value());
+  EXPECT_FALSE(unitQuaternion(1.0, std::numeric_limits<double>::infinity(), 0.0, 0.0).has_value());
+  EXPECT_FALSE(unitQuaternion(std::nan(""), 0.0, 0.0, 0.0).has_value());
 }
 
 }  // namespace

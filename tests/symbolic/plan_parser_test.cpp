@@ -74,6 +74,16 @@ TEST(PlanParserTest, ParsesThePaperPlan) {
   EXPECT_EQ(plan.reasoning, "one object at a time");
 }
 
+TEST(PlanParserTest, PositionsFarOutsideAnySceneAndHugeQuaternionsAreRefused) {
+  const json far = json::parse(R"({"actions": [{"action": "move", "params": {"position": [1e308, 0, 0.5]}}]})");
+  EXPECT_THAT(problemsOf(far), ::testing::Contains(::testing::HasSubstr("actions[0].params.position: a coordinate beyond 100 m")));
+  const json turned = json::parse(R"({"actions": [{"action": "move", "params": {"position": [0.4, 0, 0.5],
+      "orientation": {"w": 1e300, "x": 0, "y": 0, "z": 0}}}]})");
+  EXPECT_THAT(problemsOf(turned), ::testing::Contains(::testing::HasSubstr("not a unit quaternion")));
+  EXPECT_THAT(problemsOfText(R"({"actions": [], "actions": [{"action": "pick", "object": "marker"}]})"),
+              ::testing::Contains(::testing::HasSubstr("\"actions\" appears twice")));
+}
+
 TEST(PlanParserTest, UnknownTargetObjectIsReportedWithPathAndTheValidObjects) {
   json document = paperPlan();
   document["actions"][2] = placeIn("eraser", "cup");

@@ -193,7 +193,15 @@ std::string allowedCollisionKey(const RobotModel& model, const AllowedCollisionS
 
 std::optional<AllowedCollisionMatrix> readStoredAllowedCollisions(const fs::path& directory, const std::string& key,
                                                                   const RobotModel& model) {
-  std::ifstream in(fileFor(directory, key));
+  const fs::path file = fileFor(directory, key);
+  std::error_code error;
+  // Never a FIFO or device (a reader would block or read forever): a regular file of a size a
+  // matrix can have.
+  const std::uintmax_t links2 = model.links().size() * model.links().size();
+  if (!fs::is_regular_file(fs::symlink_status(file, error)) || fs::file_size(file, error) > 4096 + 64 * links2 + 2 * links2) {
+    return std::nullopt;
+  }
+  std::ifstream in(file);
   if (!in) return std::nullopt;
   std::string line;
   const int links = static_cast<int>(model.links().size());
@@ -223,12 +231,15 @@ bool storeAllowedCollisions(const fs::path& directory, const std::string& key, c
 
 AllowedCollisionMatrix storedOrComputedAllowedCollisions(const RobotModel& model,
                                                          const AllowedCollisionSettings& settings,
-                                                         const std::function<AllowedCollisionMatrix()>& compute) {
+                                                         const std::function<AllowedCollisionMatrix()>& compute,
+                                                         const std::function<bool(const AllowedCollisionMatrix&)>& confirms) {
   const std::optional<fs::path> directory = allowedCollisionCacheDirectory();
   if (!directory) return compute();
   const std::string key = allowedCollisionKey(model, settings);
   if (std::optional<AllowedCollisionMatrix> stored = readStoredAllowedCollisions(*directory, key, model)) {
-    return std::move(*stored);
+    if (confirms(*stored)) return std::move(*stored);
+    logWarning("robot \"" + model.name() + "\": the allowed-collision matrix stored in " + fileFor(*directory, key).string() +
+               " allows link pairs that collide; it is computed again and replaced");
   }
   AllowedCollisionMatrix matrix = compute();
   static std::atomic<bool> warned{false};

@@ -32,7 +32,8 @@ std::optional<std::filesystem::path> allowedCollisionCacheDirectory();
 std::string allowedCollisionKey(const RobotModel& model, const AllowedCollisionSettings& settings);
 
 /// The matrix stored under `key` in `directory` for `model`, or nullopt when there is none or it
-/// does not read back (wrong format, another link count or link names, an unknown reason).
+/// does not read back (not a regular file or larger than any matrix, wrong format, another link
+/// count or link names, an unknown reason).
 std::optional<AllowedCollisionMatrix> readStoredAllowedCollisions(const std::filesystem::path& directory,
                                                                   const std::string& key,
                                                                   const RobotModel& model);
@@ -42,11 +43,14 @@ std::optional<AllowedCollisionMatrix> readStoredAllowedCollisions(const std::fil
 bool storeAllowedCollisions(const std::filesystem::path& directory, const std::string& key,
                             const RobotModel& model, const AllowedCollisionMatrix& matrix);
 
-/// The stored matrix for (`model`, `settings`) when allowedCollisionCacheDirectory() has one,
-/// else `compute()`, stored for the next process. A directory that cannot be written logs one
-/// warning and is skipped.
+/// The stored matrix for (`model`, `settings`) when allowedCollisionCacheDirectory() has one and
+/// `confirms` holds of it (what the file claims is checked, not trusted: see
+/// allowsNoMoreThan()), else `compute()`, stored for the next process. A stored matrix that is
+/// not confirmed is replaced, with a warning; a directory that cannot be written logs one warning
+/// and is skipped.
 AllowedCollisionMatrix storedOrComputedAllowedCollisions(const RobotModel& model,
                                                          const AllowedCollisionSettings& settings,
-                                                         const std::function<AllowedCollisionMatrix()>& compute);
+                                                         const std::function<AllowedCollisionMatrix()>& compute,
+                                                         const std::function<bool(const AllowedCollisionMatrix&)>& confirms);
 
 }  // namespace lang2manip

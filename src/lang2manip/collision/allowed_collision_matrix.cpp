@@ -5,6 +5,7 @@
 #include <set>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/core/random.hpp"
 
 namespace lang2manip {
@@ -138,7 +139,7 @@ void allowSampled(const RobotModel& model, const LinkCollisionTest& test,
     }
   }
   if (!(settings.alwaysFraction > 0.5 && settings.alwaysFraction <= 1.0)) {
-    throw InputError("allowed-collision matrix: alwaysFraction must be in (0.5, 1], got " + std::to_string(settings.alwaysFraction));
+    throw InputError("allowed-collision matrix: alwaysFraction must be in (0.5, 1], got " + numberText(settings.alwaysFraction));
   }
   // A pair may still be "always" while it has missed at most this many samples.
   const int allowedMisses = static_cast<int>(std::floor((1.0 - settings.alwaysFraction) * settings.samples + 1e-9));
@@ -245,6 +246,23 @@ AllowedCollisionMatrix computeAllowedCollisionMatrix(const RobotModel& model,
   if (settings.disableDefault) allowDefault(model, test, matrix);
   if (settings.disableNever || settings.disableAlways) allowSampled(model, test, settings, matrix);
   return matrix;
+}
+
+bool allowsNoMoreThan(const AllowedCollisionMatrix& stored, const AllowedCollisionMatrix& reference) {
+  if (stored.linkCount() != reference.linkCount()) return false;
+  for (int a = 0; a < stored.linkCount(); ++a) {
+    for (int b = a + 1; b < stored.linkCount(); ++b) {
+      if (stored.isAllowed(a, b) && !reference.isAllowed(a, b)) return false;
+    }
+  }
+  return true;
+}
+
+AllowedCollisionSettings confirmationSettings(const AllowedCollisionSettings& settings) {
+  AllowedCollisionSettings quick = settings;
+  quick.samples = std::min(settings.samples, 64);
+  quick.alwaysFraction = std::min(settings.alwaysFraction, 0.6);
+  return quick;
 }
 
 }  // namespace lang2manip

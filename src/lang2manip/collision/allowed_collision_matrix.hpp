@@ -95,4 +95,15 @@ AllowedCollisionMatrix computeAllowedCollisionMatrix(const RobotModel& model,
                                                      const LinkCollisionTest& test,
                                                      const AllowedCollisionSettings& settings = {});
 
+/// True when `stored` allows no pair of links that `reference` does not allow: how a matrix read
+/// from disk is checked against one computed here from the first few of the same seeded samples
+/// (confirmationSettings()), so that a file claiming pairs "never" collide when they do is not
+/// believed.
+bool allowsNoMoreThan(const AllowedCollisionMatrix& stored, const AllowedCollisionMatrix& reference);
+
+/// `settings` for checking a stored matrix: the first 64 of its samples, and "always" for pairs
+/// colliding in at least 60% of them (a pair colliding in 95% of all samples does in 60% of the
+/// first few).
+AllowedCollisionSettings confirmationSettings(const AllowedCollisionSettings& settings);
+
 }  // namespace lang2manip

@@ -170,9 +170,11 @@ class WorldBuilder {
     const LinkShapes& shapes = shapes_.at(model.get());
     const AllowedCollisionSettings& settings = settings_.allowedCollisions;
     return cachedAllowedCollisionMatrix(model, settings, [&] {
-      return storedOrComputedAllowedCollisions(*model, settings, [&] {
-        return computeAllowedCollisionMatrix(*model, linkTest(*model, shapes), settings);
-      });
+      return storedOrComputedAllowedCollisions(
+          *model, settings, [&] { return computeAllowedCollisionMatrix(*model, linkTest(*model, shapes), settings); },
+          [&](const AllowedCollisionMatrix& stored) {
+            return allowsNoMoreThan(stored, computeAllowedCollisionMatrix(*model, linkTest(*model, shapes), confirmationSettings(settings)));
+          });
     });
   }
 

@@ -1,6 +1,8 @@
 #include "lang2manip/core/json_limits.hpp"
 
+#include <set>
 #include <streambuf>
+#include <vector>
 
 namespace lang2manip {
 namespace {
@@ -139,8 +141,25 @@ std::string jsonErrorText(const json::exception& error) {
 
 json parseJsonWithinLimits(std::string_view text, const JsonLimits& limits, std::string_view document) {
   checkJsonLimits(text, limits, document);
+  // A key given twice in one object is refused: nlohmann keeps the last, so a reader and a
+  // reviewer of the same text could see two different documents.
+  std::vector<std::set<std::string>> keysOfOpenObjects;
+  const json::parser_callback_t refuseDuplicateKeys = [&](int, json::parse_event_t event, json& parsed) {
+    if (event == json::parse_event_t::object_start) {
+      keysOfOpenObjects.emplace_back();
+    } else if (event == json::parse_event_t::object_end && !keysOfOpenObjects.empty()) {
+      keysOfOpenObjects.pop_back();
+    } else if (event == json::parse_event_t::key && !keysOfOpenObjects.empty()) {
+      const std::string& key = parsed.get_ref<const std::string&>();
+      if (!keysOfOpenObjects.back().insert(key).second) {
+        throw InputError(std::string(document) + ": not valid JSON here: the key \"" + std::string(utf8Prefix(key, 60)) +
+                         "\" appears twice in one object");
+      }
+    }
+    return true;
+  };
   try {
-    return json::parse(text.begin(), text.end());
+    return json::parse(text.begin(), text.end(), refuseDuplicateKeys);
   } catch (const json::exception& error) {
     throw InputError(std::string(document) + ": not valid JSON: " + jsonErrorText(error));
   }

@@ -31,6 +31,14 @@ Quaternion quaternionFromKauthamAxisAngle(const Vector3& axis, double angle) {
   return Quaternion(std::cos(angle / 2.0), v.x(), v.y(), v.z()).normalized();
 }
 
+std::optional<Quaternion> unitQuaternion(double w, double x, double y, double z) {
+  const double largest = std::max({std::abs(w), std::abs(x), std::abs(y), std::abs(z)});
+  if (!std::isfinite(largest) || !(largest > 0.0)) return std::nullopt;
+  Quaternion q(w / largest, x / largest, y / largest, z / largest);
+  q.normalize();
+  return q;
+}
+
 void axisAngleFromQuaternion(const Quaternion& q, Vector3& axis, double& angle) {
   Eigen::AngleAxisd angleAxis(q.normalized());
   angle = angleAxis.angle();

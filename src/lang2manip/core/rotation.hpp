@@ -2,6 +2,7 @@
 /// @file Orientation conversions. lang2manip's own API uses quaternions; the readers convert the
 /// conventions of the files they read (URDF roll-pitch-yaw, Kautham axis-angle, MoveIt xyzw).
 
+#include <optional>
 #include <vector>
 
 #include "lang2manip/core/types.hpp"
@@ -22,6 +23,11 @@ Quaternion quaternionFromKauthamAxisAngle(const Vector3& axis, double angle);
 
 /// Axis (unit, or +z for the identity) and angle in [0, pi] of `q`.
 void axisAngleFromQuaternion(const Quaternion& q, Vector3& axis, double& angle);
+
+/// The unit quaternion of (w, x, y, z) as a direction, computed without overflow or underflow (a
+/// quaternion of 1e300 components is that rotation, not a zero one); nullopt when a component is
+/// not finite or all are zero, which no rotation is.
+std::optional<Quaternion> unitQuaternion(double w, double x, double y, double z);
 
 /// A pose from a translation and a rotation.
 Pose makePose(const Vector3& translation, const Quaternion& rotation);

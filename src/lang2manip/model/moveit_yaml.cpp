@@ -47,9 +47,9 @@ Vector3 readPosition(const YamlValue& value) {
 
 Quaternion readOrientation(const YamlValue& value) {
   const std::vector<double> c = components(value, "xyzw");
-  const Quaternion q(c[3], c[0], c[1], c[2]);
-  if (q.norm() < 1e-12) value.fail("the quaternion [x, y, z, w] has zero length");
-  return q.normalized();
+  const std::optional<Quaternion> q = unitQuaternion(c[3], c[0], c[1], c[2]);
+  if (!q) value.fail("the quaternion [x, y, z, w] has zero length");
+  return *q;
 }
 
 YAML::Node loadYaml(const std::filesystem::path& file, const std::string& name) {

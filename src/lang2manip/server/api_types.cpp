@@ -51,9 +51,9 @@ Pose quaternionPose(const json& value, const std::string& field) {
   if (const json* wxyz = find(value, "orientation_wxyz")) {
     const std::vector<double> q = finiteNumbers(*wxyz, field + ".orientation_wxyz");
     if (q.size() != 4) refuse(field + ".orientation_wxyz", "4 numbers (w, x, y, z)", wxyz);
-    orientation = Quaternion(q[0], q[1], q[2], q[3]);
-    if (orientation.norm() < 1e-9) refuse(field + ".orientation_wxyz", "a non-zero quaternion", wxyz);
-    orientation.normalize();
+    const std::optional<Quaternion> unit = unitQuaternion(q[0], q[1], q[2], q[3]);
+    if (!unit) refuse(field + ".orientation_wxyz", "a non-zero quaternion", wxyz);
+    orientation = *unit;
   }
   return makePose(Vector3(position[0], position[1], position[2]), orientation);
 }

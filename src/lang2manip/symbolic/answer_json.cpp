@@ -80,10 +80,11 @@ nlohmann::json extractJsonDocument(std::string_view text, const JsonLimits& limi
     fail(describeJsonLimitViolation(*violation, "the JSON document") + "; a plan needs only a few levels");
   }
   try {
-    return json::parse(candidate);
-  } catch (const json::exception& error) {
-    // Any nlohmann failure: syntax, numbers out of range (1e400), invalid UTF-8.
-    fail("not valid JSON: " + jsonErrorText(error));
+    // Any nlohmann failure (syntax, numbers out of range such as 1e400, invalid UTF-8) and a key
+    // given twice in one object.
+    return parseJsonWithinLimits(candidate, limits, "answer");
+  } catch (const InputError& error) {
+    fail(std::string(error.what()).substr(std::string("answer: ").size()));
   }
 }
 

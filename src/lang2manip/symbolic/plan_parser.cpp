@@ -20,6 +20,8 @@ const std::vector<std::string> kActionFields{"action", "object", "params", "refi
 const std::vector<std::string> kParamFields{"relation",    "target",        "distance",  "position",
                                             "orientation", "configuration", "direction", "region"};
 const std::vector<std::string> kRefinementFields{"grasp", "approach"};
+/// The largest coordinate of a position a plan may give, metres (said in the message below).
+constexpr double kLargestCoordinate = 100.0;
 
 
 /// A name from the document in quotes, cut after 60 bytes: an answer may hold names of megabytes.
@@ -316,7 +318,14 @@ class PlanReader {
     const auto c = readComponents(value, path, {"x", "y", "z"});
     if (!c) return std::nullopt;
     Vector3 v((*c)[0], (*c)[1], (*c)[2]);
-    if (!unit) return v;
+    if (!unit) {
+      // Positions are in metres from the robot's base: anything beyond this is no place in a scene.
+      if (v.cwiseAbs().maxCoeff() > kLargestCoordinate) {
+        report(path, "a coordinate beyond 100 m from the robot; positions are in metres");
+        return std::nullopt;
+      }
+      return v;
+    }
     if (v.norm() < 1e-9) {
       report(path, "zero vector; give a unit direction");
       return std::nullopt;
