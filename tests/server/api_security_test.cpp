@@ -29,12 +29,14 @@ TEST(ApiToken, EveryRequestNeedsTheToken) {
   ServerOptions options;
   options.token = "s3cret-token";
   ApiTestServer server(options);
-  const auto none = server.get("/api/health");
+  EXPECT_EQ(server.get("/api/health")->status, 200) << "health is for probes that hold no token";
+  EXPECT_THAT(server.get("/api/health")->body, ::testing::Not(HasSubstr("run")));
+  const auto none = server.get("/api/runs");
   EXPECT_EQ(none->status, 401);
   EXPECT_EQ(none->get_header_value("WWW-Authenticate"), "Bearer realm=\"lang2manip\"");
   EXPECT_THAT(errorOf(none), HasSubstr("requires a token"));
   server.setToken("s3cret-tokem");
-  EXPECT_EQ(server.get("/api/health")->status, 401);
+  EXPECT_EQ(server.get("/api/runs")->status, 401);
   EXPECT_EQ(server.post("/api/sessions/x/openProblem")->status, 401);
   EXPECT_EQ(server.get("/api/openapi.json")->status, 401);
   EXPECT_EQ(server.get("/index.html")->status, 401);
@@ -45,18 +47,40 @@ TEST(ApiToken, EveryRequestNeedsTheToken) {
   for (const char* scheme : {"bearer", "BEARER", "beaRer"}) {
     EXPECT_EQ(raw.Get("/api/health", {{"Authorization", std::string(scheme) + " s3cret-token"}})->status, 200) << scheme;
   }
-  EXPECT_EQ(raw.Get("/api/health", {{"Authorization", "Basic s3cret-token"}})->status, 401);
-  EXPECT_EQ(raw.Get("/api/health", {{"Authorization", "Bearers3cret-token"}})->status, 401);
+  EXPECT_EQ(raw.Get("/api/runs", {{"Authorization", "Basic s3cret-token"}})->status, 401);
+  EXPECT_EQ(raw.Get("/api/runs", {{"Authorization", "Bearers3cret-token"}})->status, 401);
 
   // The viewer is opened with ?token=...; the cookie set then lets the page load the rest.
   httplib::Client browser = server.client();
-  const auto first = browser.Get("/api/health?token=s3cret-token");
+  const auto first = browser.Get("/api/runs?token=s3cret-token");
   ASSERT_EQ(first->status, 200);
   const std::string cookie = first->get_header_value("Set-Cookie");
   EXPECT_THAT(cookie, HasSubstr("HttpOnly"));
-  const auto next = browser.Get("/api/health", {{"Cookie", cookie.substr(0, cookie.find(';'))}});
+  const auto next = browser.Get("/api/runs", {{"Cookie", cookie.substr(0, cookie.find(';'))}});
   EXPECT_EQ(next->status, 200);
-  EXPECT_EQ(browser.Get("/api/health", {{"Cookie", "lang2manip_token=wrong"}})->status, 401);
+  EXPECT_EQ(browser.Get("/api/runs", {{"Cookie", "lang2manip_token=wrong"}})->status, 401);
+}
+
+TEST(ApiCrossSite, PagesOfOtherSitesCannotDriveOrReadTheServer) {
+  ApiTestServer server;
+  httplib::Client raw = server.client();
+  // DNS rebinding: the attacker's name resolved to 127.0.0.1 arrives as the Host header.
+  const auto rebound = raw.Get("/api/runs", {{"Host", "evil.example:8080"}});
+  EXPECT_EQ(rebound->status, 403);
+  EXPECT_THAT(errorOf(rebound), HasSubstr("is not this server's"));
+  for (const char* host : {"localhost", "127.0.0.1", "[::1]:9"}) EXPECT_EQ(raw.Get("/api/health", {{"Host", host}})->status, 200) << host;
+  // A page of another origin, even with the right Host.
+  const std::string self = "127.0.0.1:" + std::to_string(server.port());
+  const auto foreign = raw.Post("/api/runs", {{"Origin", "http://evil.example"}}, "{}", "application/json");
+  EXPECT_EQ(foreign->status, 403);
+  EXPECT_THAT(errorOf(foreign), HasSubstr("another origin"));
+  EXPECT_EQ(raw.Get("/api/runs", {{"Origin", "http://" + self}})->status, 200) << "the server's own viewer";
+  // Bodies a page may send without asking the browser first (forms, text/plain) are not read.
+  for (const char* type : {"text/plain", "application/x-www-form-urlencoded", ""}) {
+    const auto sent = raw.Post("/api/sessions/x/openProblem", "{}", type);
+    EXPECT_EQ(sent->status, 415) << type;
+    EXPECT_THAT(errorOf(sent), HasSubstr("Content-Type: application/json")) << type;
+  }
 }
 
 TEST(ApiStaticFiles, ServesOnlyTheViewersOwnFiles) {

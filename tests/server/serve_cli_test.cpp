@@ -60,12 +60,12 @@ TEST(ServeCli, ServesUntilSigtermAndStopsCleanly) {
   const int port = serve.port();
   ASSERT_GT(port, 0) << serve.log();
   httplib::Client client("127.0.0.1", port);
-  const auto refused = client.Get("/api/health");
+  const auto refused = client.Get("/api/runs");
   ASSERT_TRUE(refused);
   EXPECT_EQ(refused->status, 401) << "the token comes from LANG2MANIP_TOKEN";
-  const auto health = client.Get("/api/health", {{"Authorization", "Bearer from-environment"}});
-  ASSERT_TRUE(health);
-  EXPECT_EQ(health->status, 200);
+  const auto runs = client.Get("/api/runs", {{"Authorization", "Bearer from-environment"}});
+  ASSERT_TRUE(runs);
+  EXPECT_EQ(runs->status, 200);
   serve.stop();
   EXPECT_THAT(serve.log(), HasSubstr("server stopped"));
 }

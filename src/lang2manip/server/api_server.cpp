@@ -68,6 +68,34 @@ bool sameSecret(const std::string& given, const std::string& expected) {
   return difference == 0;
 }
 
+/// The host of a Host header or URL authority ("127.0.0.1:8080" -> "127.0.0.1", "[::1]:80" -> "::1").
+std::string hostPart(const std::string& authority) {
+  if (!authority.empty() && authority.front() == '[') {
+    const std::size_t close = authority.find(']');
+    return close == std::string::npos ? authority : authority.substr(1, close - 1);
+  }
+  return authority.substr(0, authority.find(':'));
+}
+
+bool isLoopbackHost(const std::string& host) {
+  return host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0;
+}
+
+/// Why a request that a web page of another site made the operator's browser send is refused:
+/// a Host naming anything but loopback on a loopback server (DNS rebinding), or an Origin other
+/// than the server's own; empty when neither.
+std::string crossSiteRefusal(const httplib::Request& request, const std::string& listeningHost) {
+  const std::string host = request.get_header_value("Host");
+  if (isLoopbackHost(listeningHost) && !host.empty() && !isLoopbackHost(hostPart(host))) {
+    return "the Host \"" + host.substr(0, 80) + "\" is not this server's: it answers on loopback only";
+  }
+  const std::string origin = request.get_header_value("Origin");
+  if (!origin.empty() && origin != "http://" + host) {
+    return "requests from the page of another origin (\"" + origin.substr(0, 80) + "\") are refused";
+  }
+  return {};
+}
+
 /// The credentials of "Bearer TOKEN" (the scheme in any case, RFC 7235); "" for another scheme.
 std::string bearerToken(const std::string& header) {
   const std::size_t space = header.find(' ');
@@ -199,11 +227,13 @@ ApiRequest ApiServer::Impl::apiRequest(const httplib::Request& request, const st
   for (std::size_t i = 1; i < request.matches.size(); ++i) api.pathParameters.push_back(request.matches[i].str());
   for (const auto& [name, value] : request.params) api.query.emplace(name, value);
   if (body.empty()) return api;
+  // Only JSON with its type: a form or text/plain body is what a page of another site can send
+  // without asking the browser first.
   const std::string type = request.get_header_value("Content-Type");
-  if (!type.empty() && type.rfind("application/json", 0) != 0) {
+  if (type.rfind("application/json", 0) != 0) {
     throw ApiError(415, "unsupported_media_type",
                    "request bodies are JSON: send the header \"Content-Type: application/json\" (curl: -H 'Content-Type: application/json'), got " +
-                       type.substr(0, 80));
+                       (type.empty() ? std::string("none") : type.substr(0, 80)));
   }
   JsonLimits limits;
   limits.maxBytes = options.maxBodyBytes;
@@ -333,7 +363,13 @@ void ApiServer::Impl::configure() {
   http.set_keep_alive_max_count(1000);
   http.set_default_headers({{"X-Content-Type-Options", "nosniff"}});
   http.set_pre_routing_handler([this](const httplib::Request& request, httplib::Response& response) {
-    if (!authorized(request, response)) return httplib::Server::HandlerResponse::Handled;
+    if (const std::string refusal = crossSiteRefusal(request, options.host); !refusal.empty()) {
+      setError(response, 403, "forbidden", refusal);
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    // Health says only that the server is up, for probes that hold no token.
+    const bool health = request.method == "GET" && request.path == "/api/health";
+    if (!health && !authorized(request, response)) return httplib::Server::HandlerResponse::Handled;
     if (request.path.find('\0') != std::string::npos) {
       setError(response, 400, "bad_request", "the request path has a NUL byte (%00)");
       return httplib::Server::HandlerResponse::Handled;
