@@ -2,6 +2,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <fstream>
 #include <functional>
@@ -264,6 +265,19 @@ TEST_F(LlmReplayTest, UnwritableRecordFileIsAConfigurationError) {
   const LlmError error = expectLlmError([&] { makeLlmClient("ollama:m", options); });
   EXPECT_EQ(error.kind(), LlmErrorKind::kConfiguration);
   EXPECT_THAT(error.what(), HasSubstr("cannot open the LLM record file"));
+}
+
+TEST_F(LlmReplayTest, ARecordFileThatIsALinkOrAFifoIsRefusedNotWrittenThrough) {
+  const std::filesystem::path elsewhere = directory_.path() / "elsewhere";
+  std::ofstream(elsewhere) << "precious\n";
+  std::filesystem::create_symlink(elsewhere, file());
+  LlmClientOptions options;
+  options.recordFile = file().string();
+  EXPECT_THAT(expectLlmError([&] { makeLlmClient("ollama:m", options); }).what(), HasSubstr("it is a symbolic link"));
+  EXPECT_EQ(readFile(elsewhere), "precious\n");
+  std::filesystem::remove(file());
+  ASSERT_EQ(::mkfifo(file().c_str(), 0600), 0);
+  EXPECT_THAT(expectLlmError([&] { makeLlmClient("ollama:m", options); }).what(), ::testing::AnyOf(HasSubstr("not a regular file"), HasSubstr("No such device")));
 }
 
 }  // namespace

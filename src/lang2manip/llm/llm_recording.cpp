@@ -1,10 +1,16 @@
 #include "lang2manip/llm/llm_recording.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <deque>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <system_error>
 #include <variant>
 
 #include "lang2manip/core/error.hpp"
@@ -22,11 +28,10 @@ using nlohmann::json;
 class RecordingLlmClient final : public LlmClient {
  public:
   RecordingLlmClient(std::unique_ptr<LlmClient> inner, const std::string& file)
-      : inner_(std::move(inner)), file_(file), out_(file, std::ios::app) {
-    if (!inner_) throw LlmError(LlmErrorKind::kConfiguration, "--llm-record: no client to record");
-    if (!out_) {
-      throw LlmError(LlmErrorKind::kConfiguration,
-                     file + ": cannot open the LLM record file for appending");
+      : inner_(std::move(inner)), file_(file), fd_(openForAppending(file)) {
+    if (!inner_) {
+      ::close(fd_);
+      throw LlmError(LlmErrorKind::kConfiguration, "--llm-record: no client to record");
     }
   }
 
@@ -52,20 +57,46 @@ class RecordingLlmClient final : public LlmClient {
   }
 
  private:
+  /// The record file opened for appending: created when missing, never through a symbolic link,
+  /// never a FIFO or device (an open would block, a write go nowhere).
+  static int openForAppending(const std::string& file) {
+    const int fd = ::open(file.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
+    const auto refuse = [&](const std::string& why) {
+      if (fd >= 0) ::close(fd);
+      throw LlmError(LlmErrorKind::kConfiguration, file + ": cannot open the LLM record file for appending: " + why);
+    };
+    if (fd < 0) refuse(errno == ELOOP ? "it is a symbolic link" : std::generic_category().message(errno));
+    struct stat status {};
+    if (::fstat(fd, &status) != 0 || !S_ISREG(status.st_mode)) refuse("not a regular file");
+    ::fcntl(fd, F_SETFL, O_WRONLY | O_APPEND);
+    return fd;
+  }
+
   void append(const json& line) {
     std::lock_guard lock(mutex_);
     // Replacing invalid UTF-8 (a non-JSON body quoted in an error) keeps the line writable.
-    out_ << line.dump(-1, ' ', false, json::error_handler_t::replace) << '\n';
-    out_.flush();
-    if (!out_) {
-      throw LlmError(LlmErrorKind::kConfiguration, file_ + ": cannot write the LLM record file");
+    const std::string text = line.dump(-1, ' ', false, json::error_handler_t::replace) + '\n';
+    std::size_t done = 0;
+    while (done < text.size()) {
+      const ssize_t written = ::write(fd_, text.data() + done, text.size() - done);
+      if (written < 0 && errno == EINTR) continue;
+      if (written <= 0) throw LlmError(LlmErrorKind::kConfiguration, file_ + ": cannot write the LLM record file");
+      done += static_cast<std::size_t>(written);
     }
   }
 
+ public:
+  ~RecordingLlmClient() override {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  RecordingLlmClient(const RecordingLlmClient&) = delete;
+  RecordingLlmClient& operator=(const RecordingLlmClient&) = delete;
+
+ private:
   std::unique_ptr<LlmClient> inner_;
   std::string file_;
   std::mutex mutex_;
-  std::ofstream out_;
+  int fd_ = -1;
 };
 
 /// One recorded outcome: a reply, or an error to throw again.
