@@ -93,6 +93,17 @@ TEST(CheckCli, ARobotBaseRestingOnTheDeskIsInContactNotInCollision) {
   EXPECT_THAT(result.output, HasSubstr("contact tolerance 0.05 m is not in [0, 0.01] m"));
 }
 
+TEST(TerminalOutput, EscapeSequencesInNamesFromFilesAreShownNotSentToTheTerminal) {
+  const TempDirectory directory;
+  const auto plan = directory.path() / "plan.json";
+  std::ofstream(plan) << R"({"actions": [{"action": "pick", "object": "\u001b]0;owned\u0007\u001b[2Jmarker"}]})";
+  const RunResult result = run("run --plan " + plan.string() + " --out " + (directory.path() / "out").string());
+  EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("\\x1b]0;owned\\x07\\x1b[2Jmarker"));
+  EXPECT_EQ(result.output.find('\x1b'), std::string::npos) << "a raw escape reached the terminal";
+  EXPECT_EQ(result.output.find('\x07'), std::string::npos);
+}
+
 TEST(GltfCli, WritesTheSceneAsGlbAndSaysWhenItCannot) {
   const TempDirectory directory;
   const auto glb = directory.path() / "desk.glb";
