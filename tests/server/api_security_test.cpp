@@ -83,6 +83,20 @@ TEST(ApiCrossSite, PagesOfOtherSitesCannotDriveOrReadTheServer) {
   }
 }
 
+TEST(ApiFraming, AContentLengthGivenTwiceOrNotAsDigitsIsRefused) {
+  ApiTestServer server;
+  const auto exchange = [&](const std::string& lengths) {
+    return test::rawExchange(server.port(), "POST /api/sessions/f/openProblem HTTP/1.1\r\nHost: 127.0.0.1\r\n"
+                                            "Content-Type: application/json\r\n" + lengths + "Connection: close\r\n\r\n{}");
+  };
+  for (const std::string& lengths : {std::string("Content-Length: 2\r\nContent-Length: 2\r\n"), std::string("Content-Length: 2\r\nContent-Length: 40\r\n")}) {
+    const std::string answer = exchange(lengths);
+    EXPECT_THAT(answer, HasSubstr("400")) << lengths;
+    EXPECT_THAT(answer, HasSubstr("Content-Length must be given once")) << lengths;
+  }
+  EXPECT_THAT(exchange("Content-Length: 2\r\n"), HasSubstr("200 OK"));
+}
+
 TEST(ApiStaticFiles, ServesOnlyTheViewersOwnFiles) {
   const test::TempDirectory temporary;
   const fs::path viewer = temporary.path() / "viewer";

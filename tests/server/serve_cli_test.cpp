@@ -84,6 +84,11 @@ TEST(ServeCli, BadOptionsExitWithAMessage) {
   EXPECT_EQ(problem.exitCode, 1);
   EXPECT_THAT(problem.output, HasSubstr("PROBLEM nosuch.xml"));
   EXPECT_THAT(problem.output, ::testing::Not(HasSubstr("serving on")));
+  const test::RunResult open = test::run("serve --host 0.0.0.0 --port 0", true, "env -u LANG2MANIP_TOKEN timeout 20");
+  EXPECT_EQ(open.exitCode, 1) << open.output;
+  EXPECT_THAT(open.output, HasSubstr("without a token would let anyone"));
+  EXPECT_THAT(open.output, HasSubstr("--insecure"));
+  EXPECT_THAT(open.output, ::testing::Not(HasSubstr("serving on")));
 }
 
 TEST(ServeCli, ASecondServeOnAPortInUseExitsWithAMessage) {

@@ -367,6 +367,16 @@ void ApiServer::Impl::configure() {
       setError(response, 403, "forbidden", refusal);
       return httplib::Server::HandlerResponse::Handled;
     }
+    // Strict framing: a length given twice or not as digits could be read differently by a proxy
+    // in front and by this server (request smuggling).
+    if (const std::size_t lengths = request.get_header_value_count("Content-Length"); lengths > 0) {
+      const std::string length = request.get_header_value("Content-Length");
+      if (lengths > 1 || length.empty() || length.find_first_not_of("0123456789") != std::string::npos) {
+        response.set_header("Connection", "close");
+        setError(response, 400, "bad_request", "the request's Content-Length must be given once, as digits");
+        return httplib::Server::HandlerResponse::Handled;
+      }
+    }
     // Health says only that the server is up, for probes that hold no token.
     const bool health = request.method == "GET" && request.path == "/api/health";
     if (!health && !authorized(request, response)) return httplib::Server::HandlerResponse::Handled;

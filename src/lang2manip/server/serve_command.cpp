@@ -48,6 +48,7 @@ void serveUntilSignalled(ApiServer& server, const sigset_t& signals) {
 void addServeCommand(CLI::App& app, std::ostream& out) {
   auto options = std::make_shared<ServerOptions>();
   auto viewer = std::make_shared<std::string>();
+  auto insecure = std::make_shared<bool>(false);
   CLI::App* command = app.add_subcommand(
       "serve", "Serve the HTTP/JSON API (Kautham's session verbs, observe, plan, runs with progress events) and the web viewer");
   command->add_option("PROBLEM", options->defaultProblem, "Problem opened by sessions and runs that name none (default: the paper's scene)");
@@ -58,13 +59,19 @@ void addServeCommand(CLI::App& app, std::ostream& out) {
   command->add_option("--viewer", *viewer, "The viewer's directory (default: the one built beside the program)");
   command->add_option("--max-sessions", options->maxSessions, "Client sessions held at once")->capture_default_str();
   command->add_option("--threads", options->threads, "Threads serving requests")->capture_default_str();
-  command->callback([options, viewer, &out] {
+  command->add_flag("--insecure", *insecure, "Listen on a non-loopback --host without a token (anyone who reaches it can use it)");
+  command->callback([options, viewer, insecure, &out] {
     if (options->token.empty()) {
       if (const char* token = std::getenv("LANG2MANIP_TOKEN")) options->token = token;
     }
     options->viewerDirectory = viewer->empty() ? builtViewerDirectory() : fs::path(*viewer);
     if (!isLoopback(options->host) && options->token.empty()) {
-      logWarning("serve: listening on " + options->host + " without a token: anyone who reaches it can use it");
+      if (!*insecure) {
+        throw InputError("serve: --host " + options->host +
+                         " without a token would let anyone who reaches it run tasks, spend the LLM key and read files "
+                         "under the data root; give --token TOKEN (or LANG2MANIP_TOKEN), or --insecure to do it anyway");
+      }
+      logWarning("serve: listening on " + options->host + " without a token (--insecure): anyone who reaches it can use it");
     }
     const sigset_t signals = blockStopSignals();
     ApiServer server(*options);
