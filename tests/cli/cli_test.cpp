@@ -151,7 +151,7 @@ TEST(Cli, ShowsAMotionBenchMakerScene) {
 TEST(Cli, ErrorsExitNonZeroWithAMessage) {
   RunResult result = run("show no_such_problem");
   EXPECT_NE(result.exitCode, 0);
-  EXPECT_THAT(result.output, HasSubstr("lang2manip: error: \"no_such_problem\" is neither a problem file nor a built-in problem"));
+  EXPECT_THAT(result.output, HasSubstr("lang2manip: error: \"no_such_problem\" is neither a problem file, a built-in problem nor a built-in robot"));
   result = run("show /tmp/nope.xml");
   EXPECT_NE(result.exitCode, 0);
   EXPECT_THAT(result.output, HasSubstr("/tmp/nope.xml: problem file does not exist"));

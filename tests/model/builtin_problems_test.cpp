@@ -30,7 +30,12 @@ TEST(BuiltinProblems, ResolvesShortNamesAndPathsAndListsNamesOnError) {
   EXPECT_EQ(resolveProblem("panda_desk"), builtinProblems().front().file);
   EXPECT_EQ(resolveProblem(builtinProblems().front().file.string()), builtinProblems().front().file);
   EXPECT_THAT(errorMessage([] { resolveProblem("pandas_desk"); }),
-              HasSubstr("\"pandas_desk\" is neither a problem file nor a built-in problem; built-in problems: panda_desk"));
+              HasSubstr("\"pandas_desk\" is neither a problem file, a built-in problem nor a built-in robot; built-in problems: panda_desk"));
+  EXPECT_THAT(errorMessage([] { resolveProblem("pandas_desk"); }), HasSubstr("built-in robots: iiwa14, panda, tx90, ur5, yumi"));
+  // The robot names --robot takes name their desk problems wherever a problem is asked for.
+  for (const std::string robot : {"panda", "ur5", "iiwa14", "tx90", "yumi"}) {
+    EXPECT_EQ(resolveProblem(robot).filename(), robot + "_desk.xml") << robot;
+  }
   EXPECT_THAT(errorMessage([] { resolveProblem("/no/such/problem.xml"); }),
               HasSubstr("/no/such/problem.xml: problem file does not exist"));
   EXPECT_THAT(errorMessage([] { builtinRobotUrdf("kuka"); }),

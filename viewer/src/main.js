@@ -344,7 +344,7 @@ function fillRun() {
     const item = el(
       'li',
       { id: `action-${index}`, className: status ? `status-${status.replace(/[^A-Za-z0-9_-]/g, '_')}` : '', dataset: { index: String(index) } },
-      el('span', { className: 'index', textContent: `${index}.` }),
+      el('span', { className: 'index', textContent: `${index + 1}.` }), // numbered from 1, as the CLI numbers them
       el('span', { className: 'text', textContent: text }),
       el('span', { className: 'status', textContent: status }),
     );

@@ -68,15 +68,20 @@ std::filesystem::path resolveProblem(const std::string& nameOrPath) {
   const std::filesystem::path path(nameOrPath);
   if (std::filesystem::is_regular_file(path, error)) return path;
   std::vector<std::string> names;
-  for (const BuiltinProblem& problem : builtinProblems()) {
+  const std::vector<BuiltinProblem> problems = builtinProblems();
+  for (const BuiltinProblem& problem : problems) {
     if (problem.shortName == nameOrPath) return problem.file;
     names.push_back(problem.shortName);
+  }
+  // A built-in robot's name, as --robot takes it, names that robot at its desk.
+  for (const BuiltinProblem& problem : problems) {
+    if (problem.shortName == nameOrPath + "_desk") return problem.file;
   }
   if (path.has_parent_path() || path.has_extension() || std::filesystem::exists(path, error)) {
     throw InputError(SourceLocation{nameOrPath, 0}, "problem file " + notRegularFileReason(path));
   }
-  throw InputError("\"" + nameOrPath + "\" is neither a problem file nor a built-in problem; " +
-                   "built-in problems: " + joined(names));
+  throw InputError("\"" + nameOrPath + "\" is neither a problem file, a built-in problem nor a built-in robot; " +
+                   "built-in problems: " + joined(names) + "; built-in robots: " + joined(builtinRobotNames()));
 }
 
 std::vector<std::string> builtinRobotNames() {

@@ -25,7 +25,8 @@ std::vector<BuiltinProblem> builtinProblems();
 std::string defaultProblemName();
 
 /// A problem given by short name or by path. A path that exists is returned as is; a short name
-/// resolves to its file; anything else throws InputError listing the short names.
+/// resolves to its file, a built-in robot's name to that robot's desk problem ("ur5" ->
+/// ur5_desk); anything else throws InputError listing the short names and robots.
 std::filesystem::path resolveProblem(const std::string& nameOrPath);
 
 /// The URDF of a built-in robot by short name (panda, ur5, iiwa14, yumi, tx90); throws
