@@ -293,6 +293,7 @@ std::string MotionPlanner::finishPath(og::PathGeometric path, const VectorX& sta
   plan.rawPath = pathPoints(path, space_->dimension());
   plan.statistics.lengthBeforeSimplification = path.length();
   const auto simplifyStart = Clock::now();
+  const og::PathGeometric unsimplified = path;
   og::PathSimplifier simplifier(ompl_->si);
   if (settings.simplifyLevel() == SimplifyLevel::kSmooth) {
     simplifier.smoothBSpline(path);
@@ -302,6 +303,8 @@ std::string MotionPlanner::finishPath(og::PathGeometric path, const VectorX& sta
                                   ob::timedPlannerTerminationCondition(budget),
                                   ob::PlannerTerminationCondition([&stop] { return stop.shouldStop(); })));
   }
+  // Smoothing may lengthen a path it was asked to shorten: the planner's path is kept then.
+  if (path.length() > unsimplified.length()) path = unsimplified;
   plan.statistics.simplifySeconds += secondsSince(simplifyStart);
   plan.statistics.lengthAfterSimplification = path.length();
   plan.path = pathPoints(path, space_->dimension());
