@@ -39,29 +39,52 @@ TEST_F(Verification, AnExecutedPlanIsVerified) {
   EXPECT_TRUE(v.goals.front().holds);
 }
 
-/// A configuration of the arm near `q` in which it touches the desk (seeded search).
-VectorX configurationInTheDesk(const ArmContext& arm, const Scene& world, VectorX q) {
+/// True when every contact of the arm at `q` is with the desk (none when `mustTouch` is false).
+bool touchesOnlyTheDesk(const CollisionChecker& checker, CollisionContext& context, int robot, const VectorX& q,
+                        bool mustTouch) {
+  const auto contacts = checker.checkState(robot, q, {}, context).contacts;
+  for (const CollisionContact& c : contacts) {
+    if (c.second != "desk" && c.first != "desk") return false;
+  }
+  return !mustTouch || !contacts.empty();
+}
+
+/// A configuration touching the desk and nothing else, reached from `before` and left toward
+/// `after` along straight joint-space lines that touch nothing but the desk, so that the first
+/// collision on the modified motion is the desk whatever path the planner found (seeded search).
+VectorX configurationInTheDesk(const ArmContext& arm, const Scene& world, const VectorX& before, const VectorX& after) {
   const auto checker = arm.checkerFor(world);
   const auto context = checker->makeContext();
   const int robot = checker->robotIndex(arm.robotName());
+  const auto legTouchesOnlyTheDesk = [&](const VectorX& from, const VectorX& to) {
+    for (int i = 0; i <= 200; ++i) {
+      const double t = i / 200.0;
+      if (!touchesOnlyTheDesk(*checker, *context, robot, (1.0 - t) * from + t * to, false)) return false;
+    }
+    return true;
+  };
   std::uint64_t state = 12345;
-  for (int attempt = 0; attempt < 10000; ++attempt) {
+  VectorX q = after;
+  for (int attempt = 0; attempt < 20000; ++attempt) {
     for (int v : arm.armVariables()) {
       state = state * 6364136223846793005ULL + 1442695040888963407ULL;
       const double u = static_cast<double>(state >> 11) / 9007199254740992.0;
       q[v] = arm.model().lowerLimits()[v] + u * (arm.model().upperLimits()[v] - arm.model().lowerLimits()[v]);
     }
-    for (const CollisionContact& c : checker->checkState(robot, q, {}, *context).contacts) {
-      if (c.second == "desk" || c.first == "desk") return q;
+    if (touchesOnlyTheDesk(*checker, *context, robot, q, true) && legTouchesOnlyTheDesk(before, q) &&
+        legTouchesOnlyTheDesk(q, after)) {
+      return q;
     }
   }
-  ADD_FAILURE() << "no configuration touching the desk found";
+  ADD_FAILURE() << "no configuration touching only the desk found";
   return q;
 }
 
 TEST_F(Verification, AMotionThroughTheDeskIsFound) {
   MotionSegment& transit = record_.actions[1].segments.front();
-  transit.waypoints.insert(transit.waypoints.end() - 1, configurationInTheDesk(executor_.arm(), transit.world, transit.waypoints.back()));
+  ASSERT_GE(transit.waypoints.size(), 2u);
+  const VectorX inTheDesk = configurationInTheDesk(executor_.arm(), transit.world, *(transit.waypoints.end() - 2), transit.waypoints.back());
+  transit.waypoints.insert(transit.waypoints.end() - 1, inTheDesk);
   const ExecutionVerification changed = verifyExecution(executor_.arm(), executor_.initialScene(), record_, {markerInHolder()});
   EXPECT_FALSE(changed.success);
   EXPECT_THAT(changed.collision, HasSubstr("the motion was changed after it was timed"));
