@@ -58,6 +58,19 @@ TEST(CheckCli, SaysWhenNothingWasChecked) {
   EXPECT_THAT(result.output, HasSubstr("nothing was checked: problem noquery has no query; give a configuration with --config"));
 }
 
+TEST(CliRobotChoice, ARobotChosenForAProblemThatNamesItsOwnIsRefusedNotIgnored) {
+  for (const char* command : {"describe panda_desk --robot ur5", "observe panda_desk --robot ur5", "show panda_desk --robot ur5"}) {
+    SCOPED_TRACE(command);
+    const RunResult result = run(command);
+    EXPECT_EQ(result.exitCode, 1) << result.output;
+    EXPECT_THAT(result.output, HasSubstr("robot \"ur5\" was chosen, but a robot is chosen only for a MoveIt scene"));
+  }
+  // check's --robot names the robot of --config; without one it would choose nothing.
+  const RunResult check = run("check panda_desk --robot panda");
+  EXPECT_EQ(check.exitCode, 1) << check.output;
+  EXPECT_THAT(check.output, HasSubstr("--robot panda names the robot whose --config is given"));
+}
+
 /// panda_desk with the robot's base `z` (link0 reaches 0.5 mm below it; the desk top is at 0.75).
 std::string pandaDeskWithBaseAt(const std::string& z) {
   const std::filesystem::path data = (testDataDirectory() / ".." / ".." / "data").lexically_normal();

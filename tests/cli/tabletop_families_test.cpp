@@ -35,7 +35,7 @@ using test::run;
 using test::FakeLlmServer;
 using test::FakeLlmProtocol;
 
-Scene desk(const std::string& name) { return loadProblem(name, "panda", SceneOptions{}).problem.scene; }
+Scene desk(const std::string& name) { return loadProblem(name, "", SceneOptions{}).problem.scene; }
 
 /// The desk of `name` with nothing on it.
 Scene emptyTabletop(const std::string& name) {
@@ -226,7 +226,7 @@ TEST(RegionsForAnLlm, ARegionPlanFromTheLoopbackLlmIsGroundedAndVerified) {
                                    directory.path().string(),
                                true, environment);
   ASSERT_EQ(result.exitCode, 0) << result.output;
-  EXPECT_THAT(result.output, HasSubstr("goal eraser on desk (far_left_corner): holds"));
+  EXPECT_THAT(result.output, HasSubstr("goal eraser on desk (far left corner): holds"));
   ASSERT_EQ(server.requests().size(), 1u);
   const std::string request = server.requests()[0].body;  // requests() is a copy
   EXPECT_THAT(request, HasSubstr("of which the arm reaches x"));

@@ -6,6 +6,7 @@
 #include "collision_test_support.hpp"
 #include "lang2manip/collision/allowed_collision_matrix.hpp"
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/log.hpp"
 
 namespace lang2manip::test {
 namespace {
@@ -34,6 +35,40 @@ TEST(AllowedCollisionMatrix, AdjacencyFollowsFixedJoints) {
   EXPECT_TRUE(linksAdjacent(*panda, groups, link("panda_link8"), link("panda_leftfinger")));
   EXPECT_FALSE(linksAdjacent(*panda, groups, link("panda_link5"), link("panda_link7")));
   EXPECT_FALSE(linksAdjacent(*panda, groups, link("panda_link0"), link("panda_link2")));
+}
+
+TEST(AllowedCollisionMatrix, AdjacentPairsAreExactlyTheLinksAdjacentPairs) {
+  for (const char* name : {"panda", "yumi", "ur5"}) {
+    SCOPED_TRACE(name);
+    const RobotModelPtr robot = builtinRobot(name);
+    AllowedCollisionSettings settings;
+    settings.disableDefault = settings.disableNever = settings.disableAlways = false;
+    const AllowedCollisionMatrix matrix = computeAllowedCollisionMatrix(*robot, nullptr, settings);
+    const std::vector<int> groups = rigidLinkGroups(*robot);
+    for (int a = 0; a < matrix.linkCount(); ++a) {
+      for (int b = a + 1; b < matrix.linkCount(); ++b) {
+        EXPECT_EQ(matrix.reason(a, b) == AllowedReason::kAdjacent, linksAdjacent(*robot, groups, a, b)) << a << " " << b;
+      }
+    }
+  }
+}
+
+TEST(AllowedCollisionMatrix, SamplingBeyondTheWorkBoundIsSkippedWithAWarningAndDisablesNothing) {
+  const RobotModelPtr panda = builtinRobot("panda");
+  const auto links = static_cast<double>(panda->links().size());
+  AllowedCollisionSettings settings;
+  settings.disableDefault = false;
+  settings.samples = static_cast<int>(kMaxSampledPairTests / (links * links)) + 1;
+  int calls = 0;
+  std::vector<std::string> warnings;
+  setLogSink([&](LogLevel, std::string_view message) { warnings.emplace_back(message); });
+  const AllowedCollisionMatrix matrix =
+      computeAllowedCollisionMatrix(*panda, [&](const VectorX&, const std::vector<char>&, std::vector<char>&) { ++calls; }, settings);
+  setLogSink({});
+  EXPECT_EQ(calls, 0);
+  EXPECT_EQ(matrix.count(AllowedReason::kNever) + matrix.count(AllowedReason::kAlways), 0);
+  ASSERT_EQ(warnings.size(), 1U);
+  EXPECT_THAT(warnings[0], HasSubstr("no pair is disabled as never or always colliding"));
 }
 
 /// A fake link test: pair (1, 2) always collides, pair (3, 4) when q[0] > 0, nothing else.

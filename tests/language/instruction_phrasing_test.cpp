@@ -39,7 +39,7 @@ const std::pair<const char*, const char*> kPhrasings[] = {
     {"slide the marker a bit to the left, about 4 cm", "marker displaced by (0, 0.04, 0)"},
     {"the marker and the eraser go into the holder", "marker in holder; eraser in holder"},
     {"I want the marker inside the holder", "marker in holder"},
-    {"I'd like the eraser to be next to the holder", "eraser next_to holder"},
+    {"I'd like the eraser to be next to the holder", "eraser next to holder"},
     {"the eraser should be in the holder", "eraser in holder"},
     {"make the marker point at the holder", "marker pointing at holder"},
     {"put everything except the eraser in the holder", "marker in holder"},
@@ -50,7 +50,7 @@ const std::pair<const char*, const char*> kPhrasings[] = {
     {"put the long one in the holder", "marker in holder"},
     {"put the short one in the holder", "eraser in holder"},
     {"please grab the marker, lift it, and put it in the holder", "marker in holder"},
-    {"pick up the eraser, carry it over and put it next to the holder", "eraser next_to holder"},
+    {"pick up the eraser, carry it over and put it next to the holder", "eraser next to holder"},
     {"put every object on the desk in the holder", "marker in holder; eraser in holder"},
     {"put the marker in the holder on the desk", "marker in holder"},
     {"lift the marker and move it 10 cm to the left", "marker displaced by (0, 0.1, 0)"},
@@ -65,7 +65,7 @@ const std::pair<const char*, const char*> kPhrasings[] = {
     {"tidy up: put everything into the holder", "marker in holder; eraser in holder"},
     {"clear the desk by putting everything into the holder", "marker in holder; eraser in holder"},
     {"put the eraser in the holder instead of on top of it", "eraser in holder"},
-    {"put the marker on the desk and the eraser on the desk next to it", "marker on desk; eraser next_to marker"},
+    {"put the marker on the desk and the eraser on the desk next to it", "marker on desk; eraser next to marker"},
     {"push the eraser 5 cm left and then 3 cm forward", "eraser displaced by (0.03, 0.05, 0)"},
     {"pick up the marker and put it where the eraser is", "marker at (0.38, 0.17) where eraser stood"},
     {"swap the marker and the eraser, then rotate the eraser by 90 degrees",
@@ -122,7 +122,7 @@ TEST(InstructionPhrasing, DisplacementsTowardOrAwayFromAnObjectFollowTheLineBetw
 TEST(InstructionPhrasing, ContradictionsAndImpossibleMovesAreRefusedWithTheReason) {
   const Scene scene = test::deskScene();
   const std::pair<const char*, const char*> cases[] = {
-      {"put the marker in the holder next to the eraser", "marker in holder and marker next_to eraser cannot both hold"},
+      {"put the marker in the holder next to the eraser", "marker in holder and marker next to eraser cannot both hold"},
       {"put the marker in the holder on the eraser", "cannot both hold"},
       {"push the eraser 5 meters to the left", "it would take eraser off desk"},
       {"put the marker between the eraser", "\"between\" needs two objects"},

@@ -41,8 +41,8 @@ const std::pair<const char*, const char*> kReferences[] = {
     {"put the object that is right of the holder in the holder", "marker in holder"},
     {"put the item closest to the eraser into the holder", "marker in holder"},
     {"pick up the object that is left of the holder", "holding eraser"},
-    {"place the object farthest away from the eraser next to the holder", "marker next_to holder"},
-    {"put the tallest object next to the marker", "holder next_to marker"},
+    {"place the object farthest away from the eraser next to the holder", "marker next to holder"},
+    {"put the tallest object next to the marker", "holder next to marker"},
     {"put everything except the eraser in the holder", "marker in holder"},
     {"put all the objects but the marker into the holder", "eraser in holder"},
     {"put everything other than the holder in the holder", "marker in holder; eraser in holder"},
@@ -118,8 +118,8 @@ TEST(ObjectReferences, TheRobotIsAReferenceToo) {
 TEST(ObjectReferences, AReferenceToNothingIsRefusedWithTheReason) {
   const Scene scene = readKauthamProblem(resolveProblem("panda_desk")).scene;
   const std::pair<const char*, const char*> refusals[] = {
-      {"put the object next to the marker in the holder", "no object is next_to marker"},
-      {"put the objects in front of the holder in the holder", "no object is in_front_of holder"},
+      {"put the object next to the marker in the holder", "no object is next to marker"},
+      {"put the objects in front of the holder in the holder", "no object is in front of holder"},
       {"put the object closest to the cactus in the holder", "could not ground \"the cactus\""},
       {"put the object in the holder", "it is ambiguous: it could be marker or eraser"},
   };

@@ -50,7 +50,7 @@ TEST(PeerLanguage, WhereAnObjectStoodBeforeAndTheSameContainer) {
             "blue_block in box; red_block in box");
   EXPECT_EQ(peerMeaning("put the blue block in the white cup and then put the block that was to its right before in the same cup"),
             "blue_block in white_cup; green_block in white_cup");
-  EXPECT_THAT(peerMeaning("put the red block in the box, then put the block that was to its left into the same box"), HasSubstr("no object is left_of red_block"));
+  EXPECT_THAT(peerMeaning("put the red block in the box, then put the block that was to its left into the same box"), HasSubstr("no object is left of red_block"));
   EXPECT_THAT(peerMeaning("put the blue block in the box, then put the object that was to its left into the same box"), HasSubstr("it is ambiguous"));
   EXPECT_THAT(peerMeaning("put the same cup in the box"), HasSubstr("nothing of that kind was named before"));
 }

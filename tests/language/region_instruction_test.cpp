@@ -19,29 +19,29 @@ namespace {
 using ::testing::HasSubstr;
 
 const std::pair<const char*, const char*> kRegions[] = {
-    {"put the eraser in the far left corner of the desk", "eraser on desk (far_left_corner)"},
-    {"move the marker to the top right corner of the table", "marker on desk (far_right_corner)"},
-    {"place the eraser at the bottom left corner", "eraser on desk (near_left_corner)"},
-    {"put the marker in the lower right-hand corner", "marker on desk (near_right_corner)"},
-    {"put the eraser in the upper right", "eraser on desk (far_right_corner)"},
-    {"put the eraser on the bottom side of the table", "eraser on desk (near_edge)"},
-    {"move the marker along the right edge", "marker on desk (right_edge)"},
-    {"put the eraser at the far end of the desk", "eraser on desk (far_edge)"},
+    {"put the eraser in the far left corner of the desk", "eraser on desk (far left corner)"},
+    {"move the marker to the top right corner of the table", "marker on desk (far right corner)"},
+    {"place the eraser at the bottom left corner", "eraser on desk (near left corner)"},
+    {"put the marker in the lower right-hand corner", "marker on desk (near right corner)"},
+    {"put the eraser in the upper right", "eraser on desk (far right corner)"},
+    {"put the eraser on the bottom side of the table", "eraser on desk (near edge)"},
+    {"move the marker along the right edge", "marker on desk (right edge)"},
+    {"put the eraser at the far end of the desk", "eraser on desk (far edge)"},
     {"move the eraser to the middle of the desk", "eraser on desk (centre)"},
     {"put the marker in the centre", "marker on desk (centre)"},
-    {"put the eraser in the left half of the table", "eraser on desk (left_half)"},
-    {"put the marker in the top right quadrant", "marker on desk (far_right_quadrant)"},
-    {"put the eraser on the desk in its bottom right corner", "eraser on desk (near_right_corner)"},
-    {"put the eraser in a corner", "eraser on desk (near_left_corner)"},
-    {"put the eraser in the corner closest to the holder", "eraser on desk (far_left_corner)"},
-    {"put the eraser in the closest corner to the marker", "eraser on desk (near_right_corner)"},
-    {"put the marker in the corner farthest from the eraser", "marker on desk (far_right_corner)"},
-    {"put the marker in the left corner closest to the robot", "marker on desk (near_left_corner)"},
-    {"put the eraser on the left side of the holder", "eraser left_of holder"},
-    {"put the marker on the far side of the holder", "marker in_front_of holder"},
+    {"put the eraser in the left half of the table", "eraser on desk (left half)"},
+    {"put the marker in the top right quadrant", "marker on desk (far right quadrant)"},
+    {"put the eraser on the desk in its bottom right corner", "eraser on desk (near right corner)"},
+    {"put the eraser in a corner", "eraser on desk (near left corner)"},
+    {"put the eraser in the corner closest to the holder", "eraser on desk (far left corner)"},
+    {"put the eraser in the closest corner to the marker", "eraser on desk (near right corner)"},
+    {"put the marker in the corner farthest from the eraser", "marker on desk (far right corner)"},
+    {"put the marker in the left corner closest to the robot", "marker on desk (near left corner)"},
+    {"put the eraser on the left side of the holder", "eraser left of holder"},
+    {"put the marker on the far side of the holder", "marker in front of holder"},
     {"put the eraser in the top left corner, then the marker in the bottom right corner",
-     "eraser on desk (far_left_corner); marker on desk (near_right_corner)"},
-    {"put the marker and the eraser in the bottom left corner", "marker on desk (near_left_corner); eraser on desk (near_left_corner)"},
+     "eraser on desk (far left corner); marker on desk (near right corner)"},
+    {"put the marker and the eraser in the bottom left corner", "marker on desk (near left corner); eraser on desk (near left corner)"},
 };
 
 TEST(RegionInstructions, CornersEdgesTheMiddleHalvesAndQuadrantsAreUnderstoodAndPlanned) {
@@ -58,7 +58,7 @@ TEST(RegionInstructions, TheRegionReachesThePlaceAction) {
 TEST(RegionInstructions, StacksGoInARegionWithTheirLowestObject) {
   const TaskSpecification specification =
       understandInstruction("stack the red block and the blue block in the top left corner of the table", describeObjects(test::workbenchScene()));
-  EXPECT_EQ(test::summarize(specification), "red_block on table (far_left_corner); blue_block on red_block");
+  EXPECT_EQ(test::summarize(specification), "red_block on table (far left corner); blue_block on red_block");
 }
 
 std::string refusal(const std::string& instruction) {
@@ -74,7 +74,7 @@ TEST(RegionInstructions, RegionsOfWhatIsNoSupportAndContradictoryRegionsAreRefus
   EXPECT_THAT(refusal("put the eraser in the corner of the marker"), HasSubstr("marker is not a table or desk"));
   EXPECT_THAT(refusal("put the marker in the middle of the holder"), HasSubstr("holder is not a table or desk"));
   EXPECT_THAT(refusal("put the marker in the top left corner and in the bottom right corner"),
-              HasSubstr("it contradicts itself: marker on desk (far_left_corner) and marker on desk (near_right_corner) cannot both hold"));
+              HasSubstr("it contradicts itself: marker on desk (far left corner) and marker on desk (near right corner) cannot both hold"));
   EXPECT_THAT(refusal("put the eraser in the left half and in the right half of the desk"), HasSubstr("it contradicts itself"));
   EXPECT_THAT(refusal("put the eraser in the corner closest to"), HasSubstr("expected an object after"));
 }

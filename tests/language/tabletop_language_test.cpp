@@ -34,7 +34,7 @@ TEST(TabletopLanguage, OrdinalsCountAlongTheBaseFrame) {
   EXPECT_EQ(meaning("pick up the last block from the left and put it in the box"), "green_block in box");
   EXPECT_EQ(meaning("put the middle block in the box"), "blue_block in box");
   // "from the top" after an ordinal is where it counts from, not a top grasp.
-  EXPECT_EQ(meaning("put the red block next to the first object from the top"), "red_block next_to box");
+  EXPECT_EQ(meaning("put the red block next to the first object from the top"), "red_block next to box");
   EXPECT_EQ(meaning("pick up the red block from the top and put it in the box"), "red_block in box | grasp red_block=top");
   EXPECT_EQ(meaning("put the third block counting from the right in the box"), "red_block in box");
   EXPECT_THAT(meaning("put the fourth block from the left in the box"), HasSubstr("there are only 3"));
@@ -53,9 +53,9 @@ TEST(TabletopLanguage, AssignmentsByColourAreAMatchingOverTheObjects) {
 
 TEST(TabletopLanguage, DifferentCornersGiveEachObjectACornerOfItsOwn) {
   EXPECT_EQ(meaning("put the markers in different corners of the table"),
-            "marker_1 on table (far_left_corner); marker_2 on table (far_right_corner)");
+            "marker_1 on table (far left corner); marker_2 on table (far right corner)");
   EXPECT_EQ(meaning("put the blocks in separate corners"),
-            "red_block on table (far_left_corner); blue_block on table (near_left_corner); green_block on table (far_right_corner)");
+            "red_block on table (far left corner); blue_block on table (near left corner); green_block on table (far right corner)");
   EXPECT_THAT(meaning("put all the movable objects in different corners"), HasSubstr("objects cannot each have a corner of their own: table has 4"));
 }
 
@@ -70,7 +70,7 @@ TEST(TabletopLanguage, OneObjectInEachPlaceIsADistributiveAssignment) {
   EXPECT_THAT(meaning("put one block in each corner"), HasSubstr("3 objects for the 4 corners of table"));
   EXPECT_THAT(meaning("put a cup in each corner of the table"), HasSubstr("2 objects for the 4 corners of table"));
   const std::string fourOfMany = meaning("put a movable object in each corner");
-  for (const char* corner : {"far_left_corner", "far_right_corner", "near_left_corner", "near_right_corner"}) {
+  for (const char* corner : {"far left corner", "far right corner", "near left corner", "near right corner"}) {
     EXPECT_THAT(fourOfMany, HasSubstr(corner));
   }
   EXPECT_EQ(std::count(fourOfMany.begin(), fourOfMany.end(), ';'), 3) << fourOfMany;
@@ -99,7 +99,7 @@ TEST(TabletopLanguage, ACornerLeftOpenIsOneWithRoomForTheObject) {
   EXPECT_THAT(summary("put the eraser in a corner"), Not(HasSubstr("far_left_corner")));
   EXPECT_THAT(summary("put the marker and the eraser in different corners"), Not(HasSubstr("far_left_corner")));
   // Asked for by name, it is that corner (grounding then says it is taken).
-  EXPECT_EQ(summary("put the eraser in the far left corner"), "eraser on desk (far_left_corner)");
+  EXPECT_EQ(summary("put the eraser in the far left corner"), "eraser on desk (far left corner)");
 }
 
 TEST(TabletopLanguage, HalfwayToAnObjectIsTheMiddleOfWhereItStandsAndTheObject) {
@@ -125,9 +125,9 @@ TEST(TabletopLanguage, StacksOnTopOfEachOtherAndOpenDishes) {
 
 TEST(TabletopLanguage, VagueAmountsAreGapsBetweenTheBoxes) {
   // 2 cm (half the block) + 4.5 cm (half the cup) + 4 cm for "a little".
-  EXPECT_EQ(meaning("place the red block a little to the left of the white cup"), "red_block left_of white_cup at 0.105 m");
+  EXPECT_EQ(meaning("place the red block a little to the left of the white cup"), "red_block left of white_cup at 0.105 m");
   // 2 cm + 10 cm (half the box) + 18 cm for "a lot"; "the top of" is the far side.
-  EXPECT_EQ(meaning("place the blue block a lot to the top of the box"), "blue_block in_front_of box at 0.3 m");
+  EXPECT_EQ(meaning("place the blue block a lot to the top of the box"), "blue_block in front of box at 0.3 m");
   // 3 cm (half the 6 cm block) + 3 cm (half the small cup) + 4 cm; "the bottom of" is the near side.
   EXPECT_EQ(meaning("put the green block slightly to the bottom of the yellow cup"), "green_block behind yellow_cup at 0.1 m");
 }
@@ -172,7 +172,7 @@ TEST(TabletopLanguage, TyposAreReadAsTheOneWordTheyAreNearAndSaid) {
   EXPECT_EQ(test::summarize(specification), "marker in holder");
   EXPECT_EQ(specification.corrections, "read \"markr\" as \"marker\"; read \"holdr\" as \"holder\"");
   EXPECT_EQ(meaning("plase the bleu blokc on the red block"), "blue_block on red_block");
-  EXPECT_EQ(meaning("put the red block in the top lefft cornr"), "red_block on table (far_left_corner)");
+  EXPECT_EQ(meaning("put the red block in the top lefft cornr"), "red_block on table (far left corner)");
   EXPECT_EQ(meaning("put the second block from the rihgt in the box"), "blue_block in box");
   // As close to two words: refused, naming both.
   try {

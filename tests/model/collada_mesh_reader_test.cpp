@@ -270,6 +270,20 @@ std::vector<BadCollada> badColladaFiles() {
        }(),
        "<unit> meter must be positive"},
       {"no triangles at all", collada(squareGeometry(""), node), "mesh contains no triangles"},
+      {"a small file instancing more than the triangle bound",
+       [] {
+         std::string thousand = R"(<triangles count="1000"><input semantic="VERTEX" source="#verts" offset="0"/><p>)";
+         for (int i = 0; i < 1000; ++i) thousand += "0 1 2 ";
+         std::string nodes = "<library_nodes><node id=\"n0\"><instance_geometry url=\"#square\"/></node>";
+         for (int level = 1; level <= 11; ++level) {  // 2048 instances of 1000 triangles
+           const std::string below = "#n" + std::to_string(level - 1);
+           nodes += "<node id=\"n" + std::to_string(level) + "\"><instance_node url=\"" + below +
+                    "\"/><instance_node url=\"" + below + "\"/></node>";
+         }
+         return collada(squareGeometry(thousand + "</p></triangles>"), R"(<node><instance_node url="#n11"/></node>)",
+                        nodes + "</library_nodes>");
+       }(),
+       "mesh has more than 2000000 triangles"},
   };
 }
 

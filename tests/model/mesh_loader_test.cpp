@@ -258,6 +258,14 @@ TEST(MeshLoaderErrors, UnreadableFile) {
   EXPECT_THAT(message, HasSubstr("cannot be opened"));
 }
 
+TEST(MeshLoaderErrors, AFileLargerThanTheBoundIsRefusedBeforeItIsRead) {
+  const test::TempDirectory directory;
+  const fs::path path = directory.path() / "huge.stl";
+  fs::copy_file(meshFile("tetrahedron_binary.stl"), path);
+  fs::resize_file(path, kMaxMeshFileBytes + 1);  // sparse: no disk used
+  EXPECT_THAT(loadError(path.string()), HasSubstr("huge.stl: mesh file is 256 MiB (at most 256 MiB: give a simplified mesh)"));
+}
+
 TEST(MeshLoaderErrors, UnsupportedExtensionListsSupported) {
   const std::string message = loadError(meshFile("mesh.xyz").string());
   EXPECT_THAT(message, HasSubstr("mesh.xyz"));

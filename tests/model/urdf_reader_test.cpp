@@ -5,6 +5,7 @@
 
 #include <cstdlib>
 
+#include "lang2manip/model/urdf_structure_check.hpp"
 #include "model_test_support.hpp"
 #include "test_paths.hpp"
 
@@ -261,6 +262,31 @@ TEST(UrdfReader, RefusesDeeplyNestedXmlBeforeAnyRecursiveReader) {
   const std::string xml = "<robot name=\"r\">\n<link name=\"l\">" + nested + "</link></robot>";
   EXPECT_THAT(errorMessage([&] { readUrdfString(xml, "deep.urdf", "."); }),
               HasSubstr("deep.urdf:2: URDF nests elements more than 100 levels deep"));
+}
+
+/// A URDF of `links` links: each hangs from the one before (a chain) or all from the first (a star).
+std::string generatedTree(int links, bool star) {
+  std::string urdf = "<robot name=\"big\"><link name=\"l0\"/>";
+  for (int i = 1; i < links; ++i) {
+    const std::string name = "l" + std::to_string(i);
+    const std::string parent = star ? "l0" : "l" + std::to_string(i - 1);
+    urdf += "<link name=\"" + name + "\"><collision><geometry><box size=\"0.01 0.01 0.01\"/></geometry></collision></link>"
+            "<joint name=\"j" + std::to_string(i) + "\" type=\"revolute\"><parent link=\"" + parent + "\"/><child link=\"" + name +
+            "\"/><origin xyz=\"0 0 0.1\"/><axis xyz=\"0 1 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>";
+  }
+  return urdf + "</robot>";
+}
+
+TEST(UrdfReader, LargeTreesAreReadAndUnderstoodInWorkLinearInTheirSize) {
+  // A 2000-link chain: one arm of 1999 joints (reading and inference were cubic in the size).
+  const RobotModelPtr chain = readUrdfString(generatedTree(2000, false), "chain.urdf", ".");
+  ASSERT_EQ(chain->semantics().manipulators.size(), 1U);
+  EXPECT_EQ(chain->semantics().manipulators[0].armJoints.size(), 1999U);
+  // Beyond the bounds: a clear error, not minutes of work.
+  EXPECT_THAT(errorMessage([] { (void)readUrdfString(generatedTree(kMaxRobotLinks + 1, false), "huge.urdf", "."); }),
+              HasSubstr("the URDF has more than 4096 links"));
+  EXPECT_THAT(errorMessage([] { (void)readUrdfString(generatedTree(200, true), "star.urdf", "."); }),
+              HasSubstr("its tree ends in 199 chains of movable joints (more than 64 arms): name its arms in an SRDF"));
 }
 
 TEST(UrdfReader, ReportsMissingFile) {

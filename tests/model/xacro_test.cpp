@@ -215,6 +215,44 @@ TEST_F(XacroTest, ExponentialExpansionStopsAtTheElementBudget) {
   EXPECT_THAT(error(body + "<xacro:m30/>"), HasSubstr("exceeds 100000 elements"));
 }
 
+/// Properties p1..pN, each made from the one before by `step` (with {} for the previous name).
+std::string propertyChain(const std::string& first, const std::string& step, int count) {
+  std::string body = "<xacro:property name=\"p0\" value=\"" + first + "\"/>";
+  for (int i = 1; i <= count; ++i) {
+    std::string value = step;
+    for (std::size_t at = value.find("{}"); at != std::string::npos; at = value.find("{}")) {
+      value.replace(at, 2, "p" + std::to_string(i - 1));
+    }
+    body += "<xacro:property name=\"p" + std::to_string(i) + "\" value=\"" + value + "\"/>";
+  }
+  return body;
+}
+
+TEST_F(XacroTest, MemoryAndTimeBombsStopWithAnErrorInBoundedWork) {
+  std::string yaml = "a0: &a0 [lol, lol, lol, lol, lol, lol, lol, lol, lol]\n";
+  for (int i = 1; i <= 12; ++i) {
+    yaml += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [";
+    for (int k = 0; k < 9; ++k) yaml += (k > 0 ? ", *a" : "*a") + std::to_string(i - 1);
+    yaml += "]\n";
+  }
+  write("bomb.yaml", yaml);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {propertyChain("xxxxxxxxxxxxxxxx", "${{}}${{}}", 40) + "<a v=\"${p40}\"/>", "text longer than 16 MiB"},
+      {propertyChain("${[0, 1, 2, 3, 4, 5, 6, 7, 8, 9]}", "${{} * 10}", 11) + "<a v=\"${len(p11)}\"/>",
+       "list longer than 1000000 items"},
+      {propertyChain("${[0] * 1000}", "${[{}] * 1000}", 7) + "<a v=\"${p7 == p7}\"/>", "million steps of work"},
+      {propertyChain("${[0] * 1000}", "${[{}] * 1000}", 7) + "<a v=\"${len(str(p7))}\"/>", "text longer than 16 MiB"},
+      {propertyChain("${[0] * 1000}", "${[{}] * 1000}", 7) + "<a v=\"${p6 in p7}\"/>", "million steps of work"},
+      {"<a v=\"${len(str(xacro.load_yaml('bomb.yaml')))}\"/>", "bomb.yaml:1: YAML expands to more than 1000000 values"},
+  };
+  for (const auto& [body, expected] : cases) {
+    SCOPED_TRACE(body.substr(0, 200));
+    EXPECT_THAT(error(body), HasSubstr(expected));
+  }
+  // A shared list is repeated without copying its items: real descriptions' idioms stay cheap.
+  EXPECT_THAT(expand(propertyChain("${[0] * 1000}", "${[{}] * 1000}", 7) + "<a v=\"${len(p7)}\"/>"), HasSubstr("v=\"1000\""));
+}
+
 TEST(XacroArguments, NameColonEqualsValue) {
   EXPECT_EQ(parseXacroArgument("hand:=true"), (std::pair<std::string, std::string>{"hand", "true"}));
   EXPECT_EQ(parseXacroArgument("xyz:=0 0 1"), (std::pair<std::string, std::string>{"xyz", "0 0 1"}));

@@ -426,6 +426,14 @@ TEST(JerkLimits, BadInputGivesClearErrors) {
   single.points.resize(1);
   EXPECT_NE(error(single, pandaAcceleration(), pandaJerk(), 0.02).find("fewer than two points"), std::string::npos);
   EXPECT_NE(error(timed, pandaAcceleration(), pandaJerk(), 0.0).find("output interval must be positive"), std::string::npos);
+  // Work is bounded: a jerk limit in the wrong unit, or a trajectory sampled too finely, is refused.
+  VectorX tiny = pandaJerk();
+  tiny[2] = 1e-6;
+  EXPECT_NE(error(timed, pandaAcceleration(), tiny, 0.02).find("joint_2's jerk limit 1e-06 with acceleration limit"), std::string::npos);
+  EXPECT_NE(error(timed, pandaAcceleration(), tiny, 0.02).find("raise max_jerk"), std::string::npos);
+  JointTrajectory fineSampled = timed;
+  fineSampled.points[1].time = fineSampled.points[0].time + 1e-9;
+  EXPECT_NE(error(fineSampled, pandaAcceleration(), pandaJerk(), 0.02).find("filter samples (at most 2000000)"), std::string::npos);
 }
 
 }  // namespace

@@ -120,7 +120,7 @@ TEST(PlanParserTest, GoalStatementRoundTripsThroughTheDocument) {
   const Plan plan = parsePlan(document, parserDeskContext());
   ASSERT_EQ(plan.goals.size(), 5U);
   EXPECT_EQ(describeGoal(plan.goals[0]), "marker in holder");
-  EXPECT_EQ(describeGoal(plan.goals[1]), "eraser left_of holder at 0.05 m");
+  EXPECT_EQ(describeGoal(plan.goals[1]), "eraser left of holder at 0.05 m");
   EXPECT_EQ(plan.goals[2].kind, GoalKind::kHolding);
   EXPECT_TRUE(plan.goals[3].displacement.isApprox(Vector3(0.0, 0.05, 0.0)));
   EXPECT_EQ(plan.goals[4].configuration, "home");
@@ -329,7 +329,7 @@ TEST(PlanJsonTest, RoundTripThroughJsonGivesTheSamePlan) {
   EXPECT_EQ(again.actions[0].refinements.grasp, GraspDirection::kSide);
   EXPECT_EQ(again.actions[3].planner, "PRM");
   EXPECT_TRUE(again.actions[3].params.orientation->isApprox(*placeAt.params.orientation));
-  EXPECT_EQ(describeAction(again.actions[1]), "place marker 0.07 m left_of holder");
+  EXPECT_EQ(describeAction(again.actions[1]), "place marker 0.07 m left of holder");
   EXPECT_EQ(describeAction(again.actions[5]), "move to home");
 }
 

@@ -222,7 +222,7 @@ TEST(SurfaceRegion, PlansAndGoalStatementsCarryRegionsOfOnOnly) {
   const Plan plan = parsePlan(placeWithRegion("on", "far_left_corner"), deskContext());
   ASSERT_TRUE(plan.actions[1].params.region);
   EXPECT_EQ(surfaceRegionName(*plan.actions[1].params.region), "far_left_corner");
-  EXPECT_EQ(describeAction(plan.actions[1]), "place eraser on desk (far_left_corner)");
+  EXPECT_EQ(describeAction(plan.actions[1]), "place eraser on desk (far left corner)");
   EXPECT_EQ(toJson(plan)["actions"][1]["params"]["region"], "far_left_corner");
   EXPECT_THAT(parseProblems(placeWithRegion("in", "centre")), HasSubstr("only used with relation \"on\""));
   EXPECT_THAT(parseProblems(placeWithRegion("on", "top_corner")), HasSubstr("unknown region \"top_corner\" (valid regions: far_left_corner"));
@@ -232,7 +232,7 @@ TEST(SurfaceRegion, PlansAndGoalStatementsCarryRegionsOfOnOnly) {
   const json goals = {{{"kind", "relation"}, {"object", "eraser"}, {"relation", "on"}, {"target", "desk"}, {"region", "near_edge"}}};
   const std::vector<Goal> read = readGoalStatement(goals, "goals", deskContext().objects, problems);
   ASSERT_TRUE(problems.empty()) << problems.front();
-  EXPECT_EQ(describeGoal(read.front()), "eraser on desk (near_edge)");
+  EXPECT_EQ(describeGoal(read.front()), "eraser on desk (near edge)");
   EXPECT_EQ(goalStatementJson(read)[0]["region"], "near_edge");
   const json wrong = {{{"kind", "relation"}, {"object", "eraser"}, {"relation", "in"}, {"target", "holder"}, {"region", "centre"}},
                       {{"kind", "holding"}, {"object", "eraser"}, {"region", "centre"}},

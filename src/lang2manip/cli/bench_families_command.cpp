@@ -193,7 +193,7 @@ void runBench(const BenchFamiliesOptions& options, std::ostream& out) {
   std::vector<InstanceOutcome> outcomes;
   std::vector<SkippedFamily> skipped;
   for (const std::string& name : problemsToRun(options)) {
-    const LoadedProblem loaded = loadProblem(name, "panda", SceneOptions{});
+    const LoadedProblem loaded = loadProblem(name, "", SceneOptions{});
     for (const InstructionFamily* family : families) {
       Random random(static_cast<std::uint64_t>(options.seed) * 7919u + std::hash<std::string>{}(family->name) % 1000u);
       for (int i = 0; i < options.scenesPerProblem; ++i) {

@@ -186,7 +186,7 @@ void runBench(const BenchInstructionsOptions& options, std::ostream& out) {
   ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(options.seed));
   std::vector<InstructionOutcome> outcomes;
   for (const std::string& name : problemsToRun(options)) {
-    const LoadedProblem loaded = loadProblem(name, "panda", SceneOptions{});
+    const LoadedProblem loaded = loadProblem(name, "", SceneOptions{});
     Random random(static_cast<std::uint64_t>(options.seed));
     for (const CorpusInstruction& entry : corpus) {
       std::optional<Scene> scene = loaded.problem.scene;

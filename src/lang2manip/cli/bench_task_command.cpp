@@ -35,7 +35,7 @@ using Clock = std::chrono::steady_clock;
 
 struct BenchTaskOptions {
   std::string problem;
-  std::string robot = "panda";
+  std::string robot;  ///< empty: the Panda for MoveIt scenes
   SceneOptions scene;
   std::string arm;
   std::string task = "put the marker and eraser in the holder";
@@ -185,7 +185,7 @@ void addBenchTaskCommand(CLI::App& bench, std::ostream& out) {
                                                    "the paper's IK configuration as the baseline");
   command->add_option("PROBLEM", options->problem, "Built-in problem or Kautham problem file (default: " + defaultProblemName() + ")");
   command->add_option("--task", options->task, "The instruction")->capture_default_str();
-  command->add_option("--robot", options->robot, "Built-in robot for MoveIt scenes")->capture_default_str();
+  command->add_option("--robot", options->robot, "Robot of a MoveIt scene: a built-in name or a .urdf/.xacro file (default: panda)");
   addSceneOptions(*command, options->scene);
   command->add_option("--arm", options->arm, "The arm that executes the task");
   command->add_option("--trials", options->trials, "Randomized scenes")->capture_default_str();

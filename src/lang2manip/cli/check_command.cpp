@@ -16,7 +16,7 @@ using nlohmann::json;
 
 struct CheckOptions {
   std::string problem;
-  std::string robot = "panda";
+  std::string robot;  ///< empty: the Panda for MoveIt scenes
   SceneOptions scene;
   bool robotGiven = false;
   std::vector<double> config;
@@ -36,7 +36,7 @@ json checkEntry(const std::string& what, const CollisionReport& report,
 
 /// The given configuration of one robot (the others at the problem's scene state).
 json checkConfiguration(const CheckOptions& options, const CollisionChecker& checker) {
-  const int robot = options.robotGiven ? checker.robotIndex(options.robot) : 0;
+  const int robot = options.robotGiven && !isMoveItSceneName(options.problem) ? checker.robotIndex(options.robot) : 0;
   const VectorX q = Eigen::Map<const VectorX>(options.config.data(), static_cast<Eigen::Index>(options.config.size()));
   const RobotModel& model = *checker.scene().robots()[static_cast<std::size_t>(robot)].model;
   model.checkConfiguration(q, "--config");
@@ -89,7 +89,10 @@ std::string checkText(const json& report) {
 }
 
 void runCheck(const CheckOptions& options, std::ostream& out) {
-  const LoadedProblem loaded = loadProblem(options.problem, options.robot, options.scene);
+  if (options.robotGiven && options.config.empty() && !isMoveItSceneName(options.problem)) {
+    throw InputError("check: --robot " + options.robot + " names the robot whose --config is given; without --config every query of the problem is checked");
+  }
+  const LoadedProblem loaded = loadProblem(options.problem, isMoveItSceneName(options.problem) ? options.robot : "", options.scene);
   if (options.config.empty() && loaded.queries.empty()) {
     throw InputError("nothing was checked: problem " + loaded.name +
                      " has no query; give a configuration with --config");
@@ -118,9 +121,8 @@ void addCheckCommand(CLI::App& app, std::ostream& out) {
                       "Built-in problem name, Kautham problem .xml, or MoveIt scene .yaml (default: " +
                           defaultProblemName() + ")");
   command->add_option("--robot", options->robot,
-                      "Robot whose --config is given (default: the first); built-in robot for "
-                      "MoveIt scenes")
-      ->capture_default_str();
+                      "Robot whose --config is given (default: the first); for a MoveIt scene, its robot: a built-in "
+                      "name or a .urdf/.xacro file (default: panda)");
   addSceneOptions(*command, options->scene);
   command->add_option("--config", options->config, "Joint values of the robot (one per variable)");
   command->add_flag("--json", options->json, "Print JSON");

@@ -22,7 +22,7 @@ using nlohmann::json;
 
 struct DescribeOptions {
   std::string problem;
-  std::string robot = "panda";
+  std::string robot;  ///< empty: the Panda for MoveIt scenes
   SceneOptions scene;
   std::string writeSrdf;
   bool json = false;
@@ -232,7 +232,7 @@ void addDescribeCommand(CLI::App& app, std::ostream& out) {
   command->add_option("PROBLEM", options->problem,
                       "Robot description (.urdf, .xacro), built-in problem name, Kautham problem .xml or MoveIt scene .yaml (default: " +
                           defaultProblemName() + ")");
-  command->add_option("--robot", options->robot, "Built-in robot for MoveIt scenes")->capture_default_str();
+  command->add_option("--robot", options->robot, "Robot of a MoveIt scene: a built-in name or a .urdf/.xacro file (default: panda)");
   addSceneOptions(*command, options->scene);
   command->add_option("--write-srdf", options->writeSrdf, "Write the first robot's semantics as an SRDF file to edit");
   command->add_flag("--json", options->json, "Print JSON");

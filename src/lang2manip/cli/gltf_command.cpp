@@ -15,7 +15,7 @@ namespace {
 
 struct GltfCommandOptions {
   std::string problem;
-  std::string robot = "panda";
+  std::string robot;  ///< empty: the Panda for MoveIt scenes
   std::string out;
   bool collision = false;
   bool goal = false;
@@ -51,7 +51,7 @@ void addGltfCommand(CLI::App& app, std::ostream& out) {
   auto options = std::make_shared<GltfCommandOptions>();
   CLI::App* command = app.add_subcommand("gltf", "Write a problem's scene as a glTF binary (.glb) for any glTF viewer");
   command->add_option("PROBLEM", options->problem, "Built-in problem name, Kautham problem file, MoveIt scene or robot description");
-  command->add_option("--robot", options->robot, "Robot of a MoveIt scene: a built-in name or a .urdf/.xacro file");
+  command->add_option("--robot", options->robot, "Robot of a MoveIt scene: a built-in name or a .urdf/.xacro file (default: panda)");
   command->add_option("-o,--out", options->out, "The .glb file to write")->required();
   command->add_flag("--collision", options->collision, "Draw the collision geometry instead of the visual one");
   command->add_flag("--goal", options->goal, "Robots at the first query's goal (default: its start)");

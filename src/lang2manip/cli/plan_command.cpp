@@ -15,7 +15,7 @@ namespace {
 
 struct PlanOptions {
   std::string problem;
-  std::string robot = "panda";
+  std::string robot;  ///< empty: the Panda for MoveIt scenes
   SceneOptions scene;
   std::string task;
   TaskPlannerChoice planner;
@@ -105,7 +105,7 @@ void addPlanCommand(CLI::App& app, std::ostream& out) {
   command->add_option("PROBLEM", options->problem,
                       "Built-in problem name, Kautham problem .xml, or MoveIt scene .yaml (default: " +
                           defaultProblemName() + ")");
-  command->add_option("--robot", options->robot, "Built-in robot for MoveIt scenes")->capture_default_str();
+  command->add_option("--robot", options->robot, "Robot of a MoveIt scene: a built-in name or a .urdf/.xacro file (default: panda)");
   addSceneOptions(*command, options->scene);
   addTaskOption(*command, options->task, "The instruction, e.g. \"put the marker and eraser in the holder\"");
   addTaskPlannerOptions(*command, options->planner);

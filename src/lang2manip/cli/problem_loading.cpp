@@ -107,16 +107,28 @@ LoadedProblem loadKautham(const std::filesystem::path& file, const RobotReading&
   return loaded;
 }
 
+/// Refuses a robot chosen for a problem that names its own robots.
+void refuseRobotChoice(const std::string& robot, const std::string& problem) {
+  if (robot.empty()) return;
+  throw InputError(SourceLocation{problem, 0}, "robot \"" + robot +
+                                                   "\" was chosen, but a robot is chosen only for a MoveIt scene (which names "
+                                                   "none): this problem names its own robots (see lang2manip describe)");
+}
+
 LoadedProblem loadProblemFile(const std::string& nameOrPath, const std::string& robot, const RobotReading& reading) {
-  if (isRobotDescription(nameOrPath)) return loadRobotOnly(nameOrPath, reading);
+  if (isRobotDescription(nameOrPath)) {
+    refuseRobotChoice(robot, nameOrPath);
+    return loadRobotOnly(nameOrPath, reading);
+  }
   const std::filesystem::path file = resolveProblem(nameOrPath.empty() ? defaultProblemName() : nameOrPath);
   const std::string extension = file.extension().string();
-  if (extension == ".yaml" || extension == ".yml") return loadMoveIt(file, robot, reading);
+  if (extension == ".yaml" || extension == ".yml") return loadMoveIt(file, robot.empty() ? "panda" : robot, reading);
   if (extension != ".xml") {
     throw InputError(SourceLocation{file.string(), 0},
                      "not a problem file: expected a Kautham problem (.xml), a MoveIt planning scene "
                      "(.yaml) or a robot description (.urdf, .xacro)");
   }
+  refuseRobotChoice(robot, file.string());
   return loadKautham(file, reading);
 }
 
@@ -127,6 +139,11 @@ LoadedProblem loadProblem(const std::string& nameOrPath, const std::string& robo
   loaded.problem.scene.setContactTolerance(options.contactTolerance);
   loaded.objectSemantics = inferObjectSemantics(loaded.problem.scene, {options.movable, options.fixed});
   return loaded;
+}
+
+bool isMoveItSceneName(const std::string& nameOrPath) {
+  const std::string extension = std::filesystem::path(nameOrPath).extension().string();
+  return extension == ".yaml" || extension == ".yml";
 }
 
 void addSceneOptions(CLI::App& command, SceneOptions& options) {

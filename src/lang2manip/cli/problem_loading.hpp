@@ -43,11 +43,15 @@ struct SceneOptions {
 /// Loads `nameOrPath` (empty: the default built-in problem): a built-in name, a Kautham problem
 /// .xml, a MoveIt scene .yaml, or a robot description (.urdf or .xacro: a scene holding only that
 /// robot, at the middle of its joint ranges, with no query). `robot` names the robot of MoveIt
-/// scenes: a built-in robot or a .urdf/.xacro file. Objects whose models do not say what they are
+/// scenes: a built-in robot or a .urdf/.xacro file (empty: the Panda); for other problems, which
+/// name their own robots, it must be empty (a robot chosen there is refused, never ignored). Objects whose models do not say what they are
 /// for are inferred (inferObjectSemantics), then `options.movable` / `options.fixed` apply.
 /// Throws InputError on any problem with the input, an unknown object name in the overrides, an
 /// object named both movable and fixed, or a contact tolerance out of range.
 LoadedProblem loadProblem(const std::string& nameOrPath, const std::string& robot, const SceneOptions& options = {});
+
+/// True when `nameOrPath` is a MoveIt scene (.yaml/.yml), the one kind of problem a robot is chosen for.
+bool isMoveItSceneName(const std::string& nameOrPath);
 
 /// Adds `--xacro-arg NAME:=VALUE` (repeatable), `--movable A,B`, `--fixed C`,
 /// `--approach-axis [MANIPULATOR=]AXIS` (repeatable) and `--contact-tolerance M` to a command that

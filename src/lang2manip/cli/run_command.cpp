@@ -133,7 +133,7 @@ void addRunCommand(CLI::App& app, std::ostream& out) {
   command->add_option("--planner", options->request.motionPlanner,
                       "Motion planner of the actions that name none (OMPL or Kautham name; default RRTConnect)");
   command->add_option("--ik", options->request.ik, "IK solver (dls, kdl, kdl_restarts; default dls)");
-  command->add_option("--robot", options->request.robot, "Built-in robot for MoveIt scenes")->capture_default_str();
+  command->add_option("--robot", options->request.robot, "Robot of a MoveIt scene: a built-in name or a .urdf/.xacro file (default: panda)");
   addSceneOptions(*command, options->request.scene);
   command->add_option("--arm", options->request.arm, "The arm (manipulator) that executes the task (default: the robot's first)");
   command->add_option("--rounds", options->request.rounds, "Task planner rounds at most (repairs included)")->capture_default_str();

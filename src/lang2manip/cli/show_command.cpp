@@ -8,7 +8,7 @@ namespace {
 
 struct ShowOptions {
   std::string problem;
-  std::string robot = "panda";
+  std::string robot;  ///< empty: the Panda for MoveIt scenes
   SceneOptions scene;
   bool json = false;
 };
@@ -22,8 +22,7 @@ void addShowCommand(CLI::App& app, std::ostream& out) {
   command->add_option("PROBLEM", options->problem,
                       "Built-in problem name, Kautham problem .xml, or MoveIt scene .yaml (default: " +
                           defaultProblemName() + ")");
-  command->add_option("--robot", options->robot, "Built-in robot for MoveIt scenes")
-      ->capture_default_str();
+  command->add_option("--robot", options->robot, "Robot of a MoveIt scene: a built-in name or a .urdf/.xacro file (default: panda)");
   addSceneOptions(*command, options->scene);
   command->add_flag("--json", options->json, "Print JSON");
   command->callback([options, &out] {

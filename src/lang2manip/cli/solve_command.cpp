@@ -25,7 +25,7 @@ using nlohmann::json;
 
 struct SolveOptions {
   std::string problem;
-  std::string robot = "panda";
+  std::string robot;  ///< empty: the Panda for MoveIt scenes
   SceneOptions scene;
   std::string planner;
   std::vector<std::string> parameters;
@@ -244,7 +244,7 @@ void addSolveCommand(CLI::App& app, std::ostream& out) {
   command->add_option("PROBLEM", options->problem,
                       "Built-in problem name, Kautham problem .xml, or MoveIt scene .yaml (default: " +
                           defaultProblemName() + ")");
-  command->add_option("--robot", options->robot, "Built-in robot for MoveIt scenes")->capture_default_str();
+  command->add_option("--robot", options->robot, "Robot of a MoveIt scene: a built-in name or a .urdf/.xacro file (default: panda)");
   addSceneOptions(*command, options->scene);
   command->add_option("--planner", options->planner, "Planner name (OMPL or Kautham name)");
   command->add_option("--param", options->parameters, "Planner parameter NAME=VALUE (repeatable)");

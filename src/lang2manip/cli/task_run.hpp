@@ -53,7 +53,7 @@ TaskRun planExecuteAndVerify(TaskPlanner& planner, TaskExecutor& executor, const
 struct RunRequest {
   /// Built-in name, Kautham problem, MoveIt scene or robot description (loadProblem()).
   std::string problem;
-  std::string robot = "panda";
+  std::string robot;  ///< the robot of a MoveIt scene (empty: the Panda); empty for other problems
   SceneOptions scene;
   /// The arm that executes the task; empty = the robot's first.
   std::string arm;

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/log.hpp"
 #include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/core/random.hpp"
 
@@ -19,13 +20,23 @@ int findRoot(std::vector<int>& parent, int i) {
   return i;
 }
 
+/// As linksAdjacent() for every pair, in time linear in the number of pairs allowed.
 void allowAdjacent(const RobotModel& model, AllowedCollisionMatrix& matrix) {
   const std::vector<int> groups = rigidLinkGroups(model);
-  const int links = matrix.linkCount();
-  for (int a = 0; a < links; ++a) {
-    for (int b = a + 1; b < links; ++b) {
-      if (linksAdjacent(model, groups, a, b)) matrix.allow(a, b, AllowedReason::kAdjacent);
+  std::vector<std::vector<int>> members(groups.size());
+  for (std::size_t link = 0; link < groups.size(); ++link) members[static_cast<std::size_t>(groups[link])].push_back(static_cast<int>(link));
+  const auto allowBetween = [&](const std::vector<int>& first, const std::vector<int>& second) {
+    for (int a : first) {
+      for (int b : second) {
+        if (a != b) matrix.allow(a, b, AllowedReason::kAdjacent);
+      }
     }
+  };
+  for (const std::vector<int>& group : members) allowBetween(group, group);
+  for (std::size_t j = 0; j < model.joints().size(); ++j) {
+    const int parent = groups[static_cast<std::size_t>(model.parentLinkOf(static_cast<int>(j)))];
+    const int child = groups[static_cast<std::size_t>(model.childLinkOf(static_cast<int>(j)))];
+    if (parent != child) allowBetween(members[static_cast<std::size_t>(parent)], members[static_cast<std::size_t>(child)]);
   }
 }
 
@@ -128,6 +139,12 @@ void allowSampled(const RobotModel& model, const LinkCollisionTest& test,
                      std::to_string(settings.samples));
   }
   const std::size_t links = static_cast<std::size_t>(matrix.linkCount());
+  if (static_cast<double>(links * links) * settings.samples > kMaxSampledPairTests) {
+    logMessage(LogLevel::kWarn, "allowed-collision matrix: " + std::to_string(links) + " links over " + std::to_string(settings.samples) +
+                                    " samples is more work than the bound; no pair is disabled as never or always colliding "
+                                    "(every pair but adjacent ones is checked; an SRDF can disable more)");
+    return;
+  }
   std::vector<int> hits(links * links, 0);
   std::vector<char> inCollision(links * links, 0);
   // A pair already allowed, or seen both colliding and free, cannot become never or always:

@@ -46,6 +46,11 @@ class AllowedCollisionMatrix {
 };
 
 /// Settings of computeAllowedCollisionMatrix() (the tuning constants, documented in one place).
+/// Most link-pair cells times samples the never/always sampling may visit (about 220 links at
+/// 2000 samples); beyond it sampling is skipped with a warning and every non-adjacent pair stays
+/// checked (safe, only slower), so a robot of thousands of links loads in bounded time.
+inline constexpr double kMaxSampledPairTests = 1e8;
+
 struct AllowedCollisionSettings {
   /// Random configurations sampled uniformly within the joint limits.
   int samples = 2000;

@@ -345,8 +345,8 @@ std::string describePlacementTarget(const PlacementTarget& target) {
     std::snprintf(buffer, sizeof buffer, "at (%.3f, %.3f, %.3f)", target.position->x(), target.position->y(), target.position->z());
     return buffer;
   }
-  std::string text = spatialRelationName(*target.relation) + " " + target.target;
-  if (target.region) text += " (" + surfaceRegionName(*target.region) + ")";
+  std::string text = spatialRelationWords(*target.relation) + " " + target.target;
+  if (target.region) text += " (" + surfaceRegionWords(*target.region) + ")";
   if (target.distance) {
     std::snprintf(buffer, sizeof buffer, " (%.3f m)", *target.distance);
     text += buffer;

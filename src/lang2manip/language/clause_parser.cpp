@@ -312,7 +312,7 @@ bool StepParser::parseRelation(Step& step) {
   if (distance) {
     if (!isDirectional(spec.relation)) {
       throwGroundingError(joinWords(words, 0, step.at),
-                          "a distance cannot go with \"" + spatialRelationName(spec.relation) +
+                          "a distance cannot go with \"" + spatialRelationWords(spec.relation) +
                               "\"");
     }
     spec.distance = distance;

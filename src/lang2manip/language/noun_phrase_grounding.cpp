@@ -70,7 +70,7 @@ std::vector<std::string> NounPhraseReader::applyModifier(const NounPhrase& phras
   if (modifier.kind == NounModifier::Kind::kRelation) {
     std::erase_if(names, [&](const std::string& name) { return !standsIn(descriptor(name), modifier.relation, reference); });
     if (names.empty()) {
-      throwGroundingError(phrase.text, "no object is " + spatialRelationName(modifier.relation) + " " + reference.name);
+      throwGroundingError(phrase.text, "no object is " + spatialRelationWords(modifier.relation) + " " + reference.name);
     }
     return names;
   }

@@ -92,6 +92,10 @@ void MeshBuilder::addTriangle(int a, int b, int c) {
   if (!hasArea(mesh_.vertices[a].data(), mesh_.vertices[b].data(), mesh_.vertices[c].data())) {
     return;
   }
+  if (mesh_.triangles.size() >= kMaxMeshTriangles) {
+    tooManyTriangles_ = true;
+    return;
+  }
   mesh_.triangles.push_back({a, b, c});
   if (colour_ && colour_->allFinite()) {
     const Vector3 rgb = colour_->cwiseMax(0.0).cwiseMin(1.0);
@@ -104,6 +108,9 @@ void MeshBuilder::addTriangle(int a, int b, int c) {
 std::string MeshBuilder::problem() const {
   if (nonFinite_) return "has a vertex with a non-finite coordinate (nan or inf)";
   if (tooLarge_) return "has too many vertices";
+  if (tooManyTriangles_) {
+    return "has more than " + std::to_string(kMaxMeshTriangles) + " triangles (give a simplified mesh: collision checking and drawing need far fewer)";
+  }
   if (mesh_.triangles.empty()) return "contains no triangles";
   return {};
 }

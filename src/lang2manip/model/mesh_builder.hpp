@@ -15,6 +15,10 @@
 
 namespace lang2manip {
 
+/// Most triangles one mesh may have: ten times a detailed vendor visual mesh, and a bound on the
+/// memory of the collision structures built from it.
+inline constexpr std::size_t kMaxMeshTriangles = 2000000;
+
 /// Collects root-frame triangles into an indexed mesh. Never throws while collecting (it is
 /// called from inside Coin's traversal): invalid input is remembered; check problem() afterwards.
 class MeshBuilder {
@@ -27,8 +31,9 @@ class MeshBuilder {
   /// The index of a vertex with exactly these coordinates, appending one if there is none.
   int mergedVertex(const Vector3& point);
 
-  /// Adds a triangle unless an index is invalid or it has no area (nothing to collide with); its
-  /// area counts for the colour set last.
+  /// Adds a triangle unless an index is invalid, it has no area (nothing to collide with) or the
+  /// mesh has kMaxMeshTriangles already (remembered as a problem); its area counts for the colour
+  /// set last.
   void addTriangle(int a, int b, int c);
 
   /// The diffuse colour (RGB, 0..1) of the triangles added next; none: no colour of the file.
@@ -61,6 +66,7 @@ class MeshBuilder {
   std::unordered_map<std::array<double, 3>, double, KeyHash> colourAreas_;
   bool nonFinite_ = false;
   bool tooLarge_ = false;
+  bool tooManyTriangles_ = false;
 };
 
 /// The deepest nesting of { } and [ ] an Inventor or VRML file may have. Coin's parser recurses

@@ -33,6 +33,12 @@ std::string joined(const std::vector<std::string>& items, const std::string& sep
 void checkReadableFile(const fs::path& path, const std::string& name) {
   const std::string reason = notRegularFileReason(path);
   if (!reason.empty()) throw InputError(SourceLocation{name, 0}, "mesh file " + reason);
+  std::error_code error;
+  const std::uintmax_t bytes = fs::file_size(path, error);
+  if (!error && bytes > kMaxMeshFileBytes) {
+    throw InputError(SourceLocation{name, 0}, "mesh file is " + std::to_string(bytes >> 20) + " MiB (at most " +
+                                                  std::to_string(kMaxMeshFileBytes >> 20) + " MiB: give a simplified mesh)");
+  }
   if (!std::ifstream(path, std::ios::binary).is_open()) {
     throw InputError(SourceLocation{name, 0}, "mesh file cannot be opened for reading");
   }

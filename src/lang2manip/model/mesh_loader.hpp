@@ -2,6 +2,7 @@
 /// @file Loads triangle meshes from STL, DAE (COLLADA), OBJ, PLY (assimp) and Inventor .iv /
 /// VRML .wrl (Coin3D), each file once.
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -11,6 +12,9 @@
 #include "lang2manip/model/triangle_mesh.hpp"
 
 namespace lang2manip {
+
+/// Largest mesh file read (a binary STL of five million triangles; vendors ship a few MB).
+inline constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t{256} << 20;
 
 /// Reads one mesh file: STL, COLLADA, OBJ and PLY through assimp; Inventor .iv and VRML 1/2
 /// .wrl/.vrml through Coin3D (chosen by the extension, in any case).
@@ -26,7 +30,8 @@ namespace lang2manip {
 /// Throws InputError "file[:line]: what" when the file is missing, not a regular file,
 /// unreadable, of an unsupported format (the message lists the supported ones), malformed (with
 /// the parser's reason, and Coin's line number), nested deeper than 1000 levels, indexes
-/// coordinates that do not exist, has a non-finite vertex, or has no triangles.
+/// coordinates that do not exist, has a non-finite vertex, has no triangles, is larger than
+/// kMaxMeshFileBytes or has more than kMaxMeshTriangles triangles.
 ///
 /// Thread-safe; Coin files are read one at a time (Coin's state is global). Prints nothing.
 TriangleMesh loadTriangleMesh(const std::string& path);

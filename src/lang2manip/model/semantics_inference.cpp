@@ -115,29 +115,38 @@ class TreeWalker {
     return corners;
   }
 
-  bool isGripperJoint(const Joint& joint) const {
-    if (!isMovable(joint)) return false;
-    if (startsFinger(joint)) return true;
-    for (auto parent = parentJoint_.find(joint.parentLink); parent != parentJoint_.end();
-         parent = parentJoint_.find(parent->second->parentLink)) {
-      if (startsFinger(*parent->second)) return true;
-    }
-    return false;
+  bool isGripperJoint(const Joint& joint) const { return isMovable(joint) && fingerAtOrAbove(joint); }
+
+  /// True when `joint` or a joint above it starts a finger (remembered: every query is linear in
+  /// the tree's size overall, so trees of thousands of links are read quickly).
+  bool fingerAtOrAbove(const Joint& joint) const {
+    if (const auto known = fingerAtOrAbove_.find(&joint); known != fingerAtOrAbove_.end()) return known->second;
+    const auto parent = parentJoint_.find(joint.parentLink);
+    const bool result = startsFinger(joint) || (parent != parentJoint_.end() && fingerAtOrAbove(*parent->second));
+    fingerAtOrAbove_[&joint] = result;
+    return result;
   }
 
   int movableDepthBelow(const std::string& link) const {
-    const auto children = childJoints_.find(link);
-    if (children == childJoints_.end()) return 0;
+    if (const auto known = movableDepthBelow_.find(link); known != movableDepthBelow_.end()) return known->second;
     int depth = 0;
-    for (const Joint* child : children->second) {
-      depth = std::max(depth, (isMovable(*child) ? 1 : 0) + movableDepthBelow(child->childLink));
+    if (const auto children = childJoints_.find(link); children != childJoints_.end()) {
+      for (const Joint* child : children->second) {
+        depth = std::max(depth, (isMovable(*child) ? 1 : 0) + movableDepthBelow(child->childLink));
+      }
     }
+    movableDepthBelow_[link] = depth;
     return depth;
   }
 
   RobotSemantics infer() const {
     RobotSemantics semantics;
-    for (const Joint* tip : armTips()) semantics.manipulators.push_back(manipulatorEndingAt(*tip));
+    const std::vector<const Joint*> tips = armTips();
+    if (tips.size() > static_cast<std::size_t>(kMaxInferredArms)) {
+      throw InputError("robot " + robot_.name + ": its tree ends in " + std::to_string(tips.size()) + " chains of movable joints (more than " +
+                       std::to_string(kMaxInferredArms) + " arms): name its arms in an SRDF beside the URDF");
+    }
+    for (const Joint* tip : tips) semantics.manipulators.push_back(manipulatorEndingAt(*tip));
     rankManipulators(semantics.manipulators);
     if (semantics.manipulators.size() > 1) {
       for (Manipulator& arm : semantics.manipulators) arm.name = "arm_" + arm.toolFrame;
@@ -160,31 +169,45 @@ class TreeWalker {
   }
 
   /// The topmost link reached from `link` through fixed joints.
-  std::string rigidRoot(std::string link) const {
-    for (auto parent = parentJoint_.find(link); parent != parentJoint_.end() && parent->second->type == JointType::kFixed;
-         parent = parentJoint_.find(link)) {
-      link = parent->second->parentLink;
+  /// The link at the top of the fixed joints above `link` (remembered for every link walked).
+  std::string rigidRoot(const std::string& link) const {
+    std::vector<std::string> walked;
+    std::string at = link;
+    for (auto parent = parentJoint_.find(at); parent != parentJoint_.end() && parent->second->type == JointType::kFixed;
+         parent = parentJoint_.find(at)) {
+      if (const auto known = rigidRoot_.find(at); known != rigidRoot_.end()) {
+        at = known->second;
+        break;
+      }
+      walked.push_back(at);
+      at = parent->second->parentLink;
     }
-    return link;
+    for (const std::string& below : walked) rigidRoot_[below] = at;
+    return at;
   }
 
   /// Movable joints, mimics included, whose parent is rigidly attached to `root`.
   int actuatedOnBody(const std::string& root) const {
-    int count = 0;
-    for (const Joint& joint : robot_.joints) {
-      const bool moves = joint.type == JointType::kRevolute || joint.type == JointType::kContinuous ||
-                         joint.type == JointType::kPrismatic;
-      if (moves && rigidRoot(joint.parentLink) == root) ++count;
+    if (actuatedOnBody_.empty()) {
+      for (const Joint& joint : robot_.joints) {
+        const bool moves = joint.type == JointType::kRevolute || joint.type == JointType::kContinuous ||
+                           joint.type == JointType::kPrismatic;
+        if (moves) ++actuatedOnBody_[rigidRoot(joint.parentLink)];
+      }
     }
-    return count;
+    const auto found = actuatedOnBody_.find(root);
+    return found == actuatedOnBody_.end() ? 0 : found->second;
   }
 
   bool hasArmJointBelow(const std::string& link) const {
+    if (const auto known = hasArmJointBelow_.find(link); known != hasArmJointBelow_.end()) return known->second;
     const auto children = childJoints_.find(link);
-    if (children == childJoints_.end()) return false;
-    return std::any_of(children->second.begin(), children->second.end(), [&](const Joint* joint) {
-      return (isMovable(*joint) && !isGripperJoint(*joint)) || hasArmJointBelow(joint->childLink);
-    });
+    const bool result = children != childJoints_.end() &&
+                        std::any_of(children->second.begin(), children->second.end(), [&](const Joint* joint) {
+                          return (isMovable(*joint) && !isGripperJoint(*joint)) || hasArmJointBelow(joint->childLink);
+                        });
+    hasArmJointBelow_[link] = result;
+    return result;
   }
 
   std::vector<const Joint*> armTips() const {
@@ -296,6 +319,11 @@ class TreeWalker {
   std::map<std::string, const Link*> links_;
   std::map<std::string, std::vector<const Joint*>> childJoints_;
   std::map<std::string, const Joint*> parentJoint_;
+  mutable std::map<std::string, int> movableDepthBelow_;
+  mutable std::map<std::string, std::string> rigidRoot_;
+  mutable std::map<std::string, int> actuatedOnBody_;
+  mutable std::map<std::string, bool> hasArmJointBelow_;
+  mutable std::map<const Joint*, bool> fingerAtOrAbove_;
   std::string root_;
 };
 

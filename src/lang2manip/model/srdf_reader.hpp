@@ -21,6 +21,9 @@ RobotSemantics readSrdfFile(const std::filesystem::path& path, const RobotModelD
 RobotSemantics readSrdfString(const std::string& xml, const std::string& sourceName,
                               const RobotModelData& robot);
 
+/// Most arms inferSemantics() finds before asking for an SRDF (real robots have one to four).
+inline constexpr int kMaxInferredArms = 64;
+
 /// Infers manipulators from the tree when there is no SRDF: the fingers are the short chains of
 /// movable joints that share a rigid body with another finger (mimics included), and sliding
 /// joints at the end of the tree; each chain of the other movable joints from the root to their
@@ -28,6 +31,8 @@ RobotSemantics readSrdfString(const std::string& xml, const std::string& sourceN
 /// named like tcp/tool/grasp/ee, or the link the fingers hang from) is the tool frame; the
 /// fingers' joints below it are its gripper (open = upper limit, closed = lower; describeGripper
 /// measures which end really opens); self-collision envelopes as addSelfCollisionEnvelopes().
+/// Throws InputError when the tree ends in more than kMaxInferredArms arms (a robot that branched
+/// needs its arms named).
 RobotSemantics inferSemantics(const RobotModelData& robot);
 
 /// The links that are a self-collision envelope of their parent, as vendors add them (Franka's

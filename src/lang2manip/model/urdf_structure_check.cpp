@@ -180,16 +180,20 @@ void checkTree(const XmlDocument& urdf, const std::map<std::string, int>& links)
                      "the URDF has " + std::to_string(roots.size()) + " root links (" + list +
                          "); every link but one needs a parent joint");
   }
-  for (const JointLinks& joint : joints) {
-    std::set<std::string> seen{joint.child};
-    std::string link = joint.parent;
-    while (parentJoint.count(link)) {
-      if (!seen.insert(link).second) {
-        throw InputError(SourceLocation{urdf.sourceName(), joint.line},
-                         "joint \"" + joint.name + "\" closes a cycle through link \"" + link +
+  // Each link is walked up from once (linear in the tree's size): a walk ends at the root or at a
+  // link an earlier walk reached, and meeting its own path again is a cycle.
+  std::map<std::string, std::size_t> walkOf;
+  for (std::size_t walk = 1; walk <= joints.size(); ++walk) {
+    std::string link = joints[walk - 1].child;
+    while (walkOf.emplace(link, walk).second) {
+      const auto parent = parentJoint.find(link);
+      if (parent == parentJoint.end()) break;
+      link = parent->second->parent;
+      if (const auto reached = walkOf.find(link); reached != walkOf.end() && reached->second == walk) {
+        throw InputError(SourceLocation{urdf.sourceName(), parent->second->line},
+                         "joint \"" + parent->second->name + "\" closes a cycle through link \"" + link +
                              "\"; a URDF must be a tree");
       }
-      link = parentJoint.at(link)->parent;
     }
   }
   if (roots.empty()) {
@@ -210,6 +214,9 @@ void checkUrdfStructure(const XmlDocument& urdf) {
   checkNumbers(urdf, robot);
   std::map<std::string, int> links;
   for (const pugi::xml_node& link : robot.children("link")) {
+    if (links.size() == static_cast<std::size_t>(kMaxRobotLinks)) {
+      throw InputError(urdf.where(link), "the URDF has more than " + std::to_string(kMaxRobotLinks) + " links");
+    }
     const std::string name = checkedName(urdf, link, "name", "link name");
     if (!links.emplace(name, urdf.lineOf(link)).second) {
       throw InputError(urdf.where(link), "link \"" + name + "\" is defined twice");

@@ -7,7 +7,12 @@
 
 namespace lang2manip {
 
-/// Throws InputError "<file>:<line>: <what>" on the first problem found.
+/// Most links a robot may have: far above any real robot (humanoids have about a hundred), and a
+/// bound on the work and stack depth of reading and understanding one.
+inline constexpr int kMaxRobotLinks = 4096;
+
+/// Throws InputError "<file>:<line>: <what>" on the first problem found (more than kMaxRobotLinks
+/// links among them).
 void checkUrdfStructure(const XmlDocument& urdf);
 
 }  // namespace lang2manip

@@ -368,6 +368,8 @@ Value evaluateExpression(std::string_view text, const ExpressionScope& scope) {
   if (text.size() > kMaxExpressionLength) {
     throw ExpressionError("expression longer than " + std::to_string(kMaxExpressionLength) + " characters");
   }
+  const WorkBudget budget;
+  spendWork(text.size() / 16 + 1);
   return Evaluator(text, scope).run();
 }
 

@@ -9,8 +9,6 @@
 namespace lang2manip::xacro {
 namespace {
 
-constexpr std::size_t kMaxStringLength = std::size_t{1} << 24;
-
 [[noreturn]] void fail(const std::string& message) { throw ExpressionError(message); }
 
 [[noreturn]] void unsupported(std::string_view op, const Value& a, const Value& b) {
@@ -69,10 +67,13 @@ Value repeated(const Value& sequence, const Value& count) {
   if (times > 1000000) fail("repetition of more than 1000000 copies");
   if (sequence.isString()) {
     if (sequence.string().size() * static_cast<std::size_t>(times) > kMaxStringLength) fail("string longer than 16 MiB");
+    spendWork(sequence.string().size() * static_cast<std::size_t>(times) / 64 + 1);
     std::string text;
     for (long long i = 0; i < times; ++i) text += sequence.string();
     return text;
   }
+  if (sequence.list().size() * static_cast<std::size_t>(times) > kMaxListLength) fail("list longer than 1000000 items");
+  spendWork(sequence.list().size() * static_cast<std::size_t>(times) + 1);
   ValueList items;
   for (long long i = 0; i < times; ++i) items.insert(items.end(), sequence.list().begin(), sequence.list().end());
   return items;
@@ -328,10 +329,12 @@ Value binaryOperation(std::string_view op, const Value& a, const Value& b) {
   if (op == ">=") return compare(op, a, b) >= 0;
   if (op == "+" && a.isString() && b.isString()) {
     if (a.string().size() + b.string().size() > kMaxStringLength) fail("string longer than 16 MiB");
+    spendWork((a.string().size() + b.string().size()) / 64 + 1);
     return a.string() + b.string();
   }
   if (op == "+" && a.isList() && b.isList()) {
-    if (a.list().size() + b.list().size() > 1000000) fail("list longer than 1000000 items");
+    if (a.list().size() + b.list().size() > kMaxListLength) fail("list longer than 1000000 items");
+    spendWork(a.list().size() + b.list().size() + 1);
     ValueList items = a.list();
     items.insert(items.end(), b.list().begin(), b.list().end());
     return items;

@@ -39,6 +39,7 @@ class XacroProcessor {
   explicit XacroProcessor(const XacroOptions& options) : options_(options), arguments_(options.arguments) {}
 
   std::string run(const fs::path& path) {
+    const xacro::WorkBudget budget;
     pugi::xml_node root = output_.append_copy(load(path).root());
     processChildren(root, top_);
     for (pugi::xml_attribute attribute : root.attributes()) attribute.set_value(text(attribute.value(), top_, root).c_str());
@@ -136,7 +137,9 @@ class XacroProcessor {
       if (part.kind == TextPart::Kind::kLiteral) result += part.text;
       if (part.kind == TextPart::Kind::kExpression) result += xacro::toText(expression(part.text, scope, at));
       if (part.kind == TextPart::Kind::kSubstitution) result += substitution(xacro::toText(evaluate(part.text, scope, at)), scope, at);
+      if (result.size() > xacro::kMaxStringLength) throw ExpressionError("text longer than 16 MiB");
     }
+    xacro::spendWork(result.size() / 64 + 1);
     return result;
   }
 

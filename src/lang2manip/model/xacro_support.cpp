@@ -91,18 +91,26 @@ Value plainScalar(const std::string& text) {
   return number.isInt() || number.isFloat() ? number : Value(text);
 }
 
-Value fromYaml(const YAML::Node& node, const std::string& file, int depth) {
+/// Most values one YAML file may become (its aliases expanded): far above robot configuration files.
+constexpr std::size_t kMaxYamlValues = 1000000;
+
+Value fromYaml(const YAML::Node& node, const std::string& file, int depth, std::size_t& values) {
+  spendWork(1);
+  if (++values > kMaxYamlValues) {
+    throw InputError(SourceLocation{file, lineOf(node.Mark())},
+                     "YAML expands to more than " + std::to_string(kMaxYamlValues) + " values (aliases repeated without end?)");
+  }
   if (depth > 100) throw InputError(SourceLocation{file, lineOf(node.Mark())}, "YAML nests more than 100 levels deep");
   if (node.IsMap()) {
     ValueDict dict;
     for (const auto& item : node) {
-      dict.emplace_back(item.first.as<std::string>(), fromYaml(item.second, file, depth + 1));
+      dict.emplace_back(item.first.as<std::string>(), fromYaml(item.second, file, depth + 1, values));
     }
     return dict;
   }
   if (node.IsSequence()) {
     ValueList list;
-    for (const auto& item : node) list.push_back(fromYaml(item, file, depth + 1));
+    for (const auto& item : node) list.push_back(fromYaml(item, file, depth + 1, values));
     return list;
   }
   if (!node.IsScalar()) return Value();
@@ -163,7 +171,8 @@ std::optional<fs::path> findPackage(const std::string& name, const fs::path& nea
 Value loadYamlValue(const fs::path& file) {
   const std::string text = readTextFile(file, "YAML file");
   try {
-    return fromYaml(YAML::Load(text), file.string(), 0);
+    std::size_t values = 0;
+    return fromYaml(YAML::Load(text), file.string(), 0, values);
   } catch (const YAML::Exception& error) {
     throw InputError(SourceLocation{file.string(), lineOf(error.mark)}, "malformed YAML: " + error.msg);
   }

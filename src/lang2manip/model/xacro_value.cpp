@@ -5,9 +5,13 @@
 #include <cmath>
 #include <cstdlib>
 #include <string>
+#include <utility>
 
 namespace lang2manip::xacro {
 namespace {
+
+thread_local bool budgetActive = false;
+thread_local std::uint64_t workSpent = 0;
 
 [[noreturn]] void typeError(const Value& value, const char* wanted) {
   throw ExpressionError(std::string("expected ") + wanted + ", got " + typeName(value) + " " + toRepr(value));
@@ -114,30 +118,73 @@ std::string typeName(const Value& value) {
   return kNames[value.data.index()];
 }
 
+void spendWork(std::uint64_t units) {
+  if (!budgetActive) return;
+  workSpent += units;
+  if (workSpent > kMaxXacroWork) {
+    throw ExpressionError("expansion needs more than " + std::to_string(kMaxXacroWork / 1000000) +
+                          " million steps of work (values repeated, printed or compared without end?)");
+  }
+}
+
+WorkBudget::WorkBudget() : outermost_(!budgetActive) {
+  if (outermost_) {
+    budgetActive = true;
+    workSpent = 0;
+  }
+}
+
+WorkBudget::~WorkBudget() {
+  if (outermost_) budgetActive = false;
+}
+
+namespace {
+
+void appendRepr(std::string& text, const Value& value) {
+  spendWork(1);
+  switch (value.data.index()) {
+    case 0: text += "None"; break;
+    case 1: text += std::get<bool>(value.data) ? "True" : "False"; break;
+    case 2: text += std::to_string(std::get<long long>(value.data)); break;
+    case 3: text += floatText(std::get<double>(value.data)); break;
+    case 4: text += quoted(value.string()); break;
+    case 5: {
+      text += '[';
+      bool first = true;
+      for (const Value& item : value.list()) {
+        if (!std::exchange(first, false)) text += ", ";
+        appendRepr(text, item);
+      }
+      text += ']';
+      break;
+    }
+    case 6: {
+      text += '{';
+      bool first = true;
+      for (const auto& [key, item] : value.dict()) {
+        if (!std::exchange(first, false)) text += ", ";
+        text += quoted(key) + ": ";
+        appendRepr(text, item);
+      }
+      text += '}';
+      break;
+    }
+    default: text += "<function " + value.function().name + ">";
+  }
+  if (text.size() > kMaxStringLength) throw ExpressionError("text longer than 16 MiB");
+}
+
+}  // namespace
+
 std::string toText(const Value& value) {
   if (value.isString()) return value.string();
   return toRepr(value);
 }
 
 std::string toRepr(const Value& value) {
-  switch (value.data.index()) {
-    case 0: return "None";
-    case 1: return std::get<bool>(value.data) ? "True" : "False";
-    case 2: return std::to_string(std::get<long long>(value.data));
-    case 3: return floatText(std::get<double>(value.data));
-    case 4: return quoted(value.string());
-    case 5: {
-      std::string text = "[";
-      for (const Value& item : value.list()) text += (text.size() > 1 ? ", " : "") + toRepr(item);
-      return text + "]";
-    }
-    case 6: {
-      std::string text = "{";
-      for (const auto& [key, item] : value.dict()) text += (text.size() > 1 ? ", " : "") + quoted(key) + ": " + toRepr(item);
-      return text + "}";
-    }
-    default: return "<function " + value.function().name + ">";
-  }
+  std::string text;
+  appendRepr(text, value);
+  return text;
 }
 
 bool isTrue(const Value& value) {
@@ -154,6 +201,7 @@ bool isTrue(const Value& value) {
 }
 
 bool equal(const Value& a, const Value& b) {
+  spendWork(1);
   if (a.isNumber() && b.isNumber()) return a.number() == b.number();
   if (a.data.index() != b.data.index()) return false;
   if (a.isNone()) return true;

@@ -2,6 +2,7 @@
 /// @file Internal to the xacro processor: the values of xacro's Python expressions (None, bool,
 /// int, float, str, list, dict and functions), with Python's conversions to text and truth.
 
+#include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -16,6 +17,34 @@ namespace lang2manip::xacro {
 class ExpressionError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+/// Longest string one expression or text may build (16 MiB; robot descriptions write a few KB).
+inline constexpr std::size_t kMaxStringLength = std::size_t{1} << 24;
+
+/// Most list items one operation may build.
+inline constexpr std::size_t kMaxListLength = 1000000;
+
+/// Most units of work (values printed, compared or copied, characters joined, YAML nodes read,
+/// expressions evaluated) one expansion may do: a bound on the time of a description written to
+/// blow up (shared lists repeated and printed, YAML aliases), far above what real ones need.
+inline constexpr std::uint64_t kMaxXacroWork = 50'000'000;
+
+/// Counts `units` of work against the budget active on this thread (nothing when none is).
+/// @throws ExpressionError when the budget is spent.
+void spendWork(std::uint64_t units);
+
+/// A fresh work budget of kMaxXacroWork for this thread while it lives; nested budgets share the
+/// outermost one (an expansion, or one expression evaluated on its own).
+class WorkBudget {
+ public:
+  WorkBudget();
+  ~WorkBudget();
+  WorkBudget(const WorkBudget&) = delete;
+  WorkBudget& operator=(const WorkBudget&) = delete;
+
+ private:
+  bool outermost_ = false;
 };
 
 struct Value;

@@ -71,6 +71,30 @@ void checkInputs(const JointTrajectory& trajectory, const VectorX& maxAccelerati
   if (!(outputInterval > 0.0)) throw InputError("jerk limits: the output interval must be positive");
 }
 
+/// Refuses a filter window or sample count beyond kMaxJerkWindow / kMaxJerkSamples (a jerk limit
+/// in the wrong unit, or a trajectory sampled too finely), naming the joint that sets the window.
+void checkWorkBound(const JointTrajectory& trajectory, const VectorX& maxAcceleration, const VectorX& maxJerk,
+                    double window) {
+  if (window > kMaxJerkWindow) {
+    Eigen::Index widest = 0;
+    for (Eigen::Index i = 0; i < maxJerk.size(); ++i) {
+      if (maxJerk[i] > 0.0 && 2.0 * maxAcceleration[i] / maxJerk[i] == window) widest = i;
+    }
+    const std::string joint = widest < static_cast<Eigen::Index>(trajectory.jointNames.size())
+                                  ? trajectory.jointNames[static_cast<std::size_t>(widest)]
+                                  : "joint " + std::to_string(widest);
+    throw InputError("jerk limits: " + joint + "'s jerk limit " + numberText(maxJerk[widest]) + " with acceleration limit " +
+                     numberText(maxAcceleration[widest]) + " needs a " + numberText(window) + " s filter window (at most " +
+                     numberText(kMaxJerkWindow) + " s): raise max_jerk or lower the acceleration (a unit error?)");
+  }
+  const double first = trajectory.points[1].time - trajectory.points[0].time;
+  const double samples = first > 0.0 ? (trajectory.duration() + window) / first : 0.0;
+  if (samples > static_cast<double>(kMaxJerkSamples)) {
+    throw InputError("jerk limits: a " + numberText(trajectory.duration()) + " s trajectory sampled every " + numberText(first) +
+                     " s needs " + numberText(samples) + " filter samples (at most " + std::to_string(kMaxJerkSamples) + ")");
+  }
+}
+
 /// Running sums over the last `width` samples of one quantity, at rest before and after.
 class MovingSum {
  public:
@@ -112,6 +136,7 @@ JerkLimitedTrajectory limitJerk(const JointTrajectory& trajectory, const VectorX
     result.window = 0.0;
     return result;
   }
+  checkWorkBound(trajectory, maxAcceleration, maxJerk, result.window);
   const EvenSamples samples = evenSamples(trajectory);
   // An odd width (T / interval + 1 samples, within 0.1%) centres each average on a sample, the
   // one `delay` samples earlier.

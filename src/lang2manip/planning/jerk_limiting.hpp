@@ -13,6 +13,13 @@
 
 namespace lang2manip {
 
+/// Longest averaging window accepted (s): jerk limits that need more are refused as a likely
+/// unit error (a real arm's is a few milliseconds to a second).
+inline constexpr double kMaxJerkWindow = 30.0;
+
+/// Most samples the filter may use (the input's duration plus the window over its first interval).
+inline constexpr long long kMaxJerkSamples = 2000000;
+
 /// The outcome of limitJerk().
 struct JerkLimitedTrajectory {
   JointTrajectory trajectory;
@@ -28,8 +35,8 @@ struct JerkLimitedTrajectory {
 /// whose maxJerk_i > 0, and output every `outputInterval` seconds and at its end.
 /// maxAcceleration must bound the input's accelerations (the scaled limits it was timed with).
 /// Throws InputError for vectors of the wrong size, negative or non-finite limits, a jerk limit
-/// on a joint with no acceleration limit, or an input of fewer than two points or not at rest at
-/// its ends.
+/// on a joint with no acceleration limit, an input of fewer than two points or not at rest at
+/// its ends, a window beyond kMaxJerkWindow or more than kMaxJerkSamples samples.
 JerkLimitedTrajectory limitJerk(const JointTrajectory& trajectory, const VectorX& maxAcceleration,
                                 const VectorX& maxJerk, double outputInterval);
 

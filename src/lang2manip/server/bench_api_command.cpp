@@ -42,7 +42,7 @@ struct ClientResults {
 
 std::vector<double> inProcessSolves(const std::string& problem, int count) {
   PlanningSession session;
-  session.openProblem(loadProblem(problem, "panda").problem);
+  session.openProblem(loadProblem(problem, "").problem);
   std::vector<double> seconds;
   for (int i = 0; i < count; ++i) {
     const auto began = Clock::now();

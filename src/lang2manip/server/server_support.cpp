@@ -58,7 +58,7 @@ std::string servedProblem(const ServerOptions& options, const std::string& nameO
 std::string checkedDefaultProblem(const std::string& problem) {
   if (problem.empty() || isBuiltinProblem(problem)) return problem;
   try {
-    (void)loadProblem(problem, "panda");
+    (void)loadProblem(problem, "");
   } catch (const InputError& error) {
     throw InputError("serve: PROBLEM " + problem + ": " + error.what());
   }
@@ -66,6 +66,7 @@ std::string checkedDefaultProblem(const std::string& problem) {
 }
 
 std::string servedRobot(const ServerOptions& options, const std::string& nameOrPath) {
+  if (nameOrPath.empty()) return nameOrPath;
   const std::vector<std::string> names = builtinRobotNames();
   if (std::find(names.begin(), names.end(), nameOrPath) != names.end()) return nameOrPath;
   return servedFile(options, nameOrPath).string();

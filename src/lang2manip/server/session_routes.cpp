@@ -97,7 +97,7 @@ std::vector<ApiRoute> problemVerbs(SessionRegistry& sessions, const ServerOption
   std::vector<ApiRoute> routes;
   routes.push_back(verb(sessions, "POST", "openProblem", true, [&options](ClientSession& session, const ApiRequest& request) {
     const std::string problem = body::string(request.body, "problem", options.defaultProblem);
-    const std::string robot = servedRobot(options, body::string(request.body, "robot", "panda"));
+    const std::string robot = servedRobot(options, body::string(request.body, "robot", ""));
     LoadedProblem loaded = loadProblem(servedProblem(options, problem), robot);
     session.planning.openProblem(std::move(loaded.problem));
     session.problemName = loaded.name;

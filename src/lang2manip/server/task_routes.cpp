@@ -34,7 +34,7 @@ TaskPlannerChoice plannerOf(const json& request) {
 }
 
 LoadedProblem problemOf(const json& request, const ServerOptions& options) {
-  const std::string robot = servedRobot(options, body::string(request, "robot", "panda"));
+  const std::string robot = servedRobot(options, body::string(request, "robot", ""));
   return loadProblem(servedProblem(options, body::string(request, "problem", options.defaultProblem)), robot);
 }
 

@@ -1,5 +1,7 @@
 #include "lang2manip/symbolic/action.hpp"
 
+#include <algorithm>
+
 #include <array>
 #include <cmath>
 #include <sstream>
@@ -72,6 +74,12 @@ std::vector<std::string> namesOf(const NameTable<Enum, N>& table) {
 
 std::string actionTypeName(ActionType type) { return nameOf(kActionNames, type); }
 std::string spatialRelationName(SpatialRelation relation) { return nameOf(kRelationNames, relation); }
+
+std::string spatialRelationWords(SpatialRelation relation) {
+  std::string words = spatialRelationName(relation);
+  std::replace(words.begin(), words.end(), '_', ' ');
+  return words;
+}
 std::string graspDirectionName(GraspDirection direction) { return nameOf(kGraspNames, direction); }
 
 std::optional<ActionType> actionTypeFromName(const std::string& name) {
@@ -97,10 +105,10 @@ std::string describeGoal(const Goal& goal) {
   switch (goal.kind) {
     case GoalKind::kRelation:
       text << goal.object << ' '
-           << (goal.relation ? spatialRelationName(*goal.relation) : std::string("?")) << ' '
+           << (goal.relation ? spatialRelationWords(*goal.relation) : std::string("?")) << ' '
            << goal.target;
       if (goal.distance) text << " at " << *goal.distance << " m";
-      if (goal.region) text << " (" << surfaceRegionName(*goal.region) << ")";
+      if (goal.region) text << " (" << surfaceRegionWords(*goal.region) << ")";
       break;
     case GoalKind::kHolding:
       text << "holding " << goal.object;

@@ -25,6 +25,8 @@ enum class GraspDirection { kAuto, kTop, kSide, kFront };
 std::string actionTypeName(ActionType type);
 /// "in", "on", "left_of", "right_of", "in_front_of", "behind", "next_to".
 std::string spatialRelationName(SpatialRelation relation);
+/// The relation as people write it in messages: "in", "on", "left of", "in front of", "next to".
+std::string spatialRelationWords(SpatialRelation relation);
 /// "auto", "top", "side", "front".
 std::string graspDirectionName(GraspDirection direction);
 

@@ -156,8 +156,8 @@ std::string describeAction(const SymbolicAction& action) {
   const ActionParams& p = action.params;
   if (p.relation) {
     if (p.distance) text << ' ' << *p.distance << " m";
-    text << ' ' << spatialRelationName(*p.relation) << ' ' << p.target;
-    if (p.region) text << " (" << surfaceRegionName(*p.region) << ')';
+    text << ' ' << spatialRelationWords(*p.relation) << ' ' << p.target;
+    if (p.region) text << " (" << surfaceRegionWords(*p.region) << ')';
   }
   if (!p.configuration.empty()) text << " to " << p.configuration;
   if (p.position) text << (action.type == ActionType::kPlace ? " at " : " to ") << vectorText(*p.position);

@@ -78,7 +78,7 @@ std::vector<std::string> regionProblems(const std::string& object, const std::st
 std::vector<std::string> placeTargetProblems(const SymbolicAction& action, const SymbolicState& state) {
   const std::string& target = action.params.target;
   if (!action.params.relation) return {};
-  if (target.empty()) return {"place " + spatialRelationName(*action.params.relation) + " needs a target object"};
+  if (target.empty()) return {"place " + spatialRelationWords(*action.params.relation) + " needs a target object"};
   if (!state.hasObject(target)) return {unknownObject(target, state)};
   if (target == action.object) return {action.object + " cannot be placed relative to itself"};
   if (target == state.held) return {"the target " + target + " is held by the gripper"};

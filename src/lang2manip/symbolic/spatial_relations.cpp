@@ -48,19 +48,10 @@ double offsetAcross(SpatialRelation relation, const Vector3& offset) {
   return std::abs(sideways ? offset.x() : offset.y());
 }
 
-std::string sideWords(SpatialRelation relation) {
-  switch (relation) {
-    case SpatialRelation::kLeftOf: return "left of";
-    case SpatialRelation::kRightOf: return "right of";
-    case SpatialRelation::kInFrontOf: return "in front of";
-    case SpatialRelation::kBehind: return "behind";
-    default: return spatialRelationName(relation);
-  }
-}
 
 GoalCheck checkSide(const Goal& goal, const Vector3& offset, const SpatialOptions& options) {
   const double along = offsetAlong(*goal.relation, offset);
-  const std::string words = goal.object + " is " + metresText(along) + " " + sideWords(*goal.relation) + " " + goal.target;
+  const std::string words = goal.object + " is " + metresText(along) + " " + spatialRelationWords(*goal.relation) + " " + goal.target;
   if (goal.distance) {  // "10 cm to the right of X": the whole offset, not its component alone
     const double across = offsetAcross(*goal.relation, offset);
     const bool holds = std::abs(along - *goal.distance) <= options.distanceTolerance && across <= options.distanceTolerance;

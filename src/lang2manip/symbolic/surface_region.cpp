@@ -81,6 +81,12 @@ AlignedBox3 inBaseFrame(const AlignedBox3& world, const Pose& base) {
 
 }  // namespace
 
+std::string surfaceRegionWords(const SurfaceRegion& region) {
+  std::string words = surfaceRegionName(region);
+  std::replace(words.begin(), words.end(), '_', ' ');
+  return words;
+}
+
 std::string surfaceRegionName(const SurfaceRegion& region) {
   switch (region.kind) {
     case SurfaceRegion::Kind::kCorner: return depthWord(region.depth) + "_" + sideWord(region.side) + "_corner";

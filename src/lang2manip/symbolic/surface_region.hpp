@@ -31,6 +31,8 @@ struct SurfaceRegion {
 
 /// "far_left_corner", "near_edge", "left_edge", "centre", "far_half", "near_right_quadrant".
 std::string surfaceRegionName(const SurfaceRegion& region);
+/// The region as people write it in messages: "far left corner", "centre", "near right quadrant".
+std::string surfaceRegionWords(const SurfaceRegion& region);
 /// Inverse of surfaceRegionName(); nullopt for an unknown name.
 std::optional<SurfaceRegion> surfaceRegionFromName(const std::string& name);
 /// Every region name, corners first.
