@@ -13,6 +13,7 @@
 #include <mutex>
 #include <thread>
 
+#include "lang2manip/llm/http_proxy.hpp"
 #include "lang2manip/llm/llm_support.hpp"
 #include "lang2manip/llm/llm_client.hpp"
 
@@ -128,8 +129,9 @@ void configureClient(httplib::Client& client, const HttpEndpoint& endpoint,
 
 LlmError transportError(httplib::Error error, const httplib::Client& client,
                         const HttpEndpoint& endpoint, const HttpOptions& options,
-                        double elapsedSeconds) {
-  const std::string where = endpoint.origin();
+                        double elapsedSeconds, const std::optional<HttpProxy>& proxy) {
+  const std::string where =
+      endpoint.origin() + (proxy ? " through proxy " + proxy->origin() + " (from " + proxy->source + ")" : "");
   switch (error) {
     case httplib::Error::ConnectionTimeout:
       return LlmError(LlmErrorKind::kTimeout,
@@ -313,6 +315,11 @@ HttpResponse postJson(const HttpEndpoint& endpoint, const HttpRequest& request,
   if (stop.shouldStop()) throw stoppedError(stop, endpoint);
   httplib::Client client(endpoint.origin());
   configureClient(client, endpoint, options);
+  const std::optional<HttpProxy> proxy = proxyFor(endpoint, options.proxyVariables);
+  if (proxy) {
+    client.set_proxy(proxy->host, proxy->port);
+    if (!proxy->user.empty()) client.set_proxy_basic_auth(proxy->user, proxy->password);
+  }
 
   HttpResponse response;
   BodyCollector collector(options.maxResponseBytes, response.body);
@@ -351,7 +358,7 @@ HttpResponse postJson(const HttpEndpoint& endpoint, const HttpRequest& request,
                    collector.status());
   }
   const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-  if (!result) throw transportError(result.error(), client, endpoint, options, elapsed);
+  if (!result) throw transportError(result.error(), client, endpoint, options, elapsed, proxy);
 
   response.status = result->status;
   response.reason = result->reason;

@@ -5,6 +5,7 @@
 /// compile definitions only this module's sources get).
 
 #include <cstddef>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -31,6 +32,9 @@ struct HttpEndpoint {
 /// fragments are rejected.
 HttpEndpoint parseBaseUrl(const std::string& url, const std::string& what);
 
+/// Proxy environment variables that are set (name -> value); see http_proxy.hpp.
+using ProxyVariables = std::map<std::string, std::string>;
+
 /// Bytes an LLM response body may have by default: plans are a few kB, and a server answering
 /// more is broken or hostile.
 inline constexpr std::size_t kDefaultMaxResponseBytes = std::size_t{4} << 20;
@@ -48,6 +52,9 @@ struct HttpOptions {
   /// Largest response body accepted, whatever the status; enforced while receiving (after
   /// decompression), so a larger answer is never held in memory.
   std::size_t maxResponseBytes = kDefaultMaxResponseBytes;
+  /// The proxy variables of the environment (https_proxy, no_proxy, ...): requests go through the
+  /// proxy they name (see proxyFor()); empty: every connection is direct.
+  ProxyVariables proxyVariables;
 };
 
 /// Case-insensitive name, value.

@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "lang2manip/llm/http_llm_client.hpp"
+#include "lang2manip/llm/http_proxy.hpp"
 #include "lang2manip/llm/llm_protocol.hpp"
 #include "lang2manip/llm/llm_recording.hpp"
 
@@ -142,6 +143,10 @@ std::unique_ptr<LlmClient> makeLlmClient(const std::string& spec, const LlmClien
   config.endpoint = endpointFor(*parsed.provider, options);
   std::tie(config.apiKey, config.apiKeyVariable) = keyFor(*parsed.provider, options, config.endpoint);
   config.http = options.http;
+  for (const char* name : kProxyVariableNames) {
+    if (const auto value = lookup(options, name)) config.http.proxyVariables[name] = *value;
+  }
+  (void)proxyFor(config.endpoint, config.http.proxyVariables);  // a malformed proxy variable fails here, not at the first call
   if (config.http.caCertFile.empty()) {
     config.http.caCertFile = lookup(options, "SSL_CERT_FILE").value_or("");
   }
