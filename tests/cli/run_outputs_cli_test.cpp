@@ -116,6 +116,45 @@ json trajectoryReport(const std::string& arguments, const fs::path& directory) {
   return readOutputJson(directory / "report.json")["trajectory"];
 }
 
+/// A file `victim` holding "victim", and `link` a symbolic link to it.
+void plantLink(const fs::path& link, const fs::path& victim) {
+  std::ofstream(victim) << "victim";
+  fs::create_symlink(victim, link);
+}
+
+/// The victim was not written through the link, and the output is a regular file of its own.
+void expectWrittenBesideTheLink(const fs::path& output, const fs::path& victim) {
+  EXPECT_EQ(readFileText(victim), "victim") << output << " was written through a symbolic link";
+  EXPECT_FALSE(fs::is_symlink(output)) << output;
+  EXPECT_TRUE(fs::is_regular_file(output)) << output;
+}
+
+TEST(OutputWriters, NoWriterFollowsASymbolicLinkPlantedWhereItsOutputGoes) {
+  const TempDirectory directory;
+  const fs::path victim = directory.path() / "victim.txt";
+  const auto writes = [&](const std::string& name, const std::string& command, int exitCode = 0) {
+    SCOPED_TRACE(command);
+    const fs::path output = directory.path() / name;
+    fs::remove(output);
+    plantLink(output, victim);
+    const RunResult result = run(command + " " + output.string());
+    EXPECT_EQ(result.exitCode, exitCode) << result.output;
+    expectWrittenBesideTheLink(output, victim);
+  };
+  writes("result.json", "solve panda_desk --seed 3 --out");
+  writes("scene.glb", "gltf panda_desk -o");
+  writes("panda.srdf", "describe panda --write-srdf");
+  writes("solve.html", "solve panda_desk --seed 3 --html");
+  // run: a link inside the earlier set goes with that set; the new set is the run's own.
+  const fs::path out = directory.path() / "run";
+  ASSERT_EQ(run("run --task \"put the marker in the holder\"" + kRunBudgets + " --out " + out.string()).exitCode, 0);
+  fs::remove(out / "report.json");
+  plantLink(out / "report.json", victim);
+  const RunResult again = run("run --task \"put the marker in the holder\"" + kRunBudgets + " --out " + out.string());
+  EXPECT_EQ(again.exitCode, 0) << again.output;
+  expectWrittenBesideTheLink(out / "report.json", victim);
+}
+
 TEST(RunCli, RunsUseSafeScalingByDefaultTheRobotsMoveItDefaultsAndFullSpeedOnlyWhenAsked) {
   const TempDirectory directory;
   const json defaults = trajectoryReport("", directory.path() / "defaults");
