@@ -19,6 +19,7 @@
 #include "lang2manip/cli/bench_commands.hpp"
 #include "lang2manip/cli/bench_statistics.hpp"
 #include "lang2manip/cli/problem_loading.hpp"
+#include "lang2manip/cli/progress_display.hpp"
 #include "lang2manip/cli/scene_randomization.hpp"
 #include "lang2manip/cli/task_run.hpp"
 #include "lang2manip/core/error.hpp"
@@ -185,6 +186,7 @@ void runBench(const BenchInstructionsOptions& options, std::ostream& out) {
   }
   ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(options.seed));
   std::vector<InstructionOutcome> outcomes;
+  ProgressDisplay progress("bench instructions", corpus.size() * problemsToRun(options).size(), "instructions");
   for (const std::string& name : problemsToRun(options)) {
     const LoadedProblem loaded = loadProblem(name, "", SceneOptions{});
     Random random(static_cast<std::uint64_t>(options.seed));
@@ -194,8 +196,10 @@ void runBench(const BenchInstructionsOptions& options, std::ostream& out) {
       if (!scene) throw InputError("bench instructions: no random scene without overlaps for " + name);
       outcomes.push_back(runInstruction(*scene, entry, options.seed));
       outcomes.back().problem = loaded.name;
+      progress.advance();
     }
   }
+  progress.finish();
   const std::map<std::string, ClassFigures> figures = tally(outcomes);
   if (options.json) {
     out << outcomesJson(outcomes, figures).dump(2) << '\n';

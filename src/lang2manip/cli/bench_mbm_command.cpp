@@ -16,6 +16,7 @@
 #include "lang2manip/cli/bench_commands.hpp"
 #include "lang2manip/cli/bench_statistics.hpp"
 #include "lang2manip/cli/parameter_assignment.hpp"
+#include "lang2manip/cli/progress_display.hpp"
 #include "lang2manip/collision/fcl_collision_checker.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/core/output_files.hpp"
@@ -206,6 +207,9 @@ void runMbm(const MbmOptions& options, std::ostream& out) {
   std::vector<BenchmarkRun> runs;
   const auto started = std::chrono::steady_clock::now();
   int familyIndex = 0;
+  std::size_t sceneCount = 0;
+  for (const auto& [name, scenes] : families) sceneCount += scenes.size();
+  ProgressDisplay progress("bench mbm", sceneCount, "problems");
   for (const auto& [name, scenes] : families) {
     FamilyFigures figures;
     figures.name = name;
@@ -213,6 +217,7 @@ void runMbm(const MbmOptions& options, std::ostream& out) {
       ++figures.problems;
       ++overall.problems;
       const std::optional<MotionPlan> plan = runner.run(scene);
+      progress.advance();
       if (!plan) continue;
       ++figures.valid;
       ++overall.valid;
@@ -223,6 +228,7 @@ void runMbm(const MbmOptions& options, std::ostream& out) {
     report["families"].push_back(figuresJson(figures));
     ++familyIndex;
   }
+  progress.finish();
   report["overall"] = figuresJson(overall);
   report["planner"] = runner.settings().planner();
   report["invalid_outside_limits"] = runner.outsideLimits();

@@ -17,6 +17,7 @@
 #include "lang2manip/cli/bench_commands.hpp"
 #include "lang2manip/cli/bench_statistics.hpp"
 #include "lang2manip/cli/problem_loading.hpp"
+#include "lang2manip/cli/progress_display.hpp"
 #include "lang2manip/cli/scene_randomization.hpp"
 #include "lang2manip/cli/task_run.hpp"
 #include "lang2manip/core/error.hpp"
@@ -148,15 +149,18 @@ void runBench(const BenchTaskOptions& options, std::ostream& out) {
   paper.label = "paper configuration (" + options.baselineIk + " IK)";
   Random random(static_cast<std::uint64_t>(options.seed));
   int skipped = 0;
+  ProgressDisplay progress("bench task", static_cast<std::size_t>(options.trials), "trials");
   for (int i = 0; i < options.trials; ++i) {
     const std::optional<Scene> scene = randomizedScene(loaded.problem.scene, options.spread, options.turn, random);
-    if (!scene) {
+    if (scene) {
+      runTrial(*scene, options, defaultIkSolverName(), ours);
+      runTrial(*scene, options, options.baselineIk, paper);
+    } else {
       ++skipped;
-      continue;
     }
-    runTrial(*scene, options, defaultIkSolverName(), ours);
-    runTrial(*scene, options, options.baselineIk, paper);
+    progress.advance();
   }
+  progress.finish();
   const double ratio = percentile(paper.seconds, 0.5) / std::max(1e-12, percentile(ours.seconds, 0.5));
   if (options.json) {
     out << nlohmann::json({{"problem", loaded.name}, {"task", options.task}, {"spread", options.spread}, {"turn", options.turn},

@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "lang2manip/cli/commands.hpp"
+#include "lang2manip/cli/progress_display.hpp"
 #include "lang2manip/cli/run_page.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/core/output_files.hpp"
@@ -281,13 +282,17 @@ void render(const RenderOptions& options, std::ostream& out) {
   const PageState page = snapshots.pageState(sheet, width, sheetHeight);
   if (page.state == "error") throw InputError("render: the viewer cannot show " + run.string() + ": " + page.error);
   if (page.state != "rendered") throw InputError("render: the viewer did not finish drawing " + run.string() + " (its state: \"" + page.state + "\")");
+  ProgressDisplay progress("render", moments.size() + 1, "pictures");
   for (std::size_t i = 0; i < moments.size(); ++i) {
     const std::string index = (i + 1 < 10 ? "0" : "") + std::to_string(i + 1);
     const std::string png = index + "-" + fileLabel(moments[i].label) + ".png";
     snapshots.shoot("t=" + hashText(moments[i].time) + "&ui=0" + camera, set.stagingDirectory() / png, width, height);
     out << "  " << (out_ / png).string() << "  (" << moments[i].label << ", t = " << hashText(moments[i].time) << " s)\n";
+    progress.advance();
   }
   snapshots.shoot(sheet, set.stagingDirectory() / "contact-sheet.png", width, sheetHeight);
+  progress.advance();
+  progress.finish();
   set.commit();
   out << "  " << (out_ / "contact-sheet.png").string() << "  (contact sheet of " << moments.size() << " moments)\n";
 }

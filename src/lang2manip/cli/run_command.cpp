@@ -1,12 +1,14 @@
 // `lang2manip run`: instruction -> plan -> grounded, executed and verified trajectories.
 
 #include <filesystem>
+#include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "lang2manip/cli/commands.hpp"
 #include "lang2manip/cli/problem_loading.hpp"
+#include "lang2manip/cli/progress_display.hpp"
 #include "lang2manip/cli/run_page.hpp"
 #include "lang2manip/cli/task_planner_choice.hpp"
 #include "lang2manip/cli/task_run.hpp"
@@ -82,8 +84,10 @@ std::vector<std::string> writeDocuments(OutputDirectory& set, const RunDocuments
 
 /// runTask(), a bad name reported with its flag.
 RunDocuments runTaskNamingFlags(const RunRequest& request) {
+  RunControl control;
+  control.progress = [](const ProgressEvent& event) { std::cerr << "run: " << runPhaseText(event) << '\n'; };
   try {
-    return runTask(request);
+    return runTask(request, control);
   } catch (const RunNameError& error) {
     throw InputError("run: --" + error.field() + ": " + error.what());
   }
