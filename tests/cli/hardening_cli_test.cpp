@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_run.hpp"
+#include "lang2manip/cli/solve_scene.hpp"
 #include "test_paths.hpp"
 
 namespace lang2manip::test {
@@ -175,6 +176,17 @@ TEST(SolveCli, SolvesAMotionBenchMakerSceneEndToEnd) {
   EXPECT_EQ(query["path_dof_names"].size(), 8U);
   ASSERT_GE(query["path"].size(), 2U);
   EXPECT_TRUE(report["solved"].get<bool>());
+}
+
+TEST(SolveCli, APathThatGotLongerSaysItWasRepaired) {
+  const RunResult result = run("solve panda_desk --seed 3 --json", false);
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  nlohmann::json query = nlohmann::json::parse(result.output)["queries"][0];
+  EXPECT_THAT(solveQueryText(query), Not(HasSubstr("longer")));
+  nlohmann::json& statistics = query["statistics"];
+  statistics["length_after_simplification"] = statistics["length_before_simplification"].get<double>() + 0.5;
+  statistics["repaired_segments"] = 2;
+  EXPECT_THAT(solveQueryText(query), HasSubstr("longer: 2 segment(s) that touched an obstacle at the verification resolution planned again around it"));
 }
 
 TEST(SolveCli, AQueryThatCannotBePlannedIsReportedAndExitsTwo) {

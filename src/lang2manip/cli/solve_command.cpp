@@ -60,31 +60,6 @@ json queryJson(std::size_t index, const PlanningSession& session, const MotionPl
           {"duration", plan.trajectory.duration()}};
 }
 
-std::string queryText(const json& query) {
-  if (query["status"] == "invalid_query") {
-    return "query " + std::to_string(query["query"].get<int>()) + ": not planned: " +
-           query["message"].get<std::string>() + "\n";
-  }
-  const json& statistics = query["statistics"];
-  char line[512];
-  std::snprintf(line, sizeof line,
-                "query %d: %s by %s in %.1f ms (%ld vertices, %ld edges, %ld state and %ld motion "
-                "checks)\n",
-                query["query"].get<int>(), query["status"].get<std::string>().c_str(),
-                query["planner"].get<std::string>().c_str(), statistics["planning_seconds"].get<double>() * 1e3,
-                statistics["vertices"].get<long>(), statistics["edges"].get<long>(),
-                statistics["state_checks"].get<long>(), statistics["motion_checks"].get<long>());
-  std::string text = line;
-  if (query["status"] != "solved") return text + "  " + query["message"].get<std::string>() + "\n";
-  std::snprintf(line, sizeof line,
-                "  path: %zu points, length %.3f -> %.3f after simplification (%.1f ms); trajectory "
-                "%.2f s, %zu points, verified\n",
-                query["path"].size(), statistics["length_before_simplification"].get<double>(),
-                statistics["length_after_simplification"].get<double>(),
-                statistics["simplify_seconds"].get<double>() * 1e3, query["duration"].get<double>(),
-                query["trajectory"]["points"].size());
-  return text + line;
-}
 
 /// Why query `q` cannot be planned (a start or goal outside the joint limits or in collision),
 /// or empty after making it the session's query.
@@ -227,7 +202,7 @@ void runSolve(const SolveOptions& options, std::ostream& out) {
       out << "parameter \"" << ignored["name"].get<std::string>() << "\" = " << ignored["value"].get<std::string>()
           << " has no effect: " << ignored["reason"].get<std::string>() << "\n";
     }
-    for (const json& query : report["queries"]) out << queryText(query);
+    for (const json& query : report["queries"]) out << solveQueryText(query);
     std::string list;
     for (const std::string& file : written) list += (list.empty() ? "" : ", ") + file;
     if (!written.empty()) out << "wrote " << list << "\n";

@@ -1,6 +1,7 @@
 #include "lang2manip/cli/solve_scene.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "lang2manip/cli/run_scene.hpp"
 #include "lang2manip/model/gltf_writer.hpp"
@@ -110,6 +111,39 @@ json solveViewerDocument(const std::string& problem, const json& report, const s
   }
   return {{"format_version", 1}, {"task", "solve " + problem}, {"success", report.value("solved", false)}, {"duration", time},
           {"actions", actions}, {"moments", moments}, {"report", report}};
+}
+
+std::string solveQueryText(const nlohmann::json& query) {
+  if (query["status"] == "invalid_query") {
+    return "query " + std::to_string(query["query"].get<int>()) + ": not planned: " +
+           query["message"].get<std::string>() + "\n";
+  }
+  const nlohmann::json& statistics = query["statistics"];
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "query %d: %s by %s in %.1f ms (%ld vertices, %ld edges, %ld state and %ld motion "
+                "checks)\n",
+                query["query"].get<int>(), query["status"].get<std::string>().c_str(),
+                query["planner"].get<std::string>().c_str(), statistics["planning_seconds"].get<double>() * 1e3,
+                statistics["vertices"].get<long>(), statistics["edges"].get<long>(),
+                statistics["state_checks"].get<long>(), statistics["motion_checks"].get<long>());
+  std::string text = line;
+  if (query["status"] != "solved") return text + "  " + query["message"].get<std::string>() + "\n";
+  const double before = statistics["length_before_simplification"].get<double>();
+  const double after = statistics["length_after_simplification"].get<double>();
+  const int repaired = statistics.value("repaired_segments", 0);
+  // Simplification never lengthens a path; only segments planned again around an obstacle that
+  // the planner's coarser checks missed do, and that is said.
+  const std::string why = after > before + 1e-9 && repaired > 0
+                              ? ", longer: " + std::to_string(repaired) + " segment(s) that touched an obstacle at the verification "
+                                                                          "resolution planned again around it"
+                              : "";
+  std::snprintf(line, sizeof line,
+                "  path: %zu points, length %.3f -> %.3f after simplification (%.1f ms%s); trajectory "
+                "%.2f s, %zu points, verified\n",
+                query["path"].size(), before, after, statistics["simplify_seconds"].get<double>() * 1e3, why.c_str(),
+                query["duration"].get<double>(), query["trajectory"]["points"].size());
+  return text + line;
 }
 
 }  // namespace lang2manip

@@ -25,6 +25,11 @@ struct SolvedQuery {
 /// The GLB: `problem`'s scene with both geometries and the queries' motion.
 std::string solveSceneGlb(const KauthamProblem& problem, const std::vector<SolvedQuery>& queries);
 
+/// What `solve` prints for one query of its report: how it was solved (planner, time, tree, checks)
+/// and its path and trajectory, saying why a path got longer when segments were planned again; or
+/// why it was not planned.
+std::string solveQueryText(const nlohmann::json& query);
+
 /// The viewer document: one "action" per query (start and end time, status), moments at the
 /// start and after each query.
 nlohmann::json solveViewerDocument(const std::string& problem, const nlohmann::json& report, const std::vector<SolvedQuery>& queries);
