@@ -129,7 +129,11 @@ TEST(BenchMbmCli, OneProblemPerFamilyWithJsonAndOmplLog) {
   }
   const std::string text = readFileText(log);
   EXPECT_EQ(text.rfind("OMPL version 1.5.2\nExperiment ", 0), 0u);
-  EXPECT_THAT(text, HasSubstr("1 planners\ngeometric_RRTConnect\n"));
+  EXPECT_THAT(text, HasSubstr("Experiment lang2manip bench mbm: MotionBenchMaker panda, family box_panda, RRTConnect, 5 s per problem\n"));
+  EXPECT_THAT(text, HasSubstr("\nfamily|box_panda\n1 planners\ngeometric_RRTConnect\n"));
+  EXPECT_THAT(text, HasSubstr("\nfamily ENUM\ngraph motions INTEGER\n"));
+  EXPECT_THAT(text, HasSubstr("\nproblem INTEGER\n"));
+  EXPECT_THAT(text, HasSubstr("\n2 runs\n")) << "every problem, valid or not, is a run";
   EXPECT_THAT(text, HasSubstr("time REAL"));
   EXPECT_THAT(text, HasSubstr("\n.\n"));
 }

@@ -1,3 +1,4 @@
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <sstream>
@@ -97,6 +98,18 @@ TEST(BenchmarkLog, OmplFormat) {
             std::string::npos)
       << text;
   EXPECT_NE(std::find(omplStatusNames().begin(), omplStatusNames().end(), "Exact solution"), omplStatusNames().end());
+  // Enum types of our own after OMPL's status, and invalid problems logged as OMPL logs them.
+  experiment.enumTypes.emplace_back("family", std::vector<std::string>{"bookshelf", "box"});
+  BenchmarkRun invalid = invalidBenchmarkRun(true);
+  invalid["family ENUM"] = "1";
+  experiment.planners.front().runs.push_back(invalid);
+  std::ostringstream withEnums;
+  writeOmplBenchmarkLog(experiment, withEnums);
+  EXPECT_THAT(withEnums.str(), ::testing::HasSubstr("\n2 enum types\nstatus|"));
+  EXPECT_THAT(withEnums.str(), ::testing::HasSubstr("\nfamily|bookshelf|box\n1 planners\n"));
+  const auto invalidStart = std::find(omplStatusNames().begin(), omplStatusNames().end(), "Invalid start") - omplStatusNames().begin();
+  EXPECT_THAT(withEnums.str(), ::testing::HasSubstr("4 properties for each run\nfamily ENUM\nsolved BOOLEAN\nstatus ENUM\ntime REAL\n2 runs\n; 1; ; 0.01; \n1; 0; " +
+                                         std::to_string(invalidStart) + "; 0; \n"));
 }
 
 }  // namespace

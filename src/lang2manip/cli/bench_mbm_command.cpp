@@ -1,5 +1,6 @@
 // `lang2manip bench mbm`: the MotionBenchMaker Panda problems (docs/benchmarks.md) solved with
 // the built-in Panda, the exact FCL checker and an OMPL planner; every solution re-verified.
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -20,6 +21,7 @@
 #include "lang2manip/collision/fcl_collision_checker.hpp"
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/core/output_files.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/model/moveit_scene_reader.hpp"
 #include "lang2manip/model/urdf_reader.hpp"
@@ -106,10 +108,27 @@ void addTo(FamilyFigures& figures, const MotionPlan& plan) {
   figures.lengthAfter.push_back(plan.statistics.lengthAfterSimplification);
 }
 
-BenchmarkRun logRun(const MotionPlan& plan, int familyIndex) {
-  BenchmarkRun run = benchmarkRunOf(plan);
-  run["family INTEGER"] = std::to_string(familyIndex);
-  return run;
+/// One MotionBenchMaker problem: its plan (none when its start or goal is invalid for our model)
+/// and the run as OMPL's log has it.
+struct MbmOutcome {
+  std::optional<MotionPlan> plan;
+  BenchmarkRun logged;
+};
+
+/// The scene's number in its family ("scene0042.yaml" -> 42), the problem's id in the log; -1
+/// when the name has none that fits.
+long sceneNumber(const std::filesystem::path& scene) {
+  const std::string stem = scene.stem().string();
+  long number = -1;
+  if (stem.size() > 5) std::from_chars(stem.data() + 5, stem.data() + stem.size(), number);
+  return number;
+}
+
+/// `outcome`'s run with the family (an enum over the families) and the scene's number.
+BenchmarkRun logRun(MbmOutcome outcome, int familyIndex, const std::filesystem::path& scene) {
+  outcome.logged["family ENUM"] = std::to_string(familyIndex);
+  outcome.logged["problem INTEGER"] = std::to_string(sceneNumber(scene));
+  return std::move(outcome.logged);
 }
 
 class MbmRunner {
@@ -124,8 +143,8 @@ class MbmRunner {
     planningOptions_.resolution = options.resolution;
   }
 
-  // Solves one problem; nullopt when its start or goal collides for our model.
-  std::optional<MotionPlan> run(const std::filesystem::path& scene) {
+  // Solves one problem; no plan when its start or goal is outside our model's limits or collides.
+  MbmOutcome run(const std::filesystem::path& scene) {
     const MoveItProblem problem = readMoveItProblem(scene, requestFileForScene(scene), panda_);
     FclCheckerSettings checkerSettings;
     if (matrix_) checkerSettings.precomputedMatrices = {matrix_};
@@ -140,15 +159,17 @@ class MbmRunner {
     for (const VectorX* point : {&start, &goal}) {
       if (!withinLimits(*space, *point)) {
         ++outsideLimits_;
-        return std::nullopt;
+        return {std::nullopt, invalidBenchmarkRun(point == &start)};
       }
       if (!space->isValid(point->data())) {
         ++inCollision_;
-        return std::nullopt;
+        return {std::nullopt, invalidBenchmarkRun(point == &start)};
       }
     }
     MotionPlanner planner(space, planningOptions_);
-    return planner.solve(start, {goal}, settings_, StopCondition::never());
+    MotionPlan plan = planner.solve(start, {goal}, settings_, StopCondition::never());
+    BenchmarkRun logged = benchmarkRunOf(plan);
+    return {std::move(plan), std::move(logged)};
   }
 
   [[nodiscard]] const PlannerSettings& settings() const { return settings_; }
@@ -181,11 +202,13 @@ std::string figuresLine(const json& f) {
 }
 
 void writeLog(const MbmOptions& options, const PlannerSettings& settings, std::vector<BenchmarkRun> runs,
-              double seconds) {
-  BenchmarkExperiment experiment =
-      startBenchmarkExperiment("lang2manip MotionBenchMaker panda" + (options.family.empty() ? "" : " " + options.family));
+              std::vector<std::string> familyNames, double seconds) {
+  BenchmarkExperiment experiment = startBenchmarkExperiment(
+      "lang2manip bench mbm: MotionBenchMaker panda, " + (options.family.empty() ? "all families" : "family " + options.family) +
+      ", " + settings.planner() + ", " + numberText(options.timeLimit) + " s per problem");
+  experiment.enumTypes.emplace_back("family", std::move(familyNames));
   experiment.setupInfo = "lang2manip bench mbm: built-in Panda, FCL exact checker, motion resolution " +
-                         std::to_string(options.resolution) + " rad, paths re-verified\n";
+                         numberText(options.resolution) + " rad, paths re-verified\n";
   experiment.seed = static_cast<unsigned long>(options.seed);
   experiment.maxTime = options.timeLimit;
   experiment.totalDuration = seconds;
@@ -216,14 +239,15 @@ void runMbm(const MbmOptions& options, std::ostream& out) {
     for (const std::filesystem::path& scene : scenes) {
       ++figures.problems;
       ++overall.problems;
-      const std::optional<MotionPlan> plan = runner.run(scene);
+      MbmOutcome outcome = runner.run(scene);
       progress.advance();
+      const std::optional<MotionPlan> plan = std::move(outcome.plan);
+      runs.push_back(logRun(std::move(outcome), familyIndex, scene));
       if (!plan) continue;
       ++figures.valid;
       ++overall.valid;
       addTo(figures, *plan);
       addTo(overall, *plan);
-      runs.push_back(logRun(*plan, familyIndex));
     }
     report["families"].push_back(figuresJson(figures));
     ++familyIndex;
@@ -236,7 +260,9 @@ void runMbm(const MbmOptions& options, std::ostream& out) {
   report["time_limit_s"] = options.timeLimit;
   report["resolution"] = options.resolution;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  if (!options.log.empty()) writeLog(options, runner.settings(), std::move(runs), seconds);
+  std::vector<std::string> familyNames;
+  for (const auto& [name, scenes] : families) familyNames.push_back(name);
+  if (!options.log.empty()) writeLog(options, runner.settings(), std::move(runs), std::move(familyNames), seconds);
   if (options.json) {
     out << report.dump(2) << '\n';
     return;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 
 namespace lang2manip {
 namespace {
@@ -61,7 +62,7 @@ bool CollisionChecker::isMotionValid(int robot, const VectorX& q0, const VectorX
   checkQ(robot, q1, "motion end");
   if (!(resolution > 0.0) || !std::isfinite(resolution)) {
     throw InputError("collision checker: motion resolution must be positive and finite, got " +
-                     std::to_string(resolution));
+                     numberText(resolution));
   }
   return DoIsMotionValid(robot, q0, q1, resolution, context);
 }

@@ -65,9 +65,15 @@ void writeOmplBenchmarkLog(const BenchmarkExperiment& experiment, std::ostream& 
   out << experiment.maxMemoryMb << " MB per run\n";
   out << experiment.runCount << " runs per planner\n";
   out << experiment.totalDuration << " seconds spent to collect the data\n";
-  out << "1 enum type\nstatus";
+  const std::size_t enumCount = 1 + experiment.enumTypes.size();
+  out << enumCount << (enumCount == 1 ? " enum type\nstatus" : " enum types\nstatus");
   for (const std::string& name : omplStatusNames()) out << '|' << name;
   out << '\n';
+  for (const auto& [name, values] : experiment.enumTypes) {
+    out << name;
+    for (const std::string& value : values) out << '|' << value;
+    out << '\n';
+  }
   out << experiment.planners.size() << " planners\n";
   for (const BenchmarkPlannerRuns& planner : experiment.planners) writePlanner(planner, out);
 }
@@ -83,6 +89,12 @@ BenchmarkExperiment startBenchmarkExperiment(std::string name) {
   std::strftime(text, sizeof text, "%Y-%b-%d %H:%M:%S", std::localtime(&now));
   experiment.startTime = text;
   return experiment;
+}
+
+BenchmarkRun invalidBenchmarkRun(bool invalidStart) {
+  const auto& names = omplStatusNames();
+  const auto index = std::find(names.begin(), names.end(), invalidStart ? "Invalid start" : "Invalid goal") - names.begin();
+  return {{"time REAL", "0"}, {"solved BOOLEAN", "0"}, {"status ENUM", std::to_string(index)}};
 }
 
 BenchmarkRun benchmarkRunOf(const MotionPlan& plan) {

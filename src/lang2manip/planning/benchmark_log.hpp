@@ -34,6 +34,9 @@ struct BenchmarkExperiment {
   double maxMemoryMb = 0.0;
   unsigned int runCount = 1;
   double totalDuration = 0.0;
+  /// Enum types besides OMPL's "status" (written after it): name -> value names, a run's
+  /// "NAME ENUM" property being an index into them (e.g. "family" -> the benchmark's families).
+  std::vector<std::pair<std::string, std::vector<std::string>>> enumTypes;
   std::vector<BenchmarkPlannerRuns> planners;
 };
 
@@ -46,6 +49,10 @@ BenchmarkExperiment startBenchmarkExperiment(std::string name);
 /// The properties OMPL logs for one run (time, solved, status, lengths, graph size, checks) of
 /// `plan`.
 BenchmarkRun benchmarkRunOf(const MotionPlan& plan);
+
+/// The run OMPL logs for a problem whose start (or goal) is invalid: not solved, no time, status
+/// "Invalid start" ("Invalid goal"), the other properties left empty as OMPL leaves them.
+BenchmarkRun invalidBenchmarkRun(bool invalidStart);
 
 /// OMPL's name for a planner status in logs ("Exact solution", "Timeout", ...): the `status ENUM`
 /// value is its index in this list.

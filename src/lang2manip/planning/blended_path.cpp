@@ -6,6 +6,7 @@
 #include <string>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 
 namespace lang2manip {
 namespace {
@@ -196,7 +197,7 @@ VectorX BlendedPath::curvature(double s) const {
 std::vector<VectorX> BlendedPath::sample(double resolution) const {
   if (!(resolution > 0.0 && std::isfinite(resolution))) {
     throw InputError("blended path: sampling resolution must be positive and finite (got " +
-                     std::to_string(resolution) + ")");
+                     numberText(resolution) + ")");
   }
   const double count = std::floor(length_ / resolution);
   if (count > 1e8) throw InputError("blended path: sampling resolution too fine (more than 1e8 samples)");
