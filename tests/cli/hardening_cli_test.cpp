@@ -178,6 +178,29 @@ TEST(SolveCli, SolvesAMotionBenchMakerSceneEndToEnd) {
   EXPECT_TRUE(report["solved"].get<bool>());
 }
 
+TEST(ProblemWriteCli, AnyProblemIsWrittenAsAKauthamProblemThatReadsBackAndIsReplacedWhole) {
+  const TempDirectory directory;
+  const std::filesystem::path out = directory.path() / "desk";
+  RunResult result = run("problem write panda_desk --out " + out.string());
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("Kautham problem \"panda_desk\" of panda_desk (1 robot(s), 4 object(s), 1 query(ies))"));
+  EXPECT_TRUE(std::filesystem::is_regular_file(out / "controls" / "panda_desk.cntr"));
+  result = run("check " + (out / "panda_desk.xml").string());
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("query 1 goal: valid"));
+  result = run("problem write panda_desk --name again --out " + out.string());
+  EXPECT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_TRUE(std::filesystem::exists(out / "again.xml"));
+  EXPECT_FALSE(std::filesystem::exists(out / "panda_desk.xml")) << "one set, replaced whole";
+  writeFile(directory.path() / "mine" / "notes.txt", "mine");
+  result = run("problem write panda_desk --out " + (directory.path() / "mine").string());
+  EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("--force"));
+  result = run("problem write panda_desk --name ../up --out " + out.string());
+  EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("--name \"../up\" must be letters, digits"));
+}
+
 TEST(SolveCli, APathThatGotLongerSaysItWasRepaired) {
   const RunResult result = run("solve panda_desk --seed 3 --json", false);
   ASSERT_EQ(result.exitCode, 0) << result.output;

@@ -33,6 +33,7 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   app.require_subcommand(1);
   app.set_version_flag("--version", "lang2manip 0.1.0");
   addProblemsCommand(app, out);
+  addProblemCommand(app, out);
   addShowCommand(app, out);
   addCheckCommand(app, out);
   addSolveCommand(app, out);

@@ -11,6 +11,10 @@ namespace lang2manip {
 /// `lang2manip problems [--json]`: the built-in problems.
 void addProblemsCommand(CLI::App& app, std::ostream& out);
 
+/// `lang2manip problem write [PROBLEM] --out DIR [--name STEM]`: any problem written as a Kautham
+/// problem (XML, controls, models), replaced whole as run's outputs are.
+void addProblemCommand(CLI::App& app, std::ostream& out);
+
 /// `lang2manip show [PROBLEM] [--robot NAME] [--json]`: robots, controls, objects and queries.
 void addShowCommand(CLI::App& app, std::ostream& out);
 
