@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/llm/http_proxy.hpp"
 #include "lang2manip/llm/llm_json.hpp"
 #include "lang2manip/llm/llm_protocol.hpp"
 #include "lang2manip/llm/llm_recording.hpp"
@@ -133,6 +134,20 @@ InputOutcome feedLlmReplay(std::string_view input) {
   }
 }
 
+InputOutcome feedProxyUrl(std::string_view input) {
+  const std::string text(input);
+  for (const char* host : {"api.example.com", "127.0.0.1", "[::1]", ""}) (void)noProxyMatches(text, host, 443);
+  try {
+    const HttpProxy proxy = parseProxyUrl(text, "HTTPS_PROXY");
+    const HttpProxy again = parseProxyUrl(proxy.origin(), "HTTPS_PROXY");
+    if (again.host != proxy.host || again.port != proxy.port) throw std::logic_error("proxy origin does not read back: " + proxy.origin());
+    return InputOutcome::kAccepted;
+  } catch (const LlmError& error) {
+    requireKind(error, LlmErrorKind::kConfiguration);
+    return InputOutcome::kRejected;
+  }
+}
+
 const std::vector<FuzzTarget>& fuzzTargets() {
   static const std::vector<FuzzTarget> targets = {
       {"plan_text", feedPlanText},
@@ -143,6 +158,7 @@ const std::vector<FuzzTarget>& fuzzTargets() {
       {"llm_gemini", feedGeminiReply},
       {"llm_ollama", feedOllamaReply},
       {"llm_replay", feedLlmReplay},
+      {"proxy_url", feedProxyUrl},
       {"urdf", feedUrdf},
       {"srdf", feedSrdf},
       {"xacro", feedXacro},

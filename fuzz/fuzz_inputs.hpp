@@ -41,6 +41,10 @@ InputOutcome feedAnthropicReply(std::string_view input);
 InputOutcome feedGeminiReply(std::string_view input);
 InputOutcome feedOllamaReply(std::string_view input);
 
+/// A proxy variable's value -> HttpProxy (parseProxyUrl), and the same text as a no_proxy list
+/// checked against a few hosts (noProxyMatches); an accepted proxy's origin must parse to itself.
+InputOutcome feedProxyUrl(std::string_view input);
+
 /// An --llm-replay file (JSON Lines) -> the replay client.
 InputOutcome feedLlmReplay(std::string_view input);
 
