@@ -34,7 +34,7 @@ TEST(Cli, UsageErrorsExitOneAndHelpExitsZero) {
   EXPECT_THAT(result.output, HasSubstr("Could not convert: --rounds = x"));
   result = run("frobnicate");
   EXPECT_EQ(result.exitCode, 1) << result.output;
-  EXPECT_THAT(result.output, HasSubstr("unknown command \"frobnicate\" (commands: problems, show,"));
+  EXPECT_THAT(result.output, HasSubstr("unknown command \"frobnicate\" (commands: problems, problem, show,"));
   result = run("gltf panda_desk");
   EXPECT_EQ(result.exitCode, 1) << result.output;
   EXPECT_EQ(run("--help").exitCode, 0);

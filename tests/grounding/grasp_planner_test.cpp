@@ -46,6 +46,7 @@ TEST_P(GraspOnRobot, TopGraspsOfMarkerAndEraserAreReachable) {
     for (const GraspCandidate& c : plan.candidates) {
       EXPECT_EQ(c.direction, GraspDirection::kTop);
       EXPECT_NEAR(c.approachDirection.z(), -1.0, 1e-9);
+      EXPECT_NE(c.label.find("approach (0.00, 0.00, -1.00)"), std::string::npos) << "no signed zeros: " << c.label;
       expectReachable(reach, c);
     }
     for (std::size_t i = 1; i < plan.candidates.size(); ++i) EXPECT_GE(plan.candidates[i - 1].score, plan.candidates[i].score);

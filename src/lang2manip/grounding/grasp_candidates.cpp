@@ -114,9 +114,12 @@ std::vector<Approach> approachesFor(const GraspGeometryInput& in, GraspDirection
 constexpr double kCentringTolerance = 0.003;
 
 std::string describe(GraspDirection direction, const Vector3& a, const Vector3& c, double offset) {
+  // Values that print as zero print without a sign ("-0.00" reads like a direction).
+  const auto shown = [](double value, double resolution) { return std::abs(value) < resolution / 2.0 ? 0.0 : value; };
   char buffer[160];
   std::snprintf(buffer, sizeof buffer, "%s, approach (%.2f, %.2f, %.2f), closing (%.2f, %.2f, %.2f), offset %+.3f m",
-                graspDirectionName(direction).c_str(), a.x(), a.y(), a.z(), c.x(), c.y(), c.z(), offset);
+                graspDirectionName(direction).c_str(), shown(a.x(), 0.01), shown(a.y(), 0.01), shown(a.z(), 0.01),
+                shown(c.x(), 0.01), shown(c.y(), 0.01), shown(c.z(), 0.01), shown(offset, 0.001));
   return buffer;
 }
 
