@@ -218,6 +218,7 @@ TEST(HttpProxy, VariablesAreReadAsCurlReadsThemAndBadOnesAreConfigurationErrors)
            {"socks5://proxy:1080", "a socks5:// proxy is not supported"},
            {"https://proxy:443", "a https:// proxy is not supported"},
            {"http://:3128", "no host"},
+           {"http://pro xy:3128", "the host has a character no host name or address has"},
            {"http://proxy:99999", "port \"99999\" is not a number from 1 to 65535"},
            {"http://proxy:3128/path", "a proxy URL has no path"}}) {
     SCOPED_TRACE(url);
@@ -225,6 +226,9 @@ TEST(HttpProxy, VariablesAreReadAsCurlReadsThemAndBadOnesAreConfigurationErrors)
     EXPECT_EQ(error.kind(), LlmErrorKind::kConfiguration);
     EXPECT_THAT(error.what(), HasSubstr("HTTPS_PROXY=\"" + url + "\": " + why));
   }
+  // Bytes no host has are refused, and shown escaped.
+  const LlmError control = expectLlmError([] { (void)parseProxyUrl(std::string("[\0\0]:80", 7), "HTTPS_PROXY"); });
+  EXPECT_THAT(control.what(), HasSubstr("HTTPS_PROXY=\"[\\x00\\x00]:80\": the host has a character no host name or address has"));
   FakeLlmServer server(FakeLlmProtocol::kOpenAi);
   LlmClientOptions options = fastOptions(server);
   options.environment = environmentOf({{"http_proxy", "socks5://proxy:1080"}});

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 
 #include "lang2manip/llm/llm_client.hpp"
 
@@ -14,7 +15,18 @@ std::string lowerCase(std::string text) {
 }
 
 [[noreturn]] void badProxy(const std::string& source, const std::string& url, const std::string& why) {
-  throw LlmError(LlmErrorKind::kConfiguration, source + "=\"" + url.substr(0, 200) + "\": " + why);
+  std::string shown;  // control bytes escaped: the value is shown, never sent to the terminal raw
+  for (const char c : url.substr(0, 200)) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+      shown += escaped;
+    } else {
+      shown += c;
+    }
+  }
+  throw LlmError(LlmErrorKind::kConfiguration, source + "=\"" + shown + "\": " + why);
 }
 
 std::string percentDecoded(const std::string& text) {
@@ -92,6 +104,10 @@ HttpProxy parseProxyUrl(const std::string& url, const std::string& source) {
   const bool hasPort = colon != std::string::npos && (!bracketed || colon > rest.find(']'));
   proxy.host = bareHost(hasPort ? rest.substr(0, colon) : rest);
   if (proxy.host.empty()) badProxy(source, url, "no host");
+  const bool hostName = std::all_of(proxy.host.begin(), proxy.host.end(), [](unsigned char c) {
+    return std::isalnum(c) != 0 || c == '.' || c == '-' || c == '_' || c == ':';
+  });
+  if (!hostName) badProxy(source, url, "the host has a character no host name or address has");
   if (hasPort) {
     const std::string digits = rest.substr(colon + 1);
     if (digits.empty() || digits.size() > 5 || digits.find_first_not_of("0123456789") != std::string::npos ||
