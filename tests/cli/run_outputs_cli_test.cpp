@@ -161,7 +161,9 @@ TEST(RunCli, RunsUseSafeScalingByDefaultTheRobotsMoveItDefaultsAndFullSpeedOnlyW
   EXPECT_EQ(defaults["velocity_scaling"], 0.5);
   EXPECT_EQ(defaults["acceleration_scaling"], 0.25);
   EXPECT_EQ(defaults["scaling_from"], (json{{"velocity", "default"}, {"acceleration", "default"}}));
+  EXPECT_EQ(defaults["position_margin"], (json{{"angular", 0.05}, {"linear", 0.005}}));
   const json full = trajectoryReport("--full-speed", directory.path() / "full");
+  EXPECT_EQ(full["position_margin"], (json{{"angular", 0.0}, {"linear", 0.0}}));
   EXPECT_EQ(full["velocity_scaling"], 1.0);
   EXPECT_EQ(full["acceleration_scaling"], 1.0);
   EXPECT_LT(full["duration"].get<double>(), defaults["duration"].get<double>());

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include <ompl/util/RandomNumbers.h>
+
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/planning/planning_session.hpp"
 #include "planning_test_support.hpp"
@@ -27,6 +29,9 @@ std::vector<std::filesystem::path> demoProblems(const std::filesystem::path& sha
 
 TEST(KauthamDemos, GeometricQueriesAreSolvedWithinTheirTimeLimit) {
   LANG2MANIP_REQUIRE_SHARED_DATA(shared);
+  // Seeded, so that each run samples the same and the test does not depend on luck (the samplers
+  // of planners made from here on are seeded in sequence from it).
+  ompl::RNG::setSeed(7);
   int queries = 0;
   int solved = 0;
   std::string unsolved;

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "lang2manip/core/error.hpp"
 #include "model/model_test_support.hpp"
 #include "lang2manip/planning/motion_planner.hpp"
@@ -191,6 +193,102 @@ TEST(MultiRobotPlanning, TwoArmsPlannedTogetherAvoidEachOther) {
             (std::vector<std::string>{"planar/shoulder", "planar/elbow", "planar2/shoulder", "planar2/elbow"}));
   const WorldState world = space->worldState(goal);
   EXPECT_DOUBLE_EQ(world.configurations[1][0], 1.7);
+}
+
+}  // namespace
+}  // namespace lang2manip::test
+
+namespace lang2manip::test {
+namespace {
+
+TEST(PositionMargin, PlannedBoxIsTheLimitsMovedInwardAndWidenedToTheRestingPoints) {
+  const auto space = planarArmSpace();  // shoulder in [-3, 3], elbow in [-2.5, 2.5]
+  const StateBounds limits = space->plannedBounds(PositionMargin{0.0, 0.0}, {});
+  EXPECT_TRUE(limits.lower.isApprox(space->lower()));
+  EXPECT_TRUE(limits.upper.isApprox(space->upper()));
+  const StateBounds margin = space->plannedBounds(PositionMargin{0.2, 0.01}, {});
+  EXPECT_TRUE(margin.lower.isApprox((VectorX(2) << -2.8, -2.3).finished()));
+  EXPECT_TRUE(margin.upper.isApprox((VectorX(2) << 2.8, 2.3).finished()));
+  // A margin is at most a tenth of the joint's range (6 and 5 rad here).
+  const StateBounds capped = space->plannedBounds(PositionMargin{2.0, 0.01}, {});
+  EXPECT_TRUE(capped.lower.isApprox((VectorX(2) << -2.4, -2.0).finished()));
+  // A start at a limit widens the box of that joint to it, and of no other.
+  const VectorX start = (VectorX(2) << 3.0, 0.0).finished();
+  const StateBounds widened = space->plannedBounds(PositionMargin{0.2, 0.01}, {start});
+  EXPECT_DOUBLE_EQ(widened.upper[0], 3.0);
+  EXPECT_DOUBLE_EQ(widened.upper[1], 2.3);
+  EXPECT_DOUBLE_EQ(widened.lower[0], -2.8);
+}
+
+bool insideBox(const VectorX& x, const StateBounds& box) {
+  return (x.array() >= box.lower.array() - 1e-9).all() && (x.array() <= box.upper.array() + 1e-9).all();
+}
+
+TEST(PositionMargin, EveryPlannedStateAndTrajectorySampleKeepsTheMargin) {
+  MotionPlanningOptions options;
+  options.positionMargin = PositionMargin{0.5, 0.01};
+  const auto space = planarArmSpace();
+  const StateBounds box = space->plannedBounds(options.positionMargin, {});
+  for (const std::string planner : {"RRTConnect", "PRM", "KPIECE1"}) {
+    SCOPED_TRACE(planner);
+    MotionPlanner motion(space, options);
+    PlannerSettings settings;
+    settings.setPlanner(planner);
+    settings.setParameter("_Max Planning Time", "5");
+    const MotionPlan plan = motion.solve(planarStart(), {planarGoal()}, settings, StopCondition::never());
+    ASSERT_TRUE(plan.solved()) << plan.message;
+    for (const VectorX& point : plan.rawPath) EXPECT_TRUE(insideBox(point, box)) << point.transpose();
+    for (const VectorX& point : plan.path) EXPECT_TRUE(insideBox(point, box)) << point.transpose();
+    for (const TrajectoryPoint& sample : plan.trajectory.points) {
+      EXPECT_TRUE(insideBox(sample.positions, box)) << sample.positions.transpose();
+    }
+  }
+}
+
+/// The planar arm with a pillar by its base that no rotation of the upper link passes: from
+/// shoulder 0.5 to -0.5 there is no path, so a planner explores its whole region until its limit.
+std::shared_ptr<const PlanningSpace> pillarSpace() {
+  Scene scene = planarArmScene();
+  SceneObject pillar = scene.object("post");
+  pillar.name = "pillar";
+  pillar.pose.translation() = Vector3(0.3, -0.05, 0.0);
+  pillar.collisions = {Shape{Box{Vector3(0.02, 0.02, 0.4)}, Pose::Identity(), std::nullopt, "pillar"}};
+  scene.addObject(pillar);
+  return std::make_shared<JointPlanningSpace>(std::make_shared<FclCollisionChecker>(scene),
+                                              std::vector<std::string>{"planar"});
+}
+
+TEST(PositionMargin, ExplorationStaysOutOfTheMarginAndGoesThereWithout) {
+  const VectorX start = (VectorX(2) << 0.5, 0.0).finished();
+  const VectorX goal = (VectorX(2) << -0.5, 0.0).finished();
+  PlannerSettings settings;
+  settings.setParameter("_Max Planning Time", "0.2");
+  const auto exploredOutside = [&](const PositionMargin& margin) {
+    MotionPlanningOptions options;
+    options.positionMargin = margin;
+    options.recordTreeEdges = 1;
+    MotionPlanner motion(pillarSpace(), options);
+    const MotionPlan plan = motion.solve(start, {goal}, settings, StopCondition::never());
+    EXPECT_EQ(plan.status, MotionPlanStatus::kNoPath);
+    EXPECT_GT(plan.tree.vertices.size(), 100U);
+    const StateBounds box = motion.space().plannedBounds(PositionMargin{0.5, 0.01}, {start, goal});
+    return std::count_if(plan.tree.vertices.begin(), plan.tree.vertices.end(),
+                         [&](const VectorX& vertex) { return !insideBox(vertex, box); });
+  };
+  EXPECT_EQ(exploredOutside(PositionMargin{0.5, 0.01}), 0);
+  EXPECT_GT(exploredOutside(PositionMargin{0.0, 0.0}), 0);
+}
+
+TEST(PositionMargin, AStartInsideTheMarginIsPlannedFrom) {
+  MotionPlanningOptions options;
+  options.positionMargin = PositionMargin{0.5, 0.01};
+  MotionPlanner motion(planarArmSpace(), options);
+  const VectorX start = (VectorX(2) << 2.9, 2.4).finished();  // both joints inside the margin
+  ASSERT_TRUE(motion.space().isValid(start.data()));
+  const MotionPlan plan = motion.solve(start, {planarGoal()}, PlannerSettings{}, StopCondition::never());
+  ASSERT_TRUE(plan.solved()) << plan.message;
+  EXPECT_TRUE(plan.path.front().isApprox(start));
+  EXPECT_EQ(checkTrajectoryLimits(motion.space(), plan.trajectory), "");
 }
 
 }  // namespace

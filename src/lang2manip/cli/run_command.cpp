@@ -159,7 +159,8 @@ void addRunCommand(CLI::App& app, std::ostream& out) {
                       "Fraction of every joint's acceleration limit the trajectories use, in [0.01, 1] (default: the robot's "
                       "joint_limits.yaml default_acceleration_scaling_factor, else 0.25)");
   command->add_flag("--full-speed", options->request.fullSpeed,
-                    "Use all of every joint's velocity and acceleration limits (what --velocity-scaling or "
+                    "Use all of every joint's velocity and acceleration limits and plan up to its position limits "
+                    "(transits otherwise keep 0.05 rad, 5 mm from them; what --velocity-scaling or "
                     "--acceleration-scaling name still holds)");
   command->add_option("--timing", options->timing,
                       "How motions are timed: time-optimal (motions joined and blended, stops only where the gripper "

@@ -190,6 +190,8 @@ json runReportJson(const RunOutcome& outcome) {
     report["trajectory"]["acceleration_scaling"] = outcome.scaling.acceleration;
     report["trajectory"]["scaling_from"] = {{"velocity", outcome.scaling.velocitySource},
                                             {"acceleration", outcome.scaling.accelerationSource}};
+    report["trajectory"]["position_margin"] = {{"angular", outcome.scaling.positionMargin.angular},
+                                               {"linear", outcome.scaling.positionMargin.linear}};
     report["path_length"] = lengths.toJson();
   }
   report["actions"] = actions;

@@ -24,6 +24,8 @@ struct RunScaling {
   double acceleration = kDefaultRunAccelerationScaling;
   std::string velocitySource = "default";
   std::string accelerationSource = "default";
+  /// How far transits keep from the position limits: PositionMargin's default, none at full speed.
+  PositionMargin positionMargin;
 };
 
 /// Everything a run produced.

@@ -60,6 +60,7 @@ ExecutionSettings executionSettings(const RunRequest& request, const RunScaling&
   settings.timing = request.timing;
   settings.velocityScaling = scaling.velocity;
   settings.accelerationScaling = scaling.acceleration;
+  settings.positionMargin = scaling.positionMargin;
   return settings;
 }
 
@@ -268,6 +269,7 @@ RunScaling chooseRunScaling(const RunRequest& request, const RobotModel& robot) 
   };
   choose(request.velocityScaling, robot.scalingDefaults().velocity, scaling.velocity, scaling.velocitySource);
   choose(request.accelerationScaling, robot.scalingDefaults().acceleration, scaling.acceleration, scaling.accelerationSource);
+  if (request.fullSpeed) scaling.positionMargin = PositionMargin{0.0, 0.0};
   return scaling;
 }
 

@@ -156,6 +156,7 @@ MotionResult planDirectTransit(const ArmContext& arm, const Scene& world, const 
   MotionPlanningOptions options;
   options.verificationResolution = arm.settings().verificationResolution;
   options.recordTreeEdges = arm.settings().recordTreeEdges;
+  options.positionMargin = arm.settings().positionMargin;
   MotionPlanner motion(space, options);
   std::vector<VectorX> goalPoints;
   for (const VectorX& goal : goals) goalPoints.push_back(valuesOf(variables, goal));

@@ -67,6 +67,8 @@ struct ExecutionSettings {
   /// (MoveIt's velocity and acceleration scaling factors).
   double velocityScaling = 1.0;
   double accelerationScaling = 1.0;
+  /// How far planned transits keep from the arm's position limits (see PositionMargin).
+  PositionMargin positionMargin;
   /// Time-optimal timing: the largest distance (rad, Euclidean in joint space) between a corner
   /// of a motion and the arc that replaces it. Arcs that would collide, or take the tool further
   /// than cartesianDeviation (m) from a Cartesian move's straight line, are made smaller, down to

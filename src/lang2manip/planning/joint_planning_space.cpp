@@ -2,6 +2,20 @@
 #include "lang2manip/planning/planning_space.hpp"
 
 namespace lang2manip {
+namespace {
+
+MarginKind marginKindOf(JointType type) {
+  switch (type) {
+    case JointType::kRevolute:
+      return MarginKind::kAngular;
+    case JointType::kPrismatic:
+      return MarginKind::kLinear;
+    default:
+      return MarginKind::kNone;
+  }
+}
+
+}  // namespace
 
 JointPlanningSpace::JointPlanningSpace(std::shared_ptr<const CollisionChecker> checker,
                                        const std::vector<std::string>& robots,
@@ -33,6 +47,7 @@ JointPlanningSpace::JointPlanningSpace(std::shared_ptr<const CollisionChecker> c
                          "\" has an empty range; it cannot be planned");
       }
       planned_.push_back({robot, variable});
+      marginKinds_.push_back(marginKindOf(model.joints()[static_cast<std::size_t>(model.variableJoints()[variable])].type));
       dofNames_.push_back(robots[r] + "/" + name);
       lower.push_back(model.lowerLimits()[variable]);
       upper.push_back(model.upperLimits()[variable]);

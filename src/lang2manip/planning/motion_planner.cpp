@@ -155,6 +155,7 @@ MotionPlanner::MotionPlanner(std::shared_ptr<const PlanningSpace> space,
   }
   routeOmplMessagesToLog();
   ompl_->si = makeSpaceInformation(*space_, options_.resolution, ompl_->counters);
+  bounds_ = {space_->lower(), space_->upper()};
 }
 
 MotionPlanner::~MotionPlanner() = default;
@@ -224,6 +225,10 @@ ompl::base::ProblemDefinitionPtr MotionPlanner::makeProblem(const VectorX& start
 void MotionPlanner::preparePlanner(const PlannerSettings& settings) {
   std::string key = settings.planner() + ";" + validStateSamplerName(settings.validStateSampler());
   for (const auto& [name, value] : settings.omplParameters()) key += ";" + name + "=" + value;
+  // A roadmap kept between queries holds states of its box only.
+  for (Eigen::Index i = 0; i < bounds_.lower.size(); ++i) {
+    key += ";" + std::to_string(bounds_.lower[i]) + ":" + std::to_string(bounds_.upper[i]);
+  }
   if (settings.incremental() && ompl_->planner && key == ompl_->plannerKey) {
     ompl_->planner->clearQuery();
     return;
@@ -270,7 +275,8 @@ bool MotionPlanner::mendPath(const StopCondition& stop, MotionPlan& plan) const 
   if (plan.rawPath != plan.path) candidates.push_back(plan.rawPath);
   std::optional<RepairedPath> repaired;
   for (std::size_t c = 0; c < candidates.size() && !repaired && !stop.shouldStop(); ++c) {
-    repaired = repairCollidingSegments(*space_, candidates[c], options_.verificationResolution, stop, ompl_->counters);
+    repaired = repairCollidingSegments(*space_, candidates[c], bounds_, options_.verificationResolution, stop,
+                                       ompl_->counters);
   }
   plan.statistics.repairSeconds += secondsSince(repairStart);
   if (!repaired) return false;
@@ -354,6 +360,10 @@ MotionPlan MotionPlanner::solve(const VectorX& start, const std::vector<VectorX>
   for (std::size_t g = 0; g < goals.size(); ++g) {
     checkEndpoint(goals[g], goals.size() == 1 ? "goal" : "goal " + std::to_string(g));
   }
+  std::vector<VectorX> restingPoints = goals;
+  restingPoints.push_back(start);
+  bounds_ = space_->plannedBounds(options_.positionMargin, restingPoints);
+  setStateBounds(*ompl_->si, bounds_);
   preparePlanner(settings);
   MotionPlan plan;
   ompl_->counters->states = 0;

@@ -26,6 +26,9 @@ struct MotionPlanningOptions {
   /// Largest joint step when the final path is re-verified.
   double verificationResolution = 0.002;
   TimeParameterizationOptions timing;
+  /// How far intermediate states keep from the joints' position limits (see PositionMargin);
+  /// PositionMargin{0, 0} plans up to the limits.
+  PositionMargin positionMargin;
   /// Keep the planner's exploration graph (OMPL's PlannerData) in MotionPlan::tree, at most this
   /// many edges (0: not kept).
   std::size_t recordTreeEdges = 0;
@@ -130,6 +133,8 @@ class MotionPlanner {
 
   std::shared_ptr<const PlanningSpace> space_;
   MotionPlanningOptions options_;
+  /// The box of the current query (PlanningSpace::plannedBounds).
+  StateBounds bounds_;
   std::unique_ptr<Ompl> ompl_;
 };
 

@@ -117,6 +117,16 @@ ob::SpaceInformationPtr makeSpaceInformation(const PlanningSpace& space, double 
   return si;
 }
 
+void setStateBounds(const ob::SpaceInformation& si, const StateBounds& bounds) {
+  const auto n = static_cast<unsigned int>(bounds.lower.size());
+  ob::RealVectorBounds box(n);
+  for (unsigned int i = 0; i < n; ++i) {
+    box.setLow(i, bounds.lower[i]);
+    box.setHigh(i, bounds.upper[i]);
+  }
+  si.getStateSpace()->as<ob::RealVectorStateSpace>()->setBounds(box);
+}
+
 std::vector<VectorX> pathPoints(const ompl::geometric::PathGeometric& path, int dimension) {
   std::vector<VectorX> points;
   for (std::size_t i = 0; i < path.getStateCount(); ++i) {

@@ -25,6 +25,9 @@ struct CheckCounters {
 ompl::base::SpaceInformationPtr makeSpaceInformation(const PlanningSpace& space, double resolution,
                                                      const std::shared_ptr<CheckCounters>& counters);
 
+/// Makes `bounds` the box of `si`'s RealVectorStateSpace (sampling and satisfiesBounds()).
+void setStateBounds(const ompl::base::SpaceInformation& si, const StateBounds& bounds);
+
 /// The values of an OMPL state of a RealVectorStateSpace.
 const double* stateValues(const ompl::base::State* state);
 

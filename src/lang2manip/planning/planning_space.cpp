@@ -23,6 +23,27 @@ PlanningSpace::PlanningSpace(std::shared_ptr<const CollisionChecker> checker)
   if (!checker_) throw InputError("planning space: no collision checker given");
 }
 
+StateBounds PlanningSpace::plannedBounds(const PositionMargin& margin,
+                                        const std::vector<VectorX>& restingPoints) const {
+  StateBounds bounds{lower_, upper_};
+  for (std::size_t i = 0; i < marginKinds_.size(); ++i) {
+    const auto c = static_cast<Eigen::Index>(i);
+    const double wanted = marginKinds_[i] == MarginKind::kAngular  ? margin.angular
+                          : marginKinds_[i] == MarginKind::kLinear ? margin.linear
+                                                                   : 0.0;
+    const double inward =
+        std::clamp(wanted, 0.0, PositionMargin::kMaxRangeFraction * (upper_[c] - lower_[c]));
+    bounds.lower[c] += inward;
+    bounds.upper[c] -= inward;
+  }
+  for (const VectorX& point : restingPoints) {
+    if (point.size() != lower_.size()) continue;
+    bounds.lower = bounds.lower.cwiseMin(point);
+    bounds.upper = bounds.upper.cwiseMax(point);
+  }
+  return bounds;
+}
+
 void PlanningSpace::checkPoint(const VectorX& x, const std::string& what) const {
   if (x.size() != dimension()) {
     throw InputError(what + " has " + std::to_string(x.size()) + " values; the planning space has " +

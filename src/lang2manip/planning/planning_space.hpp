@@ -26,6 +26,28 @@ struct SpaceWorkspace {
   WorldState world;
 };
 
+/// How far planned motions keep from each joint's position limits: planners sample, connect and
+/// smooth intermediate states only inside the limits moved inward by it, so no trajectory passes a
+/// limit at speed. The start and goals may lie inside the margin (they are states at rest): the
+/// box is widened to contain them. Continuous joints and Kautham controls have no margin.
+struct PositionMargin {
+  /// rad for revolute joints (3 degrees).
+  double angular = 0.05;
+  /// m for prismatic joints.
+  double linear = 0.005;
+  /// Neither is more than this fraction of a joint's range.
+  static constexpr double kMaxRangeFraction = 0.1;
+};
+
+/// Which PositionMargin a coordinate keeps from its limits.
+enum class MarginKind { kNone, kAngular, kLinear };
+
+/// A box of a planning space: per coordinate, lower <= x <= upper.
+struct StateBounds {
+  VectorX lower;
+  VectorX upper;
+};
+
 /// A bounded subset of R^n with validity, motion checking and the map to joint values.
 /// Immutable after construction; the check methods are thread-safe (per-thread workspaces).
 class PlanningSpace {
@@ -63,6 +85,11 @@ class PlanningSpace {
   /// OMPL's default (a fifth of the space's extent).
   [[nodiscard]] virtual std::optional<double> defaultRange() const { return std::nullopt; }
 
+  /// The box intermediate states are planned in (see PositionMargin): lower()/upper() moved inward
+  /// by `margin`, widened to contain every point of `restingPoints`.
+  [[nodiscard]] StateBounds plannedBounds(const PositionMargin& margin,
+                                          const std::vector<VectorX>& restingPoints) const;
+
   /// Throws InputError (naming `what`) unless x has dimension() finite values within bounds.
   void checkPoint(const VectorX& x, const std::string& what) const;
 
@@ -96,6 +123,8 @@ class PlanningSpace {
   VectorX jerkLimits_;
   /// Per trajectory joint: how many times `resolution` it may move per checked step.
   VectorX stepScale_;
+  /// Per coordinate, which PositionMargin applies; empty: none (set by subclasses).
+  std::vector<MarginKind> marginKinds_;
 
   [[nodiscard]] SpaceWorkspace& workspace() const;
   [[nodiscard]] virtual bool isValidIn(const double* x, SpaceWorkspace& workspace) const = 0;

@@ -47,7 +47,8 @@ std::optional<std::vector<VectorX>> planSegment(const ob::SpaceInformationPtr& s
 }  // namespace
 
 std::optional<RepairedPath> repairCollidingSegments(const PlanningSpace& space, const std::vector<VectorX>& path,
-                                                    double resolution, const StopCondition& stop,
+                                                    const StateBounds& bounds, double resolution,
+                                                    const StopCondition& stop,
                                                     const std::shared_ptr<CheckCounters>& counters) {
   if (path.empty()) return RepairedPath{};
   for (const VectorX& point : path) {
@@ -61,7 +62,10 @@ std::optional<RepairedPath> repairCollidingSegments(const PlanningSpace& space, 
       continue;
     }
     if (stop.shouldStop()) return std::nullopt;
-    if (!si) si = makeSpaceInformation(space, resolution, counters);
+    if (!si) {
+      si = makeSpaceInformation(space, resolution, counters);
+      setStateBounds(*si, bounds);
+    }
     const auto detour = planSegment(si, space, path[i - 1], path[i], stop);
     if (!detour) return std::nullopt;
     repaired.points.insert(repaired.points.end(), detour->begin() + 1, detour->end());

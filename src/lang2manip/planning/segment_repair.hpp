@@ -20,11 +20,12 @@ struct RepairedPath {
 };
 
 /// Replaces every segment of `path` that collides at `resolution` by a path found between its ends
-/// with motions checked at `resolution`. Each segment may use half of the time `stop` leaves,
+/// with motions checked at `resolution` and states inside `bounds`. Each segment may use half of the time `stop` leaves,
 /// at least 50 ms and at most 0.5 s. nullopt when a point is in collision or a segment could not be mended
 /// before `stop`; `counters` count the checks made.
 std::optional<RepairedPath> repairCollidingSegments(const PlanningSpace& space, const std::vector<VectorX>& path,
-                                                    double resolution, const StopCondition& stop,
+                                                    const StateBounds& bounds, double resolution,
+                                                    const StopCondition& stop,
                                                     const std::shared_ptr<CheckCounters>& counters);
 
 }  // namespace lang2manip
