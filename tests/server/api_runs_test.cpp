@@ -179,8 +179,8 @@ TEST(ApiRuns, AClientLeavingTheStreamDoesNotStopTheRunOrTheServer) {
 
 TEST(ApiRuns, EventStreamsAreCappedSoOtherRequestsAreServed) {
   ServerOptions options;
-  options.threads = 6;
-  options.maxEventStreams = 100;  // eventStreamLimit() keeps half of the threads for the rest
+  options.maxConnections = 6;
+  options.maxEventStreams = 100;  // eventStreamLimit() keeps half of the connections for the rest
   ASSERT_EQ(eventStreamLimit(options), 3U);
   ApiTestServer server(options);
   // The second run waits behind the first: its streams stay open.

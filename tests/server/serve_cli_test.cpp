@@ -80,6 +80,12 @@ TEST(ServeCli, BadOptionsExitWithAMessage) {
   const test::RunResult root = test::run("serve --port 0 --data-root /nonexistent-root");
   EXPECT_EQ(root.exitCode, 1);
   EXPECT_THAT(root.output, HasSubstr("--data-root"));
+  const test::RunResult connections = test::run("serve --port 0 --max-connections 1");
+  EXPECT_EQ(connections.exitCode, 1);
+  EXPECT_THAT(connections.output, HasSubstr("connections 2 to 4096"));
+  const test::RunResult seconds = test::run("serve --port 0 --max-request-seconds 0");
+  EXPECT_EQ(seconds.exitCode, 1);
+  EXPECT_THAT(seconds.output, HasSubstr("--max-request-seconds 0: expected more than 0"));
   const test::RunResult problem = test::run("serve nosuch.xml --port 0", true, "timeout 20");
   EXPECT_EQ(problem.exitCode, 1);
   EXPECT_THAT(problem.output, HasSubstr("PROBLEM nosuch.xml"));
@@ -111,6 +117,21 @@ TEST(BenchApiCli, HundredConcurrentClientsWithoutAnError) {
   EXPECT_GT(report["api_overhead_ratio"].get<double>(), 0.0);
   EXPECT_EQ(report["api_get_path_one_client"]["count"], 3);
   EXPECT_GT(report["api_get_path_one_client"]["median_ms"].get<double>(), 0.0);
+}
+
+TEST(BenchApiCli, ALegitimateClientIsServedUnderEveryAttack) {
+  const test::RunResult result = test::run("bench api-attacks --probes 3 --attackers 8 --json", false);
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  const nlohmann::json report = nlohmann::json::parse(result.output);
+  for (const char* attack : {"none", "header_flood", "slow_clients", "body_flood", "abandoned_solves"}) {
+    ASSERT_TRUE(report.contains(attack)) << attack;
+    EXPECT_EQ(report[attack]["failures"], 0) << attack;
+    EXPECT_GT(report[attack]["health_median_ms"].get<double>(), 0.0) << attack;
+  }
+  EXPECT_EQ(report["none"]["health_ratio"], 1.0);
+  const test::RunResult bad = test::run("bench api-attacks --probes 1");
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_THAT(bad.output, HasSubstr("--probes must be 3 to 10000"));
 }
 
 }  // namespace

@@ -42,6 +42,7 @@ int runCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   addRunCommand(app, out);
   addBenchCommand(app, out);
   addBenchApiCommand(*app.get_subcommand("bench"), out);
+  addBenchAttacksCommand(*app.get_subcommand("bench"), out);
   addXacroCommand(app, out);
   addDescribeCommand(app, out);
   addGltfCommand(app, out);

@@ -1,7 +1,7 @@
 #include "lang2manip/server/api_server.hpp"
 
 // After Eigen (api_server.hpp): glibc's <resolv.h>, which httplib includes, defines _res.
-#include <httplib.h>
+#include "lang2manip/server/guarded_http_server.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -14,6 +14,7 @@
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/core/json_limits.hpp"
 #include "lang2manip/core/log.hpp"
+#include "lang2manip/server/client_watch.hpp"
 #include "lang2manip/server/run_registry.hpp"
 #include "lang2manip/server/server_routes.hpp"
 #include "lang2manip/server/session_registry.hpp"
@@ -25,6 +26,15 @@ namespace {
 using nlohmann::json;
 
 constexpr int kListenBacklog = 1024;
+
+ConnectionLimits connectionLimits(const ServerOptions& options) {
+  ConnectionLimits limits;
+  limits.maxConnections = options.maxConnections;
+  limits.maxHeadBytes = options.maxHeadBytes;
+  limits.headSeconds = options.headSeconds;
+  limits.requestSeconds = options.requestReadSeconds;
+  return limits;
+}
 
 /// "/api/sessions/{client}/solve" -> "/api/sessions/([^/]+)/solve" (dots escaped).
 std::string routePattern(const std::string& path) {
@@ -170,20 +180,25 @@ class StreamSlot {
 }  // namespace
 
 std::size_t eventStreamLimit(const ServerOptions& options) {
-  return std::min(options.maxEventStreams, static_cast<std::size_t>(std::max(options.threads / 2, 1)));
+  return std::min(options.maxEventStreams, std::max<std::size_t>(options.maxConnections / 2, 1));
 }
 
 struct ApiServer::Impl {
   explicit Impl(ServerOptions serverOptions)
       : options(std::move(serverOptions)),
         sessions(options.maxSessions, std::chrono::seconds(options.sessionIdleSeconds)),
-        runs(options.maxQueuedRuns, options.maxKeptRuns) {}
+        runs(options.maxQueuedRuns, options.maxKeptRuns),
+        http(connectionLimits(options)) {}
 
   ServerOptions options;
   SessionRegistry sessions;
   RunRegistry runs;
   std::vector<ApiRoute> routes;
-  httplib::Server http;
+  GuardedHttpServer http;
+  /// Cancels the work of a request whose client left.
+  ClientWatch clientWatch;
+  /// Set when the server stops: work in progress stops too.
+  CancelFlag stopping = std::make_shared<std::atomic<bool>>(false);
   int port = 0;
   /// The listening socket (seen when httplib creates it), for its backlog.
   int listeningSocket = -1;
@@ -252,8 +267,13 @@ void ApiServer::Impl::addRoute(const ApiRoute& route) {
   const auto handler = [this, route](const httplib::Request& request, httplib::Response& response, const httplib::ContentReader* reader) {
     try {
       const std::string body = reader != nullptr ? readBody(request, *reader, options.maxBodyBytes) : request.body;
+      auto clientLeft = std::make_shared<std::atomic<bool>>(false);
+      const ClientWatch::Registration watched = clientWatch.watch(GuardedHttpServer::currentClientSocket(), clientLeft);
       const ApiResponse answer = guarded([&] {
-        const ApiRequest api = apiRequest(request, body);
+        ApiRequest api = apiRequest(request, body);
+        api.stop = StopCondition::onCancel(clientLeft)
+                       .orElse(StopCondition::onCancel(stopping))
+                       .orElse(StopCondition::afterSeconds(options.maxRequestSeconds));
         body::onlyFields(api.body, route.bodyFields);
         return route.handler(api);
       });
@@ -353,8 +373,6 @@ void ApiServer::Impl::configure() {
     ::setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
     listeningSocket = socket;
   });
-  const int threads = options.threads;
-  http.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
   http.set_payload_max_length(options.maxBodyBytes);
   // Short: a client that opens a connection and sends nothing holds a thread meanwhile.
   http.set_read_timeout(5, 0);
@@ -442,6 +460,7 @@ void ApiServer::serve() { impl_->http.listen_after_bind(); }
 
 void ApiServer::stop() {
   if (impl_->stopped.exchange(true)) return;
+  impl_->stopping->store(true);
   impl_->runs.shutdown();
   impl_->http.stop();
 }

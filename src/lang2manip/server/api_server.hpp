@@ -2,7 +2,8 @@
 /// @file `lang2manip serve`: the HTTP/JSON API. Kautham's planning-session verbs per client
 /// (/api/sessions/{client}/...), observe, plan and runs (with progress as server-sent events and
 /// cancellation), the OpenAPI document at /api/openapi.json, and the web viewer's files. Bound to
-/// loopback unless told otherwise; bodies and JSON depth limited; an optional bearer token.
+/// loopback unless told otherwise; request heads, bodies, JSON depth, connections and the time a
+/// request may take limited; work stops when its client leaves; an optional bearer token.
 
 #include <cstddef>
 #include <filesystem>
@@ -35,11 +36,22 @@ struct ServerOptions {
   /// Runs waiting or running at once (they run one after another), and finished runs kept.
   std::size_t maxQueuedRuns = 8;
   std::size_t maxKeptRuns = 64;
-  /// Threads serving requests (each open connection holds one while it is kept alive).
-  int threads = 32;
-  /// Run event streams (GET /api/runs/{run}/events) open at once; each holds a thread for the
-  /// whole run, so at most half the threads go to streams (see eventStreamLimit()). More are
-  /// answered 503 with Retry-After.
+  /// Connections served at once, each by its own thread (a slow client holds only its own); more
+  /// are answered 503.
+  std::size_t maxConnections = 256;
+  /// A request's line and headers may have this many bytes (more: 431); they must arrive within
+  /// headSeconds of the request's first byte, and the whole request within requestReadSeconds
+  /// (else 408). The connection is closed after either answer.
+  std::size_t maxHeadBytes = std::size_t{64} << 10;
+  double headSeconds = 10.0;
+  double requestReadSeconds = 60.0;
+  /// The longest a request's work may take (a session's solve, a plan); it stops earlier when its
+  /// client closes the connection or the server stops. Runs (POST /api/runs) are not requests'
+  /// work: they go on in the background until finished or cancelled.
+  double maxRequestSeconds = 300.0;
+  /// Run event streams (GET /api/runs/{run}/events) open at once; each holds a connection for
+  /// the whole run, so at most half the connections go to streams (see eventStreamLimit()). More
+  /// are answered 503 with Retry-After.
   std::size_t maxEventStreams = 16;
   /// The problem opened by sessions and runs that name none (the operator's `serve PROBLEM`):
   /// a built-in name or a file, loaded when the server starts and allowed outside dataRoot;
@@ -51,8 +63,8 @@ struct ServerOptions {
 /// viewer directory that is not a directory).
 void checkServerOptions(const ServerOptions& options);
 
-/// The event streams served at once: maxEventStreams, and at most half of the threads, so that
-/// other requests always find one.
+/// The event streams served at once: maxEventStreams, and at most half of maxConnections, so
+/// that other requests always find a connection.
 std::size_t eventStreamLimit(const ServerOptions& options);
 
 /// One endpoint as the OpenAPI document describes it.

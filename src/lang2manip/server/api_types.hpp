@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "lang2manip/core/stop_condition.hpp"
 #include "lang2manip/core/types.hpp"
 
 namespace lang2manip {
@@ -39,6 +40,9 @@ struct ApiRequest {
   std::map<std::string, std::string> query;
   /// The parsed body (an object; empty object when there was no body).
   nlohmann::json body = nlohmann::json::object();
+  /// Fires when the request's client leaves, the server stops or the request's time is up
+  /// (ServerOptions::maxRequestSeconds): long work passes it on.
+  StopCondition stop;
 };
 
 struct ApiResponse {

@@ -100,7 +100,7 @@ void benchApi(const BenchApiOptions& options, std::ostream& out) {
   ServerOptions serverOptions;
   serverOptions.port = 0;
   serverOptions.dataRoot = "/";  // the user's own files, named on the command line
-  serverOptions.threads = std::max(8, std::min(options.clients, 256));
+  serverOptions.maxConnections = static_cast<std::size_t>(std::max(8, std::min(options.clients + 8, 4096)));
   serverOptions.maxSessions = static_cast<std::size_t>(options.clients) + 1;
   ApiServer server(serverOptions);
   std::thread serving([&server] { server.serve(); });

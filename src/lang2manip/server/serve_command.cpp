@@ -58,7 +58,13 @@ void addServeCommand(CLI::App& app, std::ostream& out) {
   command->add_option("--data-root", options->dataRoot, "Files named by requests must lie under this directory (default: the current one)");
   command->add_option("--viewer", *viewer, "The viewer's directory (default: the one built beside the program)");
   command->add_option("--max-sessions", options->maxSessions, "Client sessions held at once")->capture_default_str();
-  command->add_option("--threads", options->threads, "Threads serving requests")->capture_default_str();
+  command->add_option("--max-connections", options->maxConnections,
+                      "Connections served at once, each by its own thread (more are answered 503)")
+      ->capture_default_str();
+  command->add_option("--max-request-seconds", options->maxRequestSeconds,
+                      "The longest a request's work (a session's solve, a plan) may take; it also stops when its client "
+                      "disconnects")
+      ->capture_default_str();
   command->add_flag("--insecure", *insecure, "Listen on a non-loopback --host without a token (anyone who reaches it can use it)");
   command->callback([options, viewer, insecure, &out] {
     if (options->token.empty()) {

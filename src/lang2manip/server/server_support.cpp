@@ -7,6 +7,7 @@
 
 #include "lang2manip/cli/problem_loading.hpp"
 #include "lang2manip/core/error.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/llm/llm_client.hpp"
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/server/server_routes.hpp"
@@ -109,8 +110,17 @@ void checkServerOptions(const ServerOptions& options) {
     throw InputError("serve: the token must not contain spaces, quotes, commas or semicolons");
   }
   if (options.maxBodyBytes < 1024 || options.maxJsonDepth < 4) throw InputError("serve: body limits below 1 KiB or 4 JSON levels");
-  if (options.maxSessions < 1 || options.maxQueuedRuns < 1 || options.maxKeptRuns < 1 || options.maxEventStreams < 1 || options.threads < 2 || options.threads > 1024) {
-    throw InputError("serve: session, run, stream and thread limits must be positive (threads 2 to 1024)");
+  if (options.maxSessions < 1 || options.maxQueuedRuns < 1 || options.maxKeptRuns < 1 || options.maxEventStreams < 1 ||
+      options.maxConnections < 2 || options.maxConnections > 4096) {
+    throw InputError("serve: session, run and stream limits must be positive, and connections 2 to 4096");
+  }
+  if (options.maxHeadBytes < 1024 || !(options.headSeconds > 0.0 && options.headSeconds <= 3600.0) ||
+      !(options.requestReadSeconds >= options.headSeconds && options.requestReadSeconds <= 3600.0)) {
+    throw InputError("serve: request heads of at least 1 KiB, and head and request deadlines of (0, 3600] s "
+                     "(the request's no shorter than the head's)");
+  }
+  if (!(options.maxRequestSeconds > 0.0 && options.maxRequestSeconds <= 86400.0)) {
+    throw InputError("serve: --max-request-seconds " + numberText(options.maxRequestSeconds) + ": expected more than 0 and at most 86400");
   }
   std::error_code error;
   if (!options.dataRoot.empty() && !fs::is_directory(options.dataRoot, error)) {

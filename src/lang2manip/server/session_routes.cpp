@@ -1,11 +1,13 @@
 // Kautham's planning-session verbs over HTTP: one PlanningSession per client id.
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
 #include "lang2manip/cli/collision_queries.hpp"
 #include "lang2manip/cli/problem_loading.hpp"
 #include "lang2manip/cli/solve_scene.hpp"
+#include "lang2manip/core/text_parsing.hpp"
 #include "lang2manip/model/gltf_writer.hpp"
 #include "lang2manip/planning/motion_plan_json.hpp"
 #include "lang2manip/server/server_routes.hpp"
@@ -122,7 +124,7 @@ std::vector<ApiRoute> problemVerbs(SessionRegistry& sessions, const ServerOption
   return routes;
 }
 
-std::vector<ApiRoute> plannerVerbs(SessionRegistry& sessions) {
+std::vector<ApiRoute> plannerVerbs(SessionRegistry& sessions, const ServerOptions& options) {
   std::vector<ApiRoute> routes;
   routes.push_back(change(sessions, "setPlanner", {"name", "parameters"}, [](ClientSession& session, const json& request) {
     session.planning.setPlanner(body::string(request, "name"));
@@ -152,11 +154,17 @@ std::vector<ApiRoute> plannerVerbs(SessionRegistry& sessions) {
   routes.push_back(change(sessions, "setGoal", {"goal"}, [](ClientSession& session, const json& request) {
     session.planning.setGoal(body::numbers(request, "goal"));
   }));
-  routes.push_back(verb(sessions, "POST", "solve", false, [](ClientSession& session, const ApiRequest& request) {
+  const double maxSeconds = std::min(3600.0, options.maxRequestSeconds);
+  routes.push_back(verb(sessions, "POST", "solve", false, [maxSeconds](ClientSession& session, const ApiRequest& request) {
     const double timeLimit = body::number(request.body, "time_limit", 0.0);
-    if (timeLimit < 0.0 || timeLimit > 3600.0) throw ApiError(400, "bad_request", "body field \"time_limit\": expected 0 to 3600 seconds");
-    // For this solve only: the session's planner keeps its own _Max Planning Time.
-    return solveJson(session.planning, timeLimit > 0.0 ? session.planning.solveWithin(timeLimit) : session.planning.solve());
+    if (timeLimit < 0.0 || timeLimit > maxSeconds) {
+      throw ApiError(400, "bad_request", "body field \"time_limit\": expected 0 to " + numberText(maxSeconds) +
+                                             " seconds (the server's longest request)");
+    }
+    // For this solve only: the session's planner keeps its own _Max Planning Time. It stops when
+    // the client leaves (request.stop).
+    return solveJson(session.planning, timeLimit > 0.0 ? session.planning.solveWithin(timeLimit, request.stop)
+                                                       : session.planning.solve(request.stop));
   }, {"time_limit"}));
   routes.push_back(verb(sessions, "GET", "getPath", false, [](ClientSession& session, const ApiRequest&) {
     const MotionPlan& plan = session.planning.getPath();
@@ -236,7 +244,7 @@ ApiRoute sceneRoute(SessionRegistry& sessions) {
 std::vector<ApiRoute> sessionRoutes(SessionRegistry& sessions, const ServerOptions& options) {
   std::vector<ApiRoute> routes = problemVerbs(sessions, options);
   routes.push_back(sceneRoute(sessions));
-  for (ApiRoute& route : plannerVerbs(sessions)) routes.push_back(std::move(route));
+  for (ApiRoute& route : plannerVerbs(sessions, options)) routes.push_back(std::move(route));
   for (ApiRoute& route : worldVerbs(sessions, options)) routes.push_back(std::move(route));
   return routes;
 }

@@ -64,7 +64,7 @@ ApiResponse plan(const ApiRequest& request, const ServerOptions& options) {
   planning.scene = &loaded.problem.scene;
   RepairOptions repair;
   repair.maxRounds = rounds;
-  const RepairResult result = planWithRepair(selected.planner(), planning, nullptr, repair, StopCondition::never());
+  const RepairResult result = planWithRepair(selected.planner(), planning, nullptr, repair, request.stop);
   json answer{{"success", result.succeeded()}, {"planner", selected.label()}, {"rounds", roundsJson(result)}};
   if (result.plan) answer["plan"] = toJson(*result.plan);
   if (!result.succeeded()) answer["failure"] = result.failure;
