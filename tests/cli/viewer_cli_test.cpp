@@ -277,6 +277,37 @@ TEST(RenderCli, SnapshotsEveryMomentAndAContactSheet) {
   // Pictures of an error banner would be alike: the start and the end differ (the eraser moved).
   EXPECT_NE(test::readFileText(temporary.path() / "render" / "01-start.png"), test::readFileText(temporary.path() / "render" / "02-end.png"));
   EXPECT_GT(fs::file_size(temporary.path() / "render" / "01-start.png"), 5000U) << "a scene, not a flat image";
+  // Drawn at the size asked for (PNG's IHDR: big-endian width and height at bytes 16 and 20).
+  const std::string png = test::readFileText(temporary.path() / "render" / "01-start.png");
+  const auto word = [&png](std::size_t at) {
+    return (static_cast<unsigned>(static_cast<unsigned char>(png[at])) << 24U) | (static_cast<unsigned>(static_cast<unsigned char>(png[at + 1])) << 16U) |
+           (static_cast<unsigned>(static_cast<unsigned char>(png[at + 2])) << 8U) | static_cast<unsigned>(static_cast<unsigned char>(png[at + 3]));
+  };
+  EXPECT_EQ(word(16), 320U);
+  EXPECT_EQ(word(20), 240U);
+}
+
+TEST(RenderCli, ASolvePageIsRenderedAtItsStartMiddleAndEnd) {
+  LANG2MANIP_REQUIRE_CHROMIUM();
+  const test::TempDirectory temporary;
+  const fs::path page = temporary.path() / "solved.html";
+  ASSERT_EQ(test::run("solve panda_desk --html " + page.string()).exitCode, 0);
+  const test::RunResult result = test::run("render " + page.string() + " --size 320x240");
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  const fs::path pictures = temporary.path() / "solved-render";
+  for (const char* name : {"01-start.png", "02-middle.png", "03-end.png", "contact-sheet.png"}) {
+    ASSERT_TRUE(fs::exists(pictures / name)) << name << "\n" << result.output;
+  }
+  EXPECT_NE(test::readFileText(pictures / "01-start.png"), test::readFileText(pictures / "03-end.png")) << "the arm moved";
+}
+
+TEST(RenderCli, ABrowserThatDoesNotSpeakTheProtocolIsAClearError) {
+  const test::TempDirectory temporary;
+  writeShortRun(temporary.path(), false);
+  const test::RunResult result = test::run("render " + temporary.path().string() + " --chromium /bin/true --timeout 10");
+  EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("render: /bin/true has gone"));
+  EXPECT_FALSE(fs::exists(temporary.path() / "render" / "01-start.png"));
 }
 
 }  // namespace

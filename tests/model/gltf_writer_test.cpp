@@ -8,13 +8,20 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cmath>
 #include <cstring>
 #include <map>
+#include <set>
+#include <tuple>
 #include <nlohmann/json.hpp>
 
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/model/kautham_problem.hpp"
+#include "lang2manip/model/mesh_loader.hpp"
+#include "lang2manip/model/mesh_shading.hpp"
+#include "lang2manip/model/urdf_reader.hpp"
+#include "test_paths.hpp"
 
 namespace lang2manip {
 namespace {
@@ -90,6 +97,15 @@ std::size_t checkPrimitives(const Glb& glb) {
       for (std::size_t i = 0; i < count; ++i) {
         EXPECT_LT(wordAt(glb.binary, indexView["byteOffset"].get<std::size_t>() + 4 * i), vertices);
       }
+      // One unit normal per vertex, for smooth shading.
+      const json& normal = accessors[primitive["attributes"]["NORMAL"].get<std::size_t>()];
+      EXPECT_EQ(normal["count"].get<std::size_t>(), vertices);
+      const std::size_t normalOffset = views[normal["bufferView"].get<std::size_t>()]["byteOffset"].get<std::size_t>();
+      for (std::size_t v = 0; v < vertices; v += 1 + vertices / 50) {
+        float n[3];
+        std::memcpy(n, glb.binary.data() + normalOffset + 12 * v, 12);
+        EXPECT_NEAR(n[0] * n[0] + n[1] * n[1] + n[2] * n[2], 1.0F, 1e-4F);
+      }
       triangles += count / 3;
     }
   }
@@ -119,7 +135,116 @@ TEST(GltfWriter, PrimitivesAreClosedSurfacesOfTheirSize) {
   EXPECT_THROW((void)tessellated(Sphere{0.3}, 2), InputError);
 }
 
+TEST(MeshShading, EdgesStaySharpCurvesTurnSmoothAndRepeatedVerticesAreWelded) {
+  const TriangleMesh box = tessellated(Box{Vector3(0.2, 0.4, 0.6)});
+  const ShadedMesh shadedBox = shadedMesh(box);
+  EXPECT_EQ(shadedBox.vertices.size(), 24U) << "each corner once per face it bounds";
+  ASSERT_EQ(shadedBox.triangles.size(), 12U);
+  for (const auto& triangle : shadedBox.triangles) {
+    const Vector3& a = shadedBox.vertices[static_cast<std::size_t>(triangle[0])];
+    const Vector3 face = (shadedBox.vertices[static_cast<std::size_t>(triangle[1])] - a)
+                             .cross(shadedBox.vertices[static_cast<std::size_t>(triangle[2])] - a)
+                             .normalized();
+    for (const int corner : triangle) EXPECT_TRUE(shadedBox.normals[static_cast<std::size_t>(corner)].isApprox(face));
+  }
+  // The same box as a triangle soup (as STL stores it): welded to the same 24 vertices.
+  TriangleMesh soup;
+  for (const auto& triangle : box.triangles) {
+    const int first = static_cast<int>(soup.vertices.size());
+    for (const int corner : triangle) soup.vertices.push_back(box.vertices[static_cast<std::size_t>(corner)]);
+    soup.triangles.push_back({first, first + 1, first + 2});
+  }
+  EXPECT_EQ(shadedMesh(soup).vertices.size(), 24U);
+
+  // A sphere has no crease: one vertex per position, its normal pointing out from the centre.
+  const ShadedMesh sphere = shadedMesh(tessellated(Sphere{0.3}, 24));
+  std::set<std::tuple<double, double, double>> positions;
+  for (std::size_t v = 0; v < sphere.vertices.size(); ++v) {
+    positions.insert({sphere.vertices[v].x(), sphere.vertices[v].y(), sphere.vertices[v].z()});
+    EXPECT_GT(sphere.normals[v].dot(sphere.vertices[v].normalized()), 0.98) << sphere.vertices[v].transpose();
+  }
+  EXPECT_EQ(positions.size(), sphere.vertices.size());
+  // A cylinder: smooth sides, sharp rims.
+  const ShadedMesh cylinder = shadedMesh(tessellated(Cylinder{0.1, 0.5}, 16));
+  for (std::size_t v = 0; v < cylinder.vertices.size(); ++v) {
+    const Vector3& n = cylinder.normals[v];
+    EXPECT_TRUE(std::abs(n.z()) > 0.999 || std::abs(n.z()) < 1e-9) << n.transpose();
+  }
+  // Corrupt indices are dropped, not read.
+  TriangleMesh corrupt = box;
+  corrupt.triangles.push_back({0, 1, 99});
+  EXPECT_EQ(shadedMesh(corrupt).triangles.size(), 12U);
+}
+
+TEST(GltfWriter, AMeshOfSeveralColoursIsDrawnInEach) {
+  for (const char* file : {"two_colours.dae", "white_piece.iv"}) {
+    SCOPED_TRACE(file);
+    auto mesh = std::make_shared<TriangleMesh>(loadTriangleMesh((test::testDataDirectory() / "meshes" / file).string()));
+    ASSERT_EQ(mesh->palette.size(), 2U);
+    ASSERT_EQ(mesh->triangleColours.size(), mesh->triangles.size());
+    Scene scene;
+    SceneObject object;
+    object.name = "piece";
+    object.kind = "piece";
+    object.visuals.push_back(Shape{MeshGeometry{mesh, Vector3::Ones(), file}, Pose::Identity(), std::nullopt, ""});
+    object.collisions = object.visuals;
+    scene.addObject(object);
+    const Glb glb = parseGlb(sceneToGlb(scene));
+    EXPECT_EQ(checkPrimitives(glb), mesh->triangles.size());
+    ASSERT_EQ(glb.document["meshes"].size(), 1U);
+    const json& primitives = glb.document["meshes"][0]["primitives"];
+    ASSERT_EQ(primitives.size(), 2U);
+    std::set<std::vector<int>> colours;
+    for (const json& primitive : primitives) {
+      const json factor = glb.document["materials"][primitive["material"].get<std::size_t>()]["pbrMetallicRoughness"]["baseColorFactor"];
+      colours.insert({static_cast<int>(std::lround(factor[0].get<double>() * 255)), static_cast<int>(std::lround(factor[1].get<double>() * 255)),
+                      static_cast<int>(std::lround(factor[2].get<double>() * 255))});
+    }
+    std::set<std::vector<int>> expected;
+    for (const Vector3& rgb : mesh->palette) {
+      expected.insert({static_cast<int>(std::lround(rgb.x() * 255)), static_cast<int>(std::lround(rgb.y() * 255)), static_cast<int>(std::lround(rgb.z() * 255))});
+    }
+    EXPECT_EQ(colours, expected);
+  }
+}
+
 /// The body nodes (children of the root) by name.
+std::map<std::string, json> bodiesOf(const Glb& glb);
+/// Names of the children of `node`.
+std::vector<std::string> childNames(const Glb& glb, const json& node);
+
+TEST(GltfWriter, ALinkWithoutVisualIsNotDrawnButAnObjectWithoutOneIs) {
+  Scene scene;
+  SceneRobot robot;
+  robot.name = "arm";
+  robot.model = readUrdfString(R"(<robot name="arm">
+  <link name="base"><visual><geometry><box size="0.2 0.2 0.2"/></geometry></visual>
+    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
+  <link name="padding"><collision><geometry><sphere radius="0.3"/></geometry></collision></link>
+  <joint name="fix" type="fixed"><parent link="base"/><child link="padding"/></joint>
+</robot>)", "arm.urdf", ".");
+  robot.configuration = VectorX::Zero(0);
+  scene.addRobot(robot);
+  SceneObject obstacle;
+  obstacle.name = "obstacle";
+  obstacle.kind = "obstacle";
+  obstacle.collisions.push_back(Shape{Box{Vector3::Ones()}, Pose::Identity(), std::nullopt, ""});
+  scene.addObject(obstacle);
+  const Glb glb = parseGlb(sceneToGlb(scene));
+  const std::map<std::string, json> bodies = bodiesOf(glb);
+  const auto visualChildren = [&](const std::string& body) {
+    const json& visual = glb.document["nodes"][bodies.at(body)["children"][0].get<std::size_t>()];
+    return visual.value("children", json::array()).size();
+  };
+  EXPECT_EQ(visualChildren("arm/base"), 1U);
+  EXPECT_EQ(visualChildren("arm/padding"), 0U) << "a self-collision padding is not what the robot looks like";
+  EXPECT_EQ(visualChildren("obstacle"), 1U);
+  GltfOptions both;
+  both.geometry = GltfGeometry::kBoth;
+  const Glb withCollision = parseGlb(sceneToGlb(scene, both));
+  EXPECT_EQ(childNames(withCollision, bodiesOf(withCollision).at("arm/padding")), (std::vector<std::string>{"visual", "collision"}));
+}
+
 std::map<std::string, json> bodiesOf(const Glb& glb) {
   std::map<std::string, json> bodies;
   for (const json& child : glb.document["nodes"][0]["children"]) {
@@ -232,7 +357,7 @@ TEST(GltfWriter, MeshesAreWrittenOncePerMeshAndScale) {
   scene.addObject(unloaded);
   GltfSummary summary;
   const Glb glb = parseGlb(sceneToGlb(scene, {}, &summary));
-  EXPECT_EQ(glb.document["accessors"].size(), 4U);
+  EXPECT_EQ(glb.document["accessors"].size(), 6U) << "positions, normals and indices of two scales";
   EXPECT_EQ(bodiesOf(glb).size(), 4U);
   EXPECT_EQ(std::count_if(glb.document["nodes"].begin(), glb.document["nodes"].end(), [](const json& node) { return node.contains("mesh"); }), 3);
   EXPECT_EQ(summary.unloadedMeshes, 1);

@@ -142,6 +142,22 @@ TEST(ApiSessions, OpenSolveGetPathCheckAndEditTheWorld) {
   EXPECT_EQ(server.get(base)->status, 404);
 }
 
+TEST(ApiSessions, TheServersOwnProblemIsServedAsGlbForTheViewersLandingPage) {
+  ServerOptions options;
+  options.token = "landing-token";
+  ApiTestServer server(options);
+  EXPECT_EQ(server.get("/api/scene.glb")->status, 401);
+  server.setToken("landing-token");
+  const auto glb = server.get("/api/scene.glb");
+  ASSERT_EQ(glb->status, 200);
+  EXPECT_EQ(glb->body.substr(0, 4), "glTF");
+  const json document = glbJsonChunk(glb->body);
+  bool marker = false;
+  for (const json& node : document["nodes"]) marker = marker || node.value("name", "") == "marker";
+  EXPECT_TRUE(marker) << "the paper's scene, the server's default problem";
+  EXPECT_EQ(server.get("/api/scene.glb")->body, glb->body) << "written once";
+}
+
 TEST(ApiSessions, KauthamMeshScenesAreServedAsGlb) {
   LANG2MANIP_REQUIRE_SHARED_DATA(shared);
   ServerOptions options;

@@ -46,9 +46,24 @@ async function fetchOrFail(url, token, what) {
   return response;
 }
 
+/** The GLB of /api/scene.glb, or null when this server has none (404). */
+async function serverScene(token) {
+  const headers = token ? { Authorization: `Bearer ${token}` } : {};
+  let response;
+  try {
+    response = await fetch('/api/scene.glb', { headers, credentials: 'same-origin' });
+  } catch (error) {
+    return null;
+  }
+  if (response.status === 404) return null;
+  if (!response.ok) throw new LoadError(`could not fetch the scene (GLB) from /api/scene.glb: HTTP ${response.status} ${response.statusText}`.trim());
+  return response.arrayBuffer();
+}
+
 /**
  * The run document (or null) and the GLB bytes (ArrayBuffer) of this page.
- * `source` says which: "inline", "url" or "session".
+ * `source` says which: "inline", "url", "session", or "server" (the page served with nothing
+ * named: the server's default problem).
  */
 export async function loadData(query, doc = document) {
   const runElement = doc.getElementById(RUN_ELEMENT_ID);
@@ -76,6 +91,12 @@ export async function loadData(query, doc = document) {
     const url = `/api/sessions/${encodeURIComponent(query.session)}/scene.glb`;
     const glb = await fetchOrFail(url, query.token, 'scene (GLB)').then((r) => r.arrayBuffer());
     return { source: 'session', run: null, glb };
+  }
+  if (doc.location && /^https?:$/.test(doc.location.protocol)) {
+    // Served by `lang2manip serve` with nothing named: the server's own problem (another server
+    // has no /api/scene.glb: then there is nothing to show).
+    const served = await serverScene(query.token);
+    if (served) return { source: 'server', run: null, glb: served };
   }
   throw new LoadError(
     `nothing to show: the page has no inline run (script elements #${RUN_ELEMENT_ID}, #${GLB_ELEMENT_ID}) ` +

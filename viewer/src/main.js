@@ -311,11 +311,23 @@ function layout() {
   renderNow();
 }
 
+/** Names of the objects the run's actions move or aim at (their object, and their params' target). */
+function touchedObjects(list) {
+  const names = new Set();
+  for (const action of list) if (action && typeof action.object === 'string') names.add(action.object);
+  const reported = run && run.report && Array.isArray(run.report.actions) ? run.report.actions : [];
+  for (const entry of reported) {
+    const params = entry && entry.action && entry.action.params;
+    if (params && typeof params.target === 'string') names.add(params.target);
+  }
+  return names;
+}
+
 function fillRun() {
   const { task, meta, actionList, actionsEmpty, sections } = dom;
   meta.replaceChildren();
   if (!run) {
-    task.textContent = source === 'session' ? 'Scene only (session)' : 'Scene only';
+    task.textContent = source === 'session' ? 'Scene only (session)' : source === 'server' ? "Scene only (the server's problem)" : 'Scene only';
     task.className = 'empty';
     actionsEmpty.textContent = 'No run document: scene only.';
     return;
@@ -357,6 +369,7 @@ function fillRun() {
     actions.push({ index, start, end, item, text });
   });
   actionsEmpty.hidden = actions.length > 0;
+  view.frame(touchedObjects(list));
 
   for (const key of ['observation', 'prompt', 'report']) {
     const value = run[key];

@@ -91,6 +91,8 @@ export class SceneView {
     this.radius = 1;
     this.view = { ...DEFAULT_VIEW };
     this.viewport = { width: 1, height: 1, offset: 0 };
+    /** Names of the objects the camera frames with the robots (see frame()). */
+    this.focus = null;
   }
 
   /** Add a loaded glTF (from parseGlb): classify its nodes, set up the animation, frame it. */
@@ -163,22 +165,26 @@ export class SceneView {
     return this.entities.some((e) => e.children.some((c) => gltfName(c) === 'collision'));
   }
 
-  /** Bounding box of the scene (tool paths included, exploration tree and helpers not) over the animation. */
-  sceneBox() {
+  /**
+   * Bounding box over the animation of the scene (tool paths included, exploration tree and
+   * helpers not), or only of the top-level bodies `keep` accepts (tool paths always).
+   */
+  sceneBox(keep = null) {
     const box = new Box3();
     const part = new Box3();
     const times = this.action ? [0, this.clipDuration / 2, this.clipDuration] : [null];
+    const skipped = new Set(keep ? this.entities.filter((entity) => !keep(entity)) : []);
     for (const t of times) {
       if (t !== null) this.setTime(t);
       this.model.updateMatrixWorld(true);
       const visit = (object) => {
-        if (object === this.tree || object.userData.helper) return;
-        if (object.geometry) {
+        if (object === this.tree || object.userData.helper || skipped.has(object)) return;
+        if (object.geometry && object.visible !== false) {
           if (!object.geometry.boundingBox) object.geometry.computeBoundingBox();
           part.copy(object.geometry.boundingBox).applyMatrix4(object.matrixWorld);
           if (!part.isEmpty()) box.union(part);
         }
-        for (const child of object.children) visit(child);
+        for (const child of object.children) if (child.visible !== false || child === this.toolPaths) visit(child);
       };
       visit(this.model);
     }
@@ -186,19 +192,30 @@ export class SceneView {
     return box;
   }
 
-  /** Fit the camera and the ground grid to the scene. */
-  frame() {
-    const box = this.sceneBox();
-    if (box.isEmpty()) box.set(new Vector3(-0.5, 0, -0.5), new Vector3(0.5, 1, 0.5));
+  /**
+   * Fit the ground grid to the scene, and the camera to what matters: the robots and the objects
+   * named in `focus` (the objects a task touches) with the tool paths; the whole scene when no
+   * object is named or none of them is in it.
+   */
+  frame(focus = this.focus) {
+    this.focus = focus;
+    const whole = this.sceneBox();
+    if (whole.isEmpty()) whole.set(new Vector3(-0.5, 0, -0.5), new Vector3(0.5, 1, 0.5));
+    const named = focus && focus.size > 0 ? this.entities.filter((entity) => focus.has(gltfName(entity))) : [];
+    const box =
+      named.length > 0
+        ? this.sceneBox((entity) => entity.userData.kind === 'link' || named.includes(entity))
+        : whole.clone();
+    if (box.isEmpty()) box.copy(whole);
     box.getCenter(this.center);
     this.radius = Math.max(0.1, box.getSize(new Vector3()).length() / 2);
 
     this.grid.clear();
-    const reach = Math.max(Math.abs(box.min.x), Math.abs(box.max.x), Math.abs(box.min.z), Math.abs(box.max.z)) + this.radius;
+    const reach = Math.max(Math.abs(whole.min.x), Math.abs(whole.max.x), Math.abs(whole.min.z), Math.abs(whole.max.z)) + this.radius;
     const size = Math.max(2, 2 * Math.ceil(reach));
     const minor = new GridHelper(size, Math.round(size * 10), 0xd3d8df, 0xd3d8df);
     const major = new GridHelper(size, size, 0x9aa3ae, 0xaab2bd);
-    const floor = box.min.y < -0.05 ? box.min.y : 0;
+    const floor = whole.min.y < -0.05 ? whole.min.y : 0;
     minor.position.y = floor;
     major.position.y = floor + 0.0005;
     this.grid.add(minor, major);

@@ -2,7 +2,7 @@
 // the scene is drawn, the actions are listed, the animation plays to its end.
 //
 // Usage: node test/browser-test.mjs --url URL [--screenshot FILE] [--expect-actions N]
-//          [--expect-animation] [--expect-source inline|url|session] [--expect-error TEXT]
+//          [--expect-animation] [--expect-source inline|url|session|server] [--expect-error TEXT]
 //          [--expect-time T] [--no-play] [--min-scene-share F] [--timeout SECONDS] [--chromium PATH] [--viewport WxH]
 //          [--expect-text ID=TEXT]... [--expect-position NODE@T=X,Y,Z]...
 // URL may be file:///.../run.html or http://127.0.0.1:PORT/...; with `#sheet=` in it the page is
@@ -14,7 +14,7 @@ import { dirname, resolve } from 'node:path';
 
 const USAGE =
   'usage: node test/browser-test.mjs --url URL [--screenshot FILE] [--expect-actions N] [--expect-animation]\n' +
-  '         [--expect-source inline|url|session] [--expect-error TEXT] [--expect-time T] [--no-play]\n' +
+  '         [--expect-source inline|url|session|server] [--expect-error TEXT] [--expect-time T] [--no-play]\n' +
   '         [--min-scene-share F] [--timeout SECONDS]\n' +
   '         [--chromium PATH] [--viewport WxH] [--expect-text ID=TEXT]... [--expect-position NODE@T=X,Y,Z]...';
 

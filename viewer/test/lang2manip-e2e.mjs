@@ -103,6 +103,9 @@ cases.push({
       const session = await browserTest(['--url', `${server.url}/?session=e2e&token=${TOKEN}`, '--expect-source', 'session',
         '--expect-actions', '0', '--no-play', '--screenshot', join(out, 'serve-session.png')]);
       if (session.code !== 0) return 'browser test of the session failed';
+      const landing = await browserTest(['--url', `${server.url}/?token=${TOKEN}`, '--expect-source', 'server', '--expect-actions', '0',
+        '--no-play', '--screenshot', join(out, 'serve-landing.png')]);
+      if (landing.code !== 0) return 'browser test of the served page with nothing named failed';
       const started = await api(server.url, '/api/runs', { task: 'put the marker in the holder' });
       const status = await waitForRun(server.url, started.id);
       if (status.state !== 'succeeded') return `the run ended ${status.state}`;

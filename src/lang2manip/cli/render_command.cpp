@@ -1,9 +1,7 @@
-// `lang2manip render RUN_DIR`: PNG snapshots of a run's key moments and a contact sheet of them,
-// drawn by the viewer in headless Chromium.
+// `lang2manip render RUN_DIR|PAGE.html`: PNG snapshots of a run's key moments (or of the start,
+// middle and end of a page written by `solve --html`) and a contact sheet of them, drawn by the
+// viewer in one headless Chromium (chromium_session.hpp).
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -17,6 +15,7 @@
 #include <sstream>
 #include <thread>
 
+#include "lang2manip/cli/chromium_session.hpp"
 #include "lang2manip/cli/commands.hpp"
 #include "lang2manip/cli/progress_display.hpp"
 #include "lang2manip/cli/run_page.hpp"
@@ -24,8 +23,6 @@
 #include "lang2manip/core/output_files.hpp"
 #include "lang2manip/core/json_limits.hpp"
 #include "lang2manip/model/viewer_document.hpp"
-
-extern char** environ;
 
 namespace lang2manip {
 namespace {
@@ -81,56 +78,6 @@ std::string findChromium(const std::string& given) {
   throw InputError("render: needs Chromium to draw (Debian: apt-get install chromium), or --chromium PATH");
 }
 
-/// Runs `arguments` with stderr discarded and stdout written to `output` (discarded when empty);
-/// false when it fails or outlives `seconds`.
-bool runQuietly(const std::vector<std::string>& arguments, double seconds, const fs::path& output = {}) {
-  std::vector<char*> argv;
-  for (const std::string& argument : arguments) argv.push_back(const_cast<char*>(argument.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, output.empty() ? "/dev/null" : output.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  pid_t child = 0;
-  const int spawned = posix_spawn(&child, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) return false;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  int status = 0;
-  while (::waitpid(child, &status, WNOHANG) == 0) {
-    if (std::chrono::steady_clock::now() > deadline) {
-      ::kill(child, SIGKILL);
-      ::waitpid(child, &status, 0);
-      return false;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
-}
-
-/// The value of attribute `name` in the HTML tag `tag`, entities decoded ("" when absent).
-std::string attributeOf(const std::string& tag, const std::string& name) {
-  const std::size_t start = tag.find(" " + name + "=\"");
-  if (start == std::string::npos) return "";
-  const std::size_t from = start + name.size() + 3;
-  const std::string raw = tag.substr(from, tag.find('"', from) - from);
-  std::string text;
-  for (std::size_t i = 0; i < raw.size(); ++i) {
-    bool decoded = false;
-    static constexpr std::pair<const char*, char> kEntities[] = {{"&quot;", '"'}, {"&amp;", '&'}, {"&lt;", '<'}, {"&gt;", '>'}, {"&#39;", '\''}};
-    for (const auto& [entity, character] : kEntities) {
-      if (raw.compare(i, std::strlen(entity), entity) == 0) {
-        text += character;
-        i += std::strlen(entity) - 1;
-        decoded = true;
-        break;
-      }
-    }
-    if (!decoded) text += raw[i];
-  }
-  return text;
-}
-
 /// What the viewer reports on <body>: data-state ("ready", "rendered", "error", ...) and
 /// data-error (viewer/README.md).
 struct PageState {
@@ -138,51 +85,27 @@ struct PageState {
   std::string error;
 };
 
-class Snapshotter {
- public:
-  Snapshotter(std::string chromium, fs::path page, fs::path profile, double timeout)
-      : chromium_(std::move(chromium)), page_(std::move(page)), profile_(std::move(profile)), timeout_(timeout) {}
-
-  /// What the viewer reports once the page with `hash` is drawn at `width` x `height`.
-  [[nodiscard]] PageState pageState(const std::string& hash, int width, int height) const {
-    const fs::path dom = profile_.parent_path() / "dom.html";
-    if (!runQuietly(arguments(hash, width, height, "--dump-dom"), timeout_, dom)) {
-      throw InputError("render: " + chromium_ + " did not load the viewer (within " + std::to_string(static_cast<int>(timeout_)) + " s)");
-    }
-    std::ifstream in(dom, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    const std::string html = text.str();
-    const std::size_t body = html.find("<body");
-    const std::string tag = body == std::string::npos ? "" : html.substr(body, html.find('>', body) - body);
-    return {attributeOf(tag, "data-state"), attributeOf(tag, "data-error")};
+/// The viewer's state once it has left "loading" (or the time is up).
+PageState viewerState(ChromiumSession& browser, double timeoutSeconds) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeoutSeconds);
+  for (;;) {
+    const json value = browser.evaluate(
+        "document.readyState === 'complete' && document.body ? [document.body.dataset.state || '', document.body.dataset.error || ''] : ['', '']");
+    PageState page;
+    if (value.is_array() && value.size() == 2 && value[0].is_string() && value[1].is_string()) page = {value[0], value[1]};
+    if ((!page.state.empty() && page.state != "loading") || std::chrono::steady_clock::now() > deadline) return page;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
+}
 
-  /// Draws the page with `hash` into `png` at `width` x `height`.
-  void shoot(const std::string& hash, const fs::path& png, int width, int height) const {
-    const std::vector<std::string> arguments = this->arguments(hash, width, height, "--screenshot=" + png.string());
-    std::error_code error;
-    fs::remove(png, error);
-    if (!runQuietly(arguments, timeout_) || !fs::is_regular_file(png, error) || fs::file_size(png, error) < 100) {
-      throw InputError("render: " + chromium_ + " did not draw " + png.string() + " (within " + std::to_string(static_cast<int>(timeout_)) + " s)");
-    }
-  }
-
- private:
-  [[nodiscard]] std::vector<std::string> arguments(const std::string& hash, int width, int height, const std::string& output) const {
-    std::vector<std::string> arguments{chromium_, "--headless", "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--hide-scrollbars",
-                                       "--mute-audio", "--no-first-run", "--user-data-dir=" + profile_.string(),
-                                       "--window-size=" + std::to_string(width) + "," + std::to_string(height),
-                                       "--virtual-time-budget=30000", output, "file://" + page_.string() + "#" + hash};
-    if (::geteuid() == 0) arguments.insert(arguments.begin() + 1, "--no-sandbox");  // Chromium refuses root otherwise
-    return arguments;
-  }
-
-  std::string chromium_;
-  fs::path page_;
-  fs::path profile_;
-  double timeout_;
-};
+/// Shows the run at `time` (s) and waits until it is on the screen.
+void showMoment(ChromiumSession& browser, double time) {
+  std::ostringstream script;
+  script.precision(17);
+  script << "new Promise((resolve) => { const viewer = window.lang2manipViewer; viewer.pause(); viewer.seek(" << time
+         << "); viewer.render(); requestAnimationFrame(() => requestAnimationFrame(() => resolve(viewer.state().state))); })";
+  (void)browser.evaluate(script.str());
+}
 
 std::string fileLabel(const std::string& label) {
   std::string name;
@@ -252,45 +175,95 @@ std::string sheetHash(const std::vector<ViewerMoment>& moments, int columns, con
   return "sheet=" + times + "&labels=" + labels + "&cols=" + std::to_string(columns) + camera;
 }
 
+/// A temporary directory, removed with what it holds when destroyed.
+class WorkDirectory {
+ public:
+  WorkDirectory() {
+    std::string name = (fs::temp_directory_path() / "lang2manip-render-XXXXXX").string();
+    if (::mkdtemp(name.data()) == nullptr) throw InputError("render: cannot create a temporary directory: " + std::string(std::strerror(errno)));
+    path_ = name;
+  }
+  ~WorkDirectory() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  WorkDirectory(const WorkDirectory&) = delete;
+  WorkDirectory& operator=(const WorkDirectory&) = delete;
+  [[nodiscard]] const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+/// What is drawn: a page of the viewer and the moments to show.
+struct RenderSource {
+  std::string page;
+  std::vector<ViewerMoment> moments;
+  fs::path defaultOut;
+};
+
+/// A run directory (its run page written into `work`), or a page written by `solve --html` or
+/// `run --html` (moments: start, middle and end, unless it is a run's).
+RenderSource renderSource(const fs::path& given, const fs::path& work) {
+  std::error_code error;
+  if (fs::is_regular_file(given, error) && given.extension() == ".html") {
+    return {"file://" + fs::absolute(given).string(), {}, given.parent_path() / (given.stem().string() + "-render")};
+  }
+  const RenderInput input = readRun(given);
+  writeFileAtomically(work / "run.html", runPageHtml(input.document, input.glb, viewerScript()), "render");
+  return {"file://" + (work / "run.html").string(), input.moments, given / "render"};
+}
+
+/// Start, middle and end of a page's timeline (its start only when it has none).
+std::vector<ViewerMoment> timelineMoments(ChromiumSession& browser) {
+  const json duration = browser.evaluate("window.lang2manipViewer ? window.lang2manipViewer.duration : 0");
+  const double seconds = duration.is_number() ? duration.get<double>() : 0.0;
+  if (!(seconds > 0.0)) return {{0.0, "start"}};
+  return {{0.0, "start"}, {seconds / 2, "middle"}, {seconds, "end"}};
+}
+
+/// Opens `url` and waits for the viewer to show it; throws InputError with the viewer's reason
+/// when it cannot, or when it is not in `expected` state.
+void openViewer(ChromiumSession& browser, const std::string& url, int width, int height, double timeout,
+                const std::string& what, const std::string& expected) {
+  browser.open(url, width, height);
+  const PageState page = viewerState(browser, timeout);
+  if (page.state == "error") throw InputError("render: the viewer cannot show " + what + ": " + page.error);
+  if (page.state.empty() || page.state == "loading" || (!expected.empty() && page.state != expected)) {
+    throw InputError("render: the viewer did not finish drawing " + what + " (its state: \"" + page.state + "\")");
+  }
+}
+
 void render(const RenderOptions& options, std::ostream& out) {
-  const fs::path run(options.runDirectory);
+  const fs::path given(options.runDirectory);
   const auto [width, height] = sizeOf(options.size);
   checkOptions(options);
-  const RenderInput input = readRun(run);
-  const std::vector<ViewerMoment>& moments = input.moments;
+  const WorkDirectory work;
+  RenderSource source = renderSource(given, work.path());
   const std::string chromium = findChromium(options.chromium);
-  const fs::path out_ = options.out.empty() ? run / "render" : fs::path(options.out);
+  const fs::path out_ = options.out.empty() ? source.defaultOut : fs::path(options.out);
   OutputDirectory set(out_, "render: --out", options.force);
-  std::string workTemplate = (fs::temp_directory_path() / "lang2manip-render-XXXXXX").string();
-  if (::mkdtemp(workTemplate.data()) == nullptr) throw InputError("render: cannot create a temporary directory: " + std::string(std::strerror(errno)));
-  const fs::path work = workTemplate;
-  struct Cleanup {
-    fs::path path;
-    ~Cleanup() {
-      std::error_code ignored;
-      fs::remove_all(path, ignored);
-    }
-  } cleanup{work};
-  writeFileAtomically(work / "run.html", runPageHtml(input.document, input.glb, viewerScript()), "render");
-  const Snapshotter snapshots(chromium, work / "run.html", work / "profile", options.timeoutSeconds);
+  ChromiumSession browser(chromium, work.path() / "profile", options.timeoutSeconds);
   const std::string camera = options.camera.empty() ? "" : "&camera=" + options.camera;
-  const int columns = std::min(options.columns, static_cast<int>(moments.size()));
-  const int rows = (static_cast<int>(moments.size()) + columns - 1) / columns;
-  const int sheetHeight = 56 + rows * ((width / columns) * 3 / 4 + 36);
-  const std::string sheet = sheetHash(moments, columns, camera);
-  // Asked first, so that no picture of the viewer's error banner is written.
-  const PageState page = snapshots.pageState(sheet, width, sheetHeight);
-  if (page.state == "error") throw InputError("render: the viewer cannot show " + run.string() + ": " + page.error);
-  if (page.state != "rendered") throw InputError("render: the viewer did not finish drawing " + run.string() + " (its state: \"" + page.state + "\")");
+  // Every moment in one page: the scene is loaded once.
+  openViewer(browser, source.page + "#ui=0" + camera, width, height, options.timeoutSeconds, given.string(), "");
+  if (source.moments.empty()) source.moments = timelineMoments(browser);
+  const std::vector<ViewerMoment>& moments = source.moments;
   ProgressDisplay progress("render", moments.size() + 1, "pictures");
   for (std::size_t i = 0; i < moments.size(); ++i) {
     const std::string index = (i + 1 < 10 ? "0" : "") + std::to_string(i + 1);
     const std::string png = index + "-" + fileLabel(moments[i].label) + ".png";
-    snapshots.shoot("t=" + hashText(moments[i].time) + "&ui=0" + camera, set.stagingDirectory() / png, width, height);
+    showMoment(browser, moments[i].time);
+    writeFileAtomically(set.stagingDirectory() / png, browser.screenshot(), "render");
     out << "  " << (out_ / png).string() << "  (" << moments[i].label << ", t = " << hashText(moments[i].time) << " s)\n";
     progress.advance();
   }
-  snapshots.shoot(sheet, set.stagingDirectory() / "contact-sheet.png", width, sheetHeight);
+  const int columns = std::min(options.columns, static_cast<int>(moments.size()));
+  const int rows = (static_cast<int>(moments.size()) + columns - 1) / columns;
+  const int sheetHeight = 56 + rows * ((width / columns) * 3 / 4 + 36);
+  openViewer(browser, source.page + "#" + sheetHash(moments, columns, camera), width, sheetHeight, options.timeoutSeconds,
+             given.string(), "rendered");
+  writeFileAtomically(set.stagingDirectory() / "contact-sheet.png", browser.screenshot(), "render");
   progress.advance();
   progress.finish();
   set.commit();
@@ -304,12 +277,13 @@ void addRenderCommand(CLI::App& app, std::ostream& out) {
   CLI::App* command = app.add_subcommand(
       "render", "PNG snapshots of a run's key moments (start, each grasp and release, end) and a contact sheet, drawn by the "
                 "viewer in headless Chromium");
-  command->add_option("RUN_DIR", options->runDirectory, "A directory written by `lang2manip run` (viewer.json, scene.glb)")->required();
+  command->add_option("RUN_DIR", options->runDirectory, "A directory written by `lang2manip run` (viewer.json, scene.glb), or a page written by `solve --html` or `run --html`")
+      ->required();
   command->add_option("--size", options->size, "Width x height of each snapshot in pixels")->capture_default_str();
   command->add_option("--camera", options->camera, "AZIMUTH,ELEVATION[,DISTANCE]: degrees from +x towards +y, degrees up, metres");
   command->add_option("--columns", options->columns, "Columns of the contact sheet")->capture_default_str();
   command->add_option("--out", options->out,
-                      "Output directory (default: RUN_DIR/render); replaced whole, the earlier pictures kept in DIR.previous");
+                      "Output directory (default: RUN_DIR/render, or PAGE-render beside a page); replaced whole, the earlier pictures kept in DIR.previous");
   command->add_flag("--force", options->force, "Use --out even when it holds files lang2manip did not write (kept in DIR.previous)");
   command->add_option("--chromium", options->chromium, "The Chromium program (default: chromium on the PATH)");
   command->add_option("--timeout", options->timeoutSeconds, "Seconds one snapshot may take")->capture_default_str();

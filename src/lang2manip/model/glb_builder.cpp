@@ -11,6 +11,7 @@
 
 #include "lang2manip/core/error.hpp"
 #include "lang2manip/model/gltf_writer.hpp"
+#include "lang2manip/model/mesh_shading.hpp"
 
 namespace lang2manip {
 namespace {
@@ -52,7 +53,15 @@ struct GlbBuilder::Impl {
   json document;
   std::string binary;
   GltfSummary summary;
-  std::map<std::tuple<const TriangleMesh*, double, double, double, int>, std::pair<int, int>> accessors;
+  /// The POSITION, NORMAL and index accessors of a drawn geometry.
+  struct DrawnGeometry {
+    int positions = -1;
+    int normals = -1;
+    int indices = -1;
+    /// For a mesh of several colours: each colour (RGB) and the indices of its triangles.
+    std::vector<std::pair<Vector3, int>> colourGroups;
+  };
+  std::map<std::tuple<const TriangleMesh*, double, double, double, int>, DrawnGeometry> accessors;
   std::map<std::tuple<int, double, double, double, double>, int> meshes;
   std::map<std::string, int> groups;
 
@@ -70,7 +79,7 @@ struct GlbBuilder::Impl {
     return static_cast<int>(document["accessors"].size()) - 1;
   }
 
-  /// A VEC3 float accessor of `values` (x y z ...), with its bounds.
+  /// A VEC3 float accessor of `values` (x y z ...), with its bounds (positions and normals).
   int positions(const std::vector<float>& values, int target) {
     Vector3 low = Vector3::Constant(std::numeric_limits<double>::infinity());
     Vector3 high = -low;
@@ -99,8 +108,9 @@ struct GlbBuilder::Impl {
     return static_cast<int>(document["materials"].size()) - 1;
   }
 
-  /// (POSITION, indices) accessors of a geometry, written once per mesh and scale or primitive.
-  std::pair<int, int> geometryAccessors(const Geometry& shape) {
+  /// The accessors of a geometry, shaded (mesh_shading.hpp), written once per mesh and scale or
+  /// primitive.
+  DrawnGeometry geometryAccessors(const Geometry& shape) {
     using Key = std::tuple<const TriangleMesh*, double, double, double, int>;
     Key key{nullptr, 0.0, 0.0, 0.0, 0};
     if (const auto* mesh = std::get_if<MeshGeometry>(&shape)) key = Key{mesh->mesh.get(), mesh->scale.x(), mesh->scale.y(), mesh->scale.z(), 0};
@@ -108,17 +118,43 @@ struct GlbBuilder::Impl {
     if (const auto* sphere = std::get_if<Sphere>(&shape)) key = Key{nullptr, sphere->radius, 0.0, 0.0, 2};
     if (const auto* cylinder = std::get_if<Cylinder>(&shape)) key = Key{nullptr, cylinder->radius, cylinder->length, 0.0, 3};
     if (const auto found = accessors.find(key); found != accessors.end()) return found->second;
-    const TriangleMesh triangles = tessellated(shape, roundSegments);
-    if (triangles.triangles.empty()) return accessors[key] = {-1, -1};
+    const ShadedMesh shaded = shadedMesh(tessellated(shape, roundSegments));
+    if (shaded.triangles.empty()) return accessors[key] = {};
     std::vector<std::uint32_t> indices;
-    for (const auto& t : triangles.triangles) {
+    for (const auto& t : shaded.triangles) {
       for (const int i : t) indices.push_back(static_cast<std::uint32_t>(i));
     }
-    const int position = positions(floatsOf(triangles.vertices), kArrayBuffer);
+    DrawnGeometry drawn;
+    drawn.positions = positions(floatsOf(shaded.vertices), kArrayBuffer);
+    drawn.normals = positions(floatsOf(shaded.normals), kArrayBuffer);
+    drawn.indices = indexAccessor(indices);
+    drawn.colourGroups = colourGroups(std::get_if<MeshGeometry>(&shape), shaded);
+    summary.triangles += static_cast<int>(shaded.triangles.size());
+    return accessors[key] = drawn;
+  }
+
+  int indexAccessor(const std::vector<std::uint32_t>& indices) {
     const int indexView = view(indices.data(), indices.size() * sizeof(std::uint32_t), kElementArrayBuffer);
-    const int index = accessor({{"bufferView", indexView}, {"componentType", kUnsignedInt}, {"count", indices.size()}, {"type", "SCALAR"}});
-    summary.triangles += static_cast<int>(triangles.triangles.size());
-    return accessors[key] = {position, index};
+    return accessor({{"bufferView", indexView}, {"componentType", kUnsignedInt}, {"count", indices.size()}, {"type", "SCALAR"}});
+  }
+
+  /// The triangles of each colour of a mesh whose file gives several (none otherwise); triangles
+  /// without a colour are drawn grey.
+  std::vector<std::pair<Vector3, int>> colourGroups(const MeshGeometry* mesh, const ShadedMesh& shaded) {
+    if (mesh == nullptr || !mesh->mesh || mesh->mesh->palette.size() < 2) return {};
+    const TriangleMesh& source = *mesh->mesh;
+    std::map<int, std::vector<std::uint32_t>> byColour;
+    for (std::size_t t = 0; t < shaded.triangles.size(); ++t) {
+      const auto from = static_cast<std::size_t>(shaded.sourceTriangles[t]);
+      const int colour = from < source.triangleColours.size() ? source.triangleColours[from] : -1;
+      for (const int i : shaded.triangles[t]) byColour[colour].push_back(static_cast<std::uint32_t>(i));
+    }
+    std::vector<std::pair<Vector3, int>> coloured;
+    for (const auto& [colour, indices] : byColour) {
+      const bool known = colour >= 0 && static_cast<std::size_t>(colour) < source.palette.size();
+      coloured.emplace_back(known ? source.palette[static_cast<std::size_t>(colour)] : Vector3::Constant(0.7), indexAccessor(indices));
+    }
+    return coloured;
   }
 
   /// The glTF mesh of a shape's geometry and colour (built once per geometry and colour).
@@ -129,11 +165,23 @@ struct GlbBuilder::Impl {
     } else if (const auto* mesh = std::get_if<MeshGeometry>(&shape.geometry); mesh != nullptr && mesh->mesh && mesh->mesh->colour) {
       rgba.head<3>() = *mesh->mesh->colour;  // the mesh file's own colour
     }
-    const auto [position, indices] = geometryAccessors(shape.geometry);
-    if (position < 0) return -1;
-    const auto key = std::make_tuple(position, rgba.x(), rgba.y(), rgba.z(), rgba.w());
+    const DrawnGeometry drawn = geometryAccessors(shape.geometry);
+    if (drawn.positions < 0) return -1;
+    // A mesh file's own colours, unless the description gives the shape one (-1: that marker).
+    const bool ownColours = !shape.material && !drawn.colourGroups.empty();
+    const auto key = ownColours ? std::make_tuple(drawn.positions, -1.0, -1.0, -1.0, -1.0)
+                                : std::make_tuple(drawn.positions, rgba.x(), rgba.y(), rgba.z(), rgba.w());
     if (const auto found = meshes.find(key); found != meshes.end()) return found->second;
-    document["meshes"].push_back({{"primitives", json::array({{{"attributes", {{"POSITION", position}}}, {"indices", indices}, {"material", material(rgba)}}})}});
+    const json attributes{{"POSITION", drawn.positions}, {"NORMAL", drawn.normals}};
+    json primitives = json::array();
+    if (ownColours) {
+      for (const auto& [rgb, indices] : drawn.colourGroups) {
+        primitives.push_back({{"attributes", attributes}, {"indices", indices}, {"material", material(Vector4(rgb.x(), rgb.y(), rgb.z(), 1.0))}});
+      }
+    } else {
+      primitives.push_back({{"attributes", attributes}, {"indices", drawn.indices}, {"material", material(rgba)}});
+    }
+    document["meshes"].push_back({{"primitives", std::move(primitives)}});
     return meshes[key] = static_cast<int>(document["meshes"].size()) - 1;
   }
 
@@ -189,7 +237,8 @@ int GlbBuilder::addBody(const std::string& name, const std::string& kind, const 
   const int body = impl_->node(std::move(value), 0);
   const GltfGeometry geometry = impl_->geometry;
   if (geometry != GltfGeometry::kCollision) {
-    impl_->addShapes(name, visuals.empty() ? collisions : visuals, impl_->node({{"name", "visual"}, {"children", json::array()}}, body));
+    const bool drawnByCollision = visuals.empty() && kind != "link";
+    impl_->addShapes(name, drawnByCollision ? collisions : visuals, impl_->node({{"name", "visual"}, {"children", json::array()}}, body));
   }
   if (geometry != GltfGeometry::kVisual) {
     impl_->addShapes(name, collisions, impl_->node({{"name", "collision"}, {"children", json::array()}}, body));

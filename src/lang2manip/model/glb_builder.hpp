@@ -25,7 +25,9 @@ struct GltfSummary {
 
 /// Which geometry a body node carries.
 enum class GltfGeometry {
-  kVisual,     ///< its visual shapes (collision shapes when it has no visual one)
+  /// Its visual shapes. A robot link without one is drawn as nothing, as RViz draws it; an
+  /// object without one (a Kautham obstacle gives one geometry) by its collision shapes.
+  kVisual,
   kCollision,  ///< its collision shapes
   kBoth,       ///< both, as "visual" and "collision" children (the viewer shows one at a time)
 };
@@ -38,7 +40,8 @@ class GlbBuilder {
   GlbBuilder(const GlbBuilder&) = delete;
   GlbBuilder& operator=(const GlbBuilder&) = delete;
 
-  /// A body node named `name` with extras {"kind": kind} at world pose `X_WB`; its node index.
+  /// A body node named `name` with extras {"kind": kind} ("link" or "object") at world pose
+  /// `X_WB`; its node index.
   int addBody(const std::string& name, const std::string& kind, const std::vector<Shape>& visuals,
               const std::vector<Shape>& collisions, const Pose& X_WB);
   /// A polyline (LINE_STRIP) in world coordinates, a child of the group node `group`.

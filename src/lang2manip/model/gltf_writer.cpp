@@ -83,6 +83,9 @@ TriangleMesh tessellated(const Geometry& geometry, int roundSegments) {
   if (!mesh.mesh) return scaled;
   scaled.source = mesh.mesh->source;
   scaled.triangles = mesh.mesh->triangles;
+  scaled.colour = mesh.mesh->colour;
+  scaled.palette = mesh.mesh->palette;
+  scaled.triangleColours = mesh.mesh->triangleColours;
   for (const Vector3& v : mesh.mesh->vertices) scaled.vertices.push_back(v.cwiseProduct(mesh.scale));
   return scaled;
 }

@@ -13,8 +13,9 @@
 namespace lang2manip {
 
 struct GltfOptions {
-  /// The visual geometry (links and objects without one are drawn by their collision geometry),
-  /// the collision geometry, or both (as each body's "visual" and "collision" children).
+  /// The visual geometry (links without one are not drawn, as RViz does not draw them; objects
+  /// without one are drawn by their collision geometry), the collision geometry, or both (as
+  /// each body's "visual" and "collision" children; the viewer shows collision when toggled).
   GltfGeometry geometry = GltfGeometry::kVisual;
   /// Segments around a cylinder or sphere.
   int roundSegments = 24;

@@ -97,12 +97,17 @@ void MeshBuilder::addTriangle(int a, int b, int c) {
     return;
   }
   mesh_.triangles.push_back({a, b, c});
+  int paletteEntry = -1;
   if (colour_ && colour_->allFinite()) {
     const Vector3 rgb = colour_->cwiseMax(0.0).cwiseMin(1.0);
     const std::array<double, 3> key{std::round(rgb.x() * 255.0), std::round(rgb.y() * 255.0), std::round(rgb.z() * 255.0)};
     const Vector3& p = mesh_.vertices[static_cast<std::size_t>(a)];
     colourAreas_[key] += 0.5 * (mesh_.vertices[static_cast<std::size_t>(b)] - p).cross(mesh_.vertices[static_cast<std::size_t>(c)] - p).norm();
+    const auto [entry, added] = paletteIndex_.try_emplace(key, static_cast<int>(mesh_.palette.size()));
+    if (added) mesh_.palette.push_back(Vector3(key[0], key[1], key[2]) / 255.0);
+    paletteEntry = entry->second;
   }
+  mesh_.triangleColours.push_back(paletteEntry);
 }
 
 std::string MeshBuilder::problem() const {
@@ -123,6 +128,7 @@ TriangleMesh MeshBuilder::take(std::string source) {
     if (area > largest || (area == largest && key < best)) largest = area, best = key;  // ties: the smaller key, whatever the map's order
   }
   if (largest >= 0.0) mesh_.colour = Vector3(best[0], best[1], best[2]) / 255.0;
+  if (mesh_.palette.empty()) mesh_.triangleColours.clear();
   return std::move(mesh_);
 }
 

@@ -42,6 +42,9 @@ class MeshBuilder {
   void forgetColours() {
     colour_.reset();
     colourAreas_.clear();
+    paletteIndex_.clear();
+    mesh_.palette.clear();
+    mesh_.triangleColours.assign(mesh_.triangleColours.size(), -1);
   }
 
   /// What makes the collected mesh unusable, or "" when it is fine.
@@ -64,6 +67,8 @@ class MeshBuilder {
   std::optional<Vector3> colour_;
   /// Surface area per colour (RGB rounded to 1/255).
   std::unordered_map<std::array<double, 3>, double, KeyHash> colourAreas_;
+  /// Index in mesh_.palette per colour.
+  std::unordered_map<std::array<double, 3>, int, KeyHash> paletteIndex_;
   bool nonFinite_ = false;
   bool tooLarge_ = false;
   bool tooManyTriangles_ = false;

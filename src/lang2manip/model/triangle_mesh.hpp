@@ -20,6 +20,11 @@ struct TriangleMesh {
   /// materials (Inventor/VRML Material, COLLADA effects, OBJ/PLY materials); none when the file
   /// gives none.
   std::optional<Vector3> colour;
+  /// Every colour the file gives its surfaces (diffuse RGB, 0..1), and for each triangle the index
+  /// of its colour in `palette` (-1: none); both empty when the file gives no colour. Drawn as
+  /// RViz draws a mesh's materials; collision ignores them.
+  std::vector<Vector3> palette;
+  std::vector<int> triangleColours;
 
   /// Axis-aligned bounds of the vertices (empty box when there are none).
   [[nodiscard]] AlignedBox3 bounds() const;

@@ -1,6 +1,8 @@
 // Kautham's planning-session verbs over HTTP: one PlanningSession per client id.
 
 #include <algorithm>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -239,11 +241,31 @@ ApiRoute sceneRoute(SessionRegistry& sessions) {
           }};
 }
 
+/// The server's default problem as glTF binary: what the viewer served at / shows when it is
+/// given nothing else (written once, on first request).
+ApiRoute defaultSceneRoute(const ServerOptions& options) {
+  struct Cache {
+    std::once_flag once;
+    std::string glb;
+  };
+  auto cache = std::make_shared<Cache>();
+  return {"GET", "/api/scene.glb", [cache, &options](const ApiRequest&) {
+            std::call_once(cache->once, [&] {
+              const LoadedProblem loaded = loadProblem(servedProblem(options, options.defaultProblem), "");
+              GltfOptions gltf;
+              gltf.geometry = GltfGeometry::kBoth;
+              cache->glb = sceneToGlb(loaded.problem.scene, gltf);
+            });
+            return ApiResponse{200, "model/gltf-binary", cache->glb};
+          }};
+}
+
 }  // namespace
 
 std::vector<ApiRoute> sessionRoutes(SessionRegistry& sessions, const ServerOptions& options) {
   std::vector<ApiRoute> routes = problemVerbs(sessions, options);
   routes.push_back(sceneRoute(sessions));
+  routes.push_back(defaultSceneRoute(options));
   for (ApiRoute& route : plannerVerbs(sessions, options)) routes.push_back(std::move(route));
   for (ApiRoute& route : worldVerbs(sessions, options)) routes.push_back(std::move(route));
   return routes;
