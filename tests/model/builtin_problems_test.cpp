@@ -5,6 +5,7 @@
 
 #include "lang2manip/model/builtin_data.hpp"
 #include "lang2manip/model/kautham_problem.hpp"
+#include "lang2manip/model/urdf_reader.hpp"
 #include "model_test_support.hpp"
 
 namespace lang2manip {
@@ -78,6 +79,47 @@ TEST(BuiltinProblems, PaperSceneHasRealisticObjectsWithinReach) {
     // Resting on the desk top: the object's lowest point is at the desk's highest point.
     EXPECT_NEAR(object->worldBounds().min().z(), scene.object("desk").worldBounds().max().z(), 0.002)
         << object->name;
+  }
+}
+
+/// True when `link` has a visual cylinder (a joint drum) along the line through `point` in the
+/// direction `axis` (both in the link's frame).
+bool hasDrumOn(const Link& link, const Vector3& point, const Vector3& axis) {
+  for (const Shape& shape : link.visuals) {
+    if (!std::holds_alternative<Cylinder>(shape.geometry)) continue;
+    const Vector3 direction = shape.origin.linear().col(2);
+    const Vector3 offset = shape.origin.translation() - point;
+    if (std::abs(direction.dot(axis)) > 0.999 && (offset - offset.dot(axis) * axis).norm() < 1e-3) return true;
+  }
+  return false;
+}
+
+TEST(BuiltinRobots, LookLikeTheArmsNotTheirCollisionCapsules) {
+  for (const std::string& name : builtinRobotNames()) {
+    SCOPED_TRACE(name);
+    const RobotModelPtr robot = readUrdfFile(builtinRobotUrdf(name));
+    std::size_t visuals = 0;
+    std::size_t collisions = 0;
+    for (const Link& link : robot->links()) {
+      visuals += link.visuals.size();
+      collisions += link.collisions.size();
+      for (const Shape& shape : link.visuals) EXPECT_TRUE(shape.material.has_value()) << link.name << ": the maker's colours";
+    }
+    EXPECT_GT(visuals, collisions) << "drums and caps besides the tubes";
+    // A drum on every revolute joint of the arm: on its axis, in the link before or after it.
+    int revolute = 0;
+    int drummed = 0;
+    for (const Joint& joint : robot->joints()) {
+      if (joint.type != JointType::kRevolute) continue;
+      ++revolute;
+      const Link& parent = robot->links()[static_cast<std::size_t>(robot->linkIndex(joint.parentLink))];
+      const Link& child = robot->links()[static_cast<std::size_t>(robot->linkIndex(joint.childLink))];
+      if (hasDrumOn(child, Vector3::Zero(), joint.axis) ||
+          hasDrumOn(parent, joint.origin.translation(), joint.origin.linear() * joint.axis)) {
+        ++drummed;
+      }
+    }
+    EXPECT_GE(drummed, revolute * 3 / 4) << drummed << " of " << revolute << " joints drawn as drums";
   }
 }
 
