@@ -83,7 +83,8 @@ TEST(ApiLimits, AHeaderFloodIsAnswered431OnceItPassesTheLimit) {
   const std::string answer = flood.answer();
   EXPECT_EQ(test::rawStatus(answer), 431) << answer.substr(0, 300);
   EXPECT_THAT(test::rawBody(answer)["error"].value("message", ""), HasSubstr("longer than 16384 bytes"));
-  EXPECT_LT(sent, std::size_t{8} << 20) << "the server read far past its limit before answering";
+  // Loopback buffers hold some megabytes the client may push before it sees the answer.
+  EXPECT_LT(sent, std::size_t{64} << 20) << "the server read far past its limit before answering";
   EXPECT_EQ(server.get("/api/health")->status, 200);
 }
 
