@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <regex>
 #include <thread>
+#include <utility>
 
 #include "cli/cli_run.hpp"
 #include "server/api_test_server.hpp"
@@ -71,21 +72,18 @@ TEST(ServeCli, ServesUntilSigtermAndStopsCleanly) {
 }
 
 TEST(ServeCli, BadOptionsExitWithAMessage) {
-  const test::RunResult port = test::run("serve --port 70000");
-  EXPECT_EQ(port.exitCode, 1);
-  EXPECT_THAT(port.output, HasSubstr("--port 70000"));
-  const test::RunResult viewer = test::run("serve --port 0 --viewer /nonexistent-viewer");
-  EXPECT_EQ(viewer.exitCode, 1);
-  EXPECT_THAT(viewer.output, HasSubstr("no index.html"));
-  const test::RunResult root = test::run("serve --port 0 --data-root /nonexistent-root");
-  EXPECT_EQ(root.exitCode, 1);
-  EXPECT_THAT(root.output, HasSubstr("--data-root"));
-  const test::RunResult connections = test::run("serve --port 0 --max-connections 1");
-  EXPECT_EQ(connections.exitCode, 1);
-  EXPECT_THAT(connections.output, HasSubstr("connections 2 to 4096"));
-  const test::RunResult seconds = test::run("serve --port 0 --max-request-seconds 0");
-  EXPECT_EQ(seconds.exitCode, 1);
-  EXPECT_THAT(seconds.output, HasSubstr("--max-request-seconds 0: expected more than 0"));
+  const std::pair<const char*, const char*> refused[] = {
+      {"--port 70000", "--port 70000"},
+      {"--port 0 --viewer /nonexistent-viewer", "no index.html"},
+      {"--port 0 --data-root /nonexistent-root", "--data-root"},
+      {"--port 0 --max-connections 1", "connections 2 to 4096"},
+      {"--port 0 --max-request-seconds 0", "--max-request-seconds 0: expected more than 0"},
+  };
+  for (const auto& [arguments, message] : refused) {
+    const test::RunResult result = test::run(std::string("serve ") + arguments);
+    EXPECT_EQ(result.exitCode, 1) << arguments;
+    EXPECT_THAT(result.output, HasSubstr(message)) << arguments;
+  }
   const test::RunResult problem = test::run("serve nosuch.xml --port 0", true, "timeout 20");
   EXPECT_EQ(problem.exitCode, 1);
   EXPECT_THAT(problem.output, HasSubstr("PROBLEM nosuch.xml"));

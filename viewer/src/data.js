@@ -103,3 +103,16 @@ export async function loadData(query, doc = document) {
       'and no ?glb=URL[&run=URL] or ?session=ID in its address',
   );
 }
+
+/** Names of the objects a run document's actions move or aim at (their object, and the target of their params). */
+export function touchedObjects(run) {
+  const names = new Set();
+  const actions = run && Array.isArray(run.actions) ? run.actions : [];
+  for (const action of actions) if (action && typeof action.object === 'string') names.add(action.object);
+  const reported = run && run.report && Array.isArray(run.report.actions) ? run.report.actions : [];
+  for (const entry of reported) {
+    const params = entry && entry.action && entry.action.params;
+    if (params && typeof params.target === 'string') names.add(params.target);
+  }
+  return names;
+}

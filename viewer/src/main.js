@@ -3,7 +3,7 @@
 // and inlined into a self-contained page. See README.md for the data contract and the test API.
 import css from './viewer.css';
 import { hashParams, queryParams } from './params.js';
-import { LoadError, loadData } from './data.js';
+import { LoadError, loadData, touchedObjects } from './data.js';
 import { BACKGROUND, DEFAULT_VIEW, SceneView, parseGlb } from './scene.js';
 
 const SPEEDS = [0.25, 0.5, 1, 2, 4];
@@ -311,18 +311,6 @@ function layout() {
   renderNow();
 }
 
-/** Names of the objects the run's actions move or aim at (their object, and their params' target). */
-function touchedObjects(list) {
-  const names = new Set();
-  for (const action of list) if (action && typeof action.object === 'string') names.add(action.object);
-  const reported = run && run.report && Array.isArray(run.report.actions) ? run.report.actions : [];
-  for (const entry of reported) {
-    const params = entry && entry.action && entry.action.params;
-    if (params && typeof params.target === 'string') names.add(params.target);
-  }
-  return names;
-}
-
 function fillRun() {
   const { task, meta, actionList, actionsEmpty, sections } = dom;
   meta.replaceChildren();
@@ -369,7 +357,7 @@ function fillRun() {
     actions.push({ index, start, end, item, text });
   });
   actionsEmpty.hidden = actions.length > 0;
-  view.frame(touchedObjects(list));
+  view.frame(touchedObjects(run));
 
   for (const key of ['observation', 'prompt', 'report']) {
     const value = run[key];
